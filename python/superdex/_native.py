@@ -1,0 +1,14 @@
+"""Loads the native module of the precision chosen by SUPERDEX_PRECISION (float by default)."""
+
+import importlib
+import os
+
+_VALUES = {"": "float", "float": "float", "float32": "float", "single": "float", "double": "double", "float64": "double"}
+
+_requested = os.environ.get("SUPERDEX_PRECISION", "").strip().lower()
+if _requested not in _VALUES:
+    raise ImportError(
+        f"SUPERDEX_PRECISION={os.environ['SUPERDEX_PRECISION']!r} is not understood: use 'float' (default) or 'double'"
+    )
+PRECISION = _VALUES[_requested]
+module = importlib.import_module(f"superdex._superdex_{PRECISION}")

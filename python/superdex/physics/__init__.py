@@ -1,0 +1,38 @@
+"""superdex.physics: the engine's Python API (see API.md).
+
+The float32 build is loaded by default; SUPERDEX_PRECISION=double selects the float64 build.
+"""
+
+from superdex._native import module as _m
+
+Error = _m.Error
+Quaternion = _m.Quaternion
+TransformRT = _m.TransformRT
+DynamicArrayTransformRT = _m.DynamicArrayTransformRT
+DynamicArrayReal = _m.DynamicArrayReal
+ActorType = _m.ActorType
+JointType = _m.JointType
+ColliderType = _m.ColliderType
+Scene = _m.Scene
+Actor = _m.Actor
+Shape = _m.Shape
+SolverParams = _m.SolverParams
+SolverStats = _m.SolverStats
+ArticulatedShapeInfo = _m.ArticulatedShapeInfo
+DofInfo = _m.DofInfo
+
+initialize = _m.initialize
+shutdown = _m.shutdown
+is_initialized = _m.is_initialized
+uses_double_precision = _m.uses_double_precision
+create_scene = _m.create_scene
+destroy_scene = _m.destroy_scene
+create_plane_shape = _m.create_plane_shape
+create_sphere_shape = _m.create_sphere_shape
+create_box_shape = _m.create_box_shape
+create_capsule_shape = _m.create_capsule_shape
+release_shape = _m.release_shape
+
+from superdex.physics import paths  # noqa: E402  (submodule, after the native names)
+
+__all__ = [name for name in dir() if not name.startswith("_")]

@@ -1,0 +1,98 @@
+#pragma once
+/// @file articulation_desc.h
+/// The static description of an articulated body: links, joints and their parameters,
+/// with the fields of the `.superdex_bot` format (FORMATS.md). A description is what users
+/// write and edit; the engine validates it and builds an immutable model from it.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superdex/physics/real.h"
+#include "superdex/physics/shape.h"
+#include "superdex/physics/transform.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+/// How a link moves relative to its parent.
+enum class JointType {
+  Hard,       ///< welded: 0 DOFs
+  Free,       ///< 6 DOFs, root only: velocity is (linear, angular) of the link origin in the link frame
+  Revolute,   ///< 1 DOF: rotation about `axis` (rad)
+  Prismatic,  ///< 1 DOF: translation along `axis` (m)
+  Spherical,  ///< 3 DOFs: angular velocity in the child link frame
+};
+
+/// Returns "Hard", "Free", ... as written in files.
+const char* joint_type_name(JointType type);
+/// Generalized velocity size of a joint type.
+int joint_num_dofs(JointType type);
+
+/// One joint: connects link i to its parent link (or the world for the root).
+struct JointDesc {
+  std::string name;
+  JointType type = JointType::Revolute;
+  /// Joint axis in the joint frame (revolute, prismatic); normalised by the engine.
+  Vec3 axis = Vec3::UnitZ();
+  /// X_PJ: the joint frame in the parent link frame. The child link frame coincides with
+  /// the joint frame at zero joint position.
+  Transform parent_link_from_joint;
+  /// Position limits as vectors along the axis (limit value = axis . vector); absent: unlimited.
+  std::optional<Vec3> min_limit;
+  std::optional<Vec3> max_limit;
+  /// < 0 unbounded, 0 not actuated, > 0 limit in N or N m (advisory: the physics does not clamp).
+  real effort_limit = -1;
+  /// Coulomb friction force or torque bound (N or N m), >= 0.
+  real coulomb_friction = 0;
+  /// Viscous friction coefficient (N s/m or N m s/rad), >= 0; integrated implicitly.
+  real viscous_friction = 0;
+  /// Armature (rotor inertia, kg m^2 or kg) added to each DOF's diagonal of the mass matrix.
+  real armature = 0;
+  /// Limit stiffness (N/m or N m/rad); 0 means rigid (the solver's near-rigid regularisation).
+  real limit_stiffness = 0;
+  /// Limit damping (N s/m or N m s/rad), used with a finite limit stiffness.
+  real limit_damping = 0;
+};
+
+/// One link (rigid body) of an articulation.
+struct LinkDesc {
+  std::string name;
+  /// Index of the parent link; -1 for the root (link 0).
+  int parent_link = -1;
+  /// Mass in kg; when absent it is computed from `density` and the shape.
+  std::optional<real> mass;
+  /// Centre of mass in the link frame (m); when absent and the mass comes from the shape,
+  /// the shape's centre of mass.
+  std::optional<Vec3> center_of_mass;
+  /// Rotational inertia about the COM in the link frame: Ixx, Ixy, Ixz, Iyy, Iyz, Izz (kg m^2).
+  std::optional<std::array<real, 6>> moment_of_inertia;
+  /// Density in kg/m^3, used when `mass` is absent.
+  std::optional<real> density;
+  /// Shape carried by the link, in the link frame (inline primitive); absent: no geometry.
+  std::optional<ShapeGeometry> shape;
+  /// Shape file path as written in the file (meshes, `.mochi.h5`), resolved by loaders.
+  std::string shape_file;
+  Vec3 shape_scale = Vec3::Ones();
+  std::string collider_type = "Auto";
+  std::string render_model;
+  Vec3 render_model_scale = Vec3::Ones();
+  /// Coulomb friction coefficient of the link's contacts; absent: the scene default.
+  std::optional<real> friction_coefficient;
+  bool has_gravity = true;
+};
+
+/// A whole articulation: links[i] is attached to its parent by joints[i].
+struct ArticulationDesc {
+  std::string name;
+  std::vector<LinkDesc> links;
+  std::vector<JointDesc> joints;
+  /// Generalized positions in DOF order, excluding the root joint's DOFs; empty: all zero.
+  std::vector<real> default_pose;
+  /// Pose of the root joint's parent frame in the world.
+  Transform world_from_root;
+};
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,33 @@
+#pragma once
+/// @file articulation_json.h
+/// Reading articulation descriptions from the JSON of `.superdex_bot` files (FORMATS.md).
+/// Errors name the source, the JSON path (`links[3].mass`) and what was expected; unknown
+/// fields are reported as warnings.
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "superdex/physics/articulation_desc.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+/// Parses a whole articulation (top-level `name`, `links`, `joints`, `defaultPose`,
+/// `worldFromRoot`). `extra_known_fields` lists top-level, link and joint fields that
+/// other layers handle (e.g. "sensors") so that they are not reported as unknown.
+/// Warnings are appended to `warnings` when it is not null. Throws superdex::Error.
+ArticulationDesc articulation_desc_from_json(const nlohmann::json& doc, const std::string& source,
+                                             std::vector<std::string>* warnings,
+                                             const std::vector<std::string>& extra_known_fields = {});
+
+/// Parses `{rotation: [x, y, z, w], translation: [x, y, z]}` (both optional) at `path`.
+Transform transform_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+
+/// Parses an inline primitive shape: {"sphere": {"radius": r, "center": [..]}},
+/// {"box": {"halfExtents": [..]}}, {"capsule": {"radius": r, "halfLength": l}},
+/// {"plane": {"normal": [..], "distance": d}}.
+ShapeGeometry shape_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,37 @@
+#pragma once
+/// @file engine.h
+/// Engine lifecycle, scenes and shapes. All functions throw superdex::Error on misuse.
+/// Thread-safety: the registries are guarded; scenes may be stepped concurrently from
+/// different threads, but one scene must not be used from two threads at once.
+
+#include <string>
+#include <vector>
+
+#include "superdex/physics/handles.h"
+#include "superdex/physics/shape.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+class Scene;
+
+/// Starts the engine. `num_worker_threads`: 0 single-threaded, -1 one per core, N > 0 threads.
+void initialize(int num_worker_threads = 0);
+/// Destroys every scene and shape and stops the engine. Safe to call when not initialized.
+void shutdown();
+bool is_initialized();
+/// Worker threads in use (1 when single-threaded).
+int num_worker_threads();
+
+Scene create_scene(const std::string& name);
+void destroy_scene(SceneHandle scene);
+bool scene_exists(SceneHandle scene);
+
+/// Registers a shape (validated: throws superdex::Error naming the defect).
+ShapeHandle create_shape(const ShapeGeometry& geometry);
+void release_shape(ShapeHandle shape);
+/// The geometry of a live shape.
+ShapeGeometry shape_geometry(ShapeHandle shape);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

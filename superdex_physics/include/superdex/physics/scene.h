@@ -1,0 +1,143 @@
+#pragma once
+/// @file scene.h
+/// A scene: actors (rigid bodies, articulations and their links) stepped together.
+/// `Scene` is a handle; every method looks the scene up and throws superdex::Error if it
+/// was destroyed. Actors are addressed by ActorHandle. Frames: W is the world (Z up),
+/// L a link frame; spatial vectors are (linear, angular).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superdex/physics/articulation_desc.h"
+#include "superdex/physics/handles.h"
+#include "superdex/physics/real.h"
+#include "superdex/physics/transform.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+enum class ActorType { Rigid, Soft, Articulated, Link };
+
+/// Parameters of the implicit solve.
+struct SolverParams {
+  int max_newton_iterations = 50;
+  /// Stop when the scaled momentum residual is below abs + rel * scale.
+  real absolute_tolerance = real(1e-10);
+  real relative_tolerance = kUsesDoublePrecision ? real(1e-8) : real(1e-5);
+  int max_line_search_iterations = 40;
+  /// Near-rigid regularisation of limits: constraint compliance = beta^2 / (4 pi^2) * w.
+  real near_rigid_beta = 1;
+  /// Regularisation of friction rows relative to their effective compliance w.
+  real friction_sigma = real(1e-3);
+};
+
+/// What the last step did.
+struct SolverStats {
+  int newton_iterations = 0;      ///< largest number of Newton iterations over islands
+  int total_newton_iterations = 0;
+  real residual = 0;              ///< largest final scaled residual over islands
+  bool converged = true;
+  int num_islands = 0;
+  int num_constraints = 0;        ///< active constraint rows (limits, friction)
+  int num_contacts = 0;
+  double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
+  double time_solve = 0;          ///< seconds in the implicit solves
+  double time_total = 0;
+};
+
+/// One joint's slice of the generalized coordinates.
+struct DofInfo {
+  int offset = 0;      ///< first DOF index of the joint
+  int trans_size = 0;  ///< translational DOFs
+  int rot_size = 0;    ///< rotational DOFs
+  int size() const { return trans_size + rot_size; }
+};
+
+/// The structure of an articulation, in link order.
+struct ArticulatedShapeInfo {
+  std::vector<std::string> link_names, joint_names;
+  std::vector<int> parents;            ///< -1 for the root
+  std::vector<JointType> joint_types;
+  std::vector<Vec3> joint_axes;        ///< unit axis in the joint frame
+  std::vector<DofInfo> dof_info;
+};
+
+class Scene {
+ public:
+  explicit Scene(SceneHandle handle) : handle_(handle) {}
+  SceneHandle handle() const { return handle_; }
+  std::string name() const;
+
+  /// Gravity in m/s^2, world frame.
+  void set_gravity(const Vec3& g_W);
+  Vec3 gravity() const;
+  /// Advances by dt seconds: one implicit solve per island. Throws superdex::Error for a
+  /// non-positive dt or a numerical fault (the scene then keeps its last good state).
+  void step(real dt);
+  /// Seconds simulated since creation.
+  double total_simulation_time() const;
+  void set_solver_params(const SolverParams& params);
+  SolverParams solver_params() const;
+  SolverStats solver_stats() const;
+
+  /// A rigid body carrying `shape`: static (welded) or dynamic (a Free one-link articulation).
+  /// Mass from `mass`, else from `density` (kg/m^3, default 1000) and the shape's volume.
+  ActorHandle create_rigid_actor(const std::string& name, ShapeHandle shape, bool is_static, const Transform& X_WL,
+                                 std::optional<real> density, std::optional<real> mass);
+  /// An articulation from its description; `source` names it in error messages (a file).
+  /// Creates one link actor per link.
+  ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);
+  /// Destroys an actor (an articulation with its links). Link actors cannot be destroyed alone.
+  void destroy_actor(ActorHandle actor);
+  bool has_actor(ActorHandle actor) const;
+  /// Top-level actors (rigid and articulated), in creation order.
+  std::vector<ActorHandle> actors() const;
+
+  ActorType actor_type(ActorHandle actor) const;
+  std::string actor_name(ActorHandle actor) const;
+  /// World-from-actor: a rigid body's pose, an articulation's root link, a link's pose.
+  Transform root_transform(ActorHandle actor) const;
+  /// Moves a rigid body or an articulation's root (its base frame if welded).
+  void set_root_transform(ActorHandle actor, const Transform& X_WL);
+  /// Sets the velocity of a free body's origin (m/s) and its angular velocity (rad/s), world frame.
+  void set_velocity(ActorHandle actor, const Vec3& v_W, const Vec3& w_W);
+  /// (linear, angular) velocity of the actor's origin in world frame.
+  Vec6 velocity(ActorHandle actor) const;
+  /// Total mass in kg.
+  real mass(ActorHandle actor) const;
+  int num_dofs(ActorHandle actor) const;
+
+  /// Replaces the whole set of external generalized forces (N or N m) on the given DOFs.
+  void set_external_forces_on_dofs(ActorHandle actor, const std::vector<int>& dof_indices,
+                                   const std::vector<real>& values);
+  void clear_external_forces(ActorHandle actor);
+  VecX external_forces(ActorHandle actor) const;
+
+  std::vector<ActorHandle> nested_link_actors(ActorHandle articulation) const;
+  ActorHandle articulated_actor_of_link(ActorHandle link) const;
+  int link_index(ActorHandle link) const;
+  ArticulatedShapeInfo articulated_shape_info(ActorHandle articulation) const;
+  /// World-from-link transforms in link order.
+  std::vector<Transform> link_transforms(ActorHandle articulation) const;
+  /// DOF-sized pose: joint values; spherical and free rotations as rotation vectors (rad).
+  VecX pose(ActorHandle articulation) const;
+  /// Sets the pose (all DOFs) and zeroes nothing else.
+  void set_pose(ActorHandle articulation, const VecX& pose);
+  VecX joint_velocities(ActorHandle articulation) const;
+  void set_joint_velocities(ActorHandle articulation, const VecX& v);
+  /// J_WL of a link (6 x num_dofs, linear rows first, world axes, at the link origin).
+  MatXR link_jacobian(ActorHandle link) const;
+  /// M(q) with armature (nv x nv).
+  MatX mass_matrix(ActorHandle articulation) const;
+  /// c(q, v) including gravity: M vdot + c = tau.
+  VecX bias_forces(ActorHandle articulation) const;
+  /// vdot = M^-1 (tau - c): forward dynamics of the unconstrained articulation.
+  VecX forward_dynamics(ActorHandle articulation, const VecX& tau) const;
+
+ private:
+  SceneHandle handle_;
+};
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,133 @@
+// The Actor class: one class for every actor kind; methods that do not apply raise Error.
+
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "bind_common.h"
+
+namespace superdex::python {
+
+namespace {
+
+// Writes `values` into the out-parameter (or a new numpy array when it is None) and returns it.
+nb::object fill_out(nb::handle out, const VecX& values, const std::string& arg) {
+  if (out.is_none()) return nb::cast(numpy_copy(values));
+  real* dst = out_buffer(out, arg, static_cast<size_t>(values.size()));
+  std::copy(values.data(), values.data() + values.size(), dst);
+  return nb::borrow(out);
+}
+
+std::vector<int> read_indices(nb::handle obj, const std::string& arg) {
+  const VecX v = read_vector(obj, arg);
+  std::vector<int> out(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i]) || v[i] != std::floor(v[i]))
+      throw Error(arg + "[" + std::to_string(i) + "]: expected an integer DOF index");
+    out[i] = static_cast<int>(v[i]);
+  }
+  return out;
+}
+
+NumpyArray matrix_to_numpy(const MatX& M) {
+  const MatXR R = M;
+  return numpy_copy(R.data(), {static_cast<size_t>(R.rows()), static_cast<size_t>(R.cols())});
+}
+
+}  // namespace
+
+void export_actor(nb::module_& m) {
+  nb::class_<DofInfo>(m, "DofInfo", "One joint's slice of the DOFs.")
+      .def_ro("offset", &DofInfo::offset)
+      .def_ro("trans_size", &DofInfo::trans_size)
+      .def_ro("rot_size", &DofInfo::rot_size)
+      .def("get_size", &DofInfo::size);
+
+  nb::class_<ArticulatedShapeInfo>(m, "ArticulatedShapeInfo", "The structure of an articulation, in link order.")
+      .def_ro("link_names", &ArticulatedShapeInfo::link_names)
+      .def_ro("joint_names", &ArticulatedShapeInfo::joint_names)
+      .def_ro("parents", &ArticulatedShapeInfo::parents)
+      .def_ro("joint_types", &ArticulatedShapeInfo::joint_types)
+      .def_prop_ro("joint_axes", [](const ArticulatedShapeInfo& s) {
+        nb::list out;
+        for (const Vec3& a : s.joint_axes) out.append(numpy_copy(a.data(), {3}));
+        return out;
+      })
+      .def_ro("dof_info", &ArticulatedShapeInfo::dof_info);
+
+  nb::class_<Actor>(m, "Actor", "A rigid body, an articulation, or one link of an articulation, by handle.")
+      .def("get_handle", [](const Actor& a) { return a.handle; })
+      .def("get_name", [](const Actor& a) { return a.scene.actor_name(a.handle); })
+      .def("get_type", [](const Actor& a) { return a.scene.actor_type(a.handle); })
+      .def("get_scene", [](const Actor& a) { return a.scene; })
+      .def("get_root_transform", [](const Actor& a) { return TransformRT::from(a.scene.root_transform(a.handle)); },
+           "World-from-actor transform (a link's own pose for a link actor).")
+      .def("set_root_transform", [](Actor& a, nb::handle t) {
+             a.scene.set_root_transform(a.handle, read_transform(t, "set_root_transform: transform"));
+           }, "transform"_a)
+      .def("set_velocity", [](Actor& a, nb::handle linear, nb::handle angular) {
+             a.scene.set_velocity(a.handle, read_vec3(linear, "set_velocity: linear"), read_vec3(angular, "set_velocity: angular"));
+           }, "linear"_a, "angular"_a, "Velocity of the actor origin (m/s) and angular velocity (rad/s), world frame.")
+      .def("get_linear_velocity", [](const Actor& a) { const Vec6 v = a.scene.velocity(a.handle); return numpy_copy(v.data(), {3}); },
+           "Velocity of the actor origin (m/s), world frame.")
+      .def("get_angular_velocity", [](const Actor& a) { const Vec6 v = a.scene.velocity(a.handle); return numpy_copy(v.data() + 3, {3}); },
+           "Angular velocity (rad/s), world frame.")
+      .def("get_mass", [](const Actor& a) { return a.scene.mass(a.handle); })
+      .def("get_num_dofs", [](const Actor& a) { return a.scene.num_dofs(a.handle); })
+      .def("set_external_forces_on_dofs", [](Actor& a, nb::handle dof_indices, nb::handle force_values) {
+             const std::vector<int> dofs = read_indices(dof_indices, "set_external_forces_on_dofs: dof_indices");
+             const VecX f = read_vector(force_values, "set_external_forces_on_dofs: force_values");
+             a.scene.set_external_forces_on_dofs(a.handle, dofs, std::vector<real>(f.data(), f.data() + f.size()));
+           }, "dof_indices"_a, "force_values"_a,
+           "Replaces the whole set of external generalized forces (N, N m); held until replaced or cleared.")
+      .def("clear_external_forces", [](Actor& a) { a.scene.clear_external_forces(a.handle); })
+      .def("get_external_forces", [](const Actor& a) { return numpy_copy(a.scene.external_forces(a.handle)); })
+      .def("get_nested_link_actors", [](const Actor& a) { return a.scene.nested_link_actors(a.handle); },
+           "Handles of the link actors, in link order.")
+      .def("get_articulated_actor", [](const Actor& a) { return a.scene.articulated_actor_of_link(a.handle); },
+           "Handle of the articulation this link belongs to.")
+      .def("get_link_index", [](const Actor& a) { return a.scene.link_index(a.handle); })
+      .def("get_articulated_shape_info", [](const Actor& a) { return a.scene.articulated_shape_info(a.handle); })
+      .def("get_articulated_link_transforms", [](const Actor& a, nb::handle out) -> nb::object {
+             const std::vector<Transform> X = a.scene.link_transforms(a.handle);
+             if (out.is_none()) {
+               DynamicArrayTransformRT arr;
+               for (const Transform& x : X) arr.items.push_back(TransformRT::from(x));
+               return nb::cast(arr);
+             }
+             DynamicArrayTransformRT* arr = nullptr;
+             if (!nb::try_cast(out, arr) || !arr) throw Error("get_articulated_link_transforms: out must be a DynamicArrayTransformRT");
+             if (arr->items.size() != X.size())
+               throw Error("get_articulated_link_transforms: out must have one entry per link (" + std::to_string(X.size()) +
+                           "), got " + std::to_string(arr->items.size()));
+             for (size_t i = 0; i < X.size(); ++i) arr->items[i] = TransformRT::from(X[i]);
+             return nb::borrow(out);
+           }, "out"_a = nb::none(), "Fills `out` with world-from-link transforms in link order.")
+      .def("get_articulated_pose", [](const Actor& a, nb::handle out) { return fill_out(out, a.scene.pose(a.handle), "get_articulated_pose: out"); },
+           "out"_a = nb::none(), "Generalized positions, one per DOF (rotation vectors for spherical and free rotations).")
+      .def("set_articulated_pose_from_joints", [](Actor& a, nb::handle pose) {
+             a.scene.set_pose(a.handle, read_vector(pose, "set_articulated_pose_from_joints: pose"));
+           }, "pose"_a)
+      .def("get_articulated_joint_velocities", [](const Actor& a, nb::handle out) {
+             return fill_out(out, a.scene.joint_velocities(a.handle), "get_articulated_joint_velocities: out_velocities");
+           }, "out_velocities"_a = nb::none(),
+           "Generalized velocities (rad/s, m/s); a Free root's are (linear, angular) in its link frame.")
+      .def("set_articulated_joint_velocities", [](Actor& a, nb::handle v) {
+             a.scene.set_joint_velocities(a.handle, read_vector(v, "set_articulated_joint_velocities: velocities"));
+           }, "velocities"_a)
+      .def("get_articulated_jacobian", [](const Actor& a) {
+             const MatXR J = a.scene.link_jacobian(a.handle);
+             return numpy_copy(J.data(), {static_cast<size_t>(J.size())});
+           }, "Flat row-major 6 x num_dofs Jacobian of this link: rows 0-2 velocity of the link origin, rows 3-5 angular velocity, world frame.")
+      .def("get_articulated_mass_matrix", [](const Actor& a) { return matrix_to_numpy(a.scene.mass_matrix(a.handle)); },
+           "Joint-space mass matrix (num_dofs x num_dofs), armature included.")
+      .def("get_articulated_bias_forces", [](const Actor& a) { return numpy_copy(a.scene.bias_forces(a.handle)); },
+           "Bias forces c(q, v): Coriolis, centrifugal and gravity, so that M vdot + c = tau.")
+      .def("compute_articulated_forward_dynamics", [](const Actor& a, nb::handle tau) {
+             return numpy_copy(a.scene.forward_dynamics(a.handle, read_vector(tau, "compute_articulated_forward_dynamics: tau")));
+           }, "tau"_a, "Joint accelerations M^-1 (tau - c) of the unconstrained articulation.")
+      .def("__eq__", [](const Actor& a, const Actor& b) { return a.handle == b.handle && a.scene.handle() == b.scene.handle(); })
+      .def("__hash__", [](const Actor& a) { return a.handle; })
+      .def("__repr__", [](const Actor& a) { return "Actor(" + std::to_string(a.handle) + ")"; });
+}
+
+}  // namespace superdex::python

@@ -1,0 +1,76 @@
+#pragma once
+// Helpers shared by the binding files: numpy conversions and argument checks that raise
+// superdex.physics.Error naming the argument, the expected dtype and shape.
+
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+
+#include <string>
+#include <vector>
+
+#include "superdex/physics/error.h"
+#include "superdex/physics/real.h"
+#include "superdex/physics/scene.h"
+#include "superdex/physics/transform.h"
+
+namespace superdex::python {
+
+namespace nb = nanobind;
+using namespace nb::literals;
+using namespace superdex::physics;
+
+using NumpyArray = nb::ndarray<nb::numpy, real>;
+
+// Name of the build's numpy dtype ("float32" or "float64").
+inline const char* real_dtype_name() { return kUsesDoublePrecision ? "float64" : "float32"; }
+
+// A numpy array owning a copy of `n` values laid out with `shape` (C order).
+NumpyArray numpy_copy(const real* data, std::initializer_list<size_t> shape);
+inline NumpyArray numpy_copy(const VecX& v) { return numpy_copy(v.data(), {static_cast<size_t>(v.size())}); }
+
+// Reads any sequence or array of numbers as a vector; `expected` < 0 accepts any length.
+VecX read_vector(nb::handle obj, const std::string& arg, long expected = -1);
+Vec3 read_vec3(nb::handle obj, const std::string& arg);
+
+// The writable, contiguous 1-D buffer of length `n` behind an out-parameter: a numpy array of
+// the build's dtype or a DynamicArrayReal. Raises superdex.physics.Error otherwise.
+real* out_buffer(nb::handle out, const std::string& arg, size_t n);
+
+// Python-facing rotation and transform values.
+struct Quaternion {
+  real x = 0, y = 0, z = 0, w = 1;
+  Quat to_eigen() const { return Quat(w, x, y, z); }
+  static Quaternion from_eigen(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+};
+struct TransformRT {
+  Quaternion rotation;
+  Vec3 translation = Vec3::Zero();
+  Transform to_transform() const { return {rotation.to_eigen().normalized(), translation}; }
+  static TransformRT from(const Transform& X) { return {Quaternion::from_eigen(X.rotation), X.translation}; }
+};
+// A fixed-size array that the engine fills in place.
+struct DynamicArrayTransformRT {
+  std::vector<TransformRT> items;
+};
+struct DynamicArrayReal {
+  std::vector<real> values;
+};
+
+// An actor as seen from Python: its scene and handle.
+struct Actor {
+  Scene scene;
+  ActorHandle handle;
+};
+
+// The shape handle behind a Shape object (bind_engine.cpp).
+ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg);
+
+// Transform from a TransformRT or None (identity).
+Transform read_transform(nb::handle obj, const std::string& arg);
+
+void export_types(nb::module_& m);
+void export_engine(nb::module_& m);
+void export_scene(nb::module_& m);
+void export_actor(nb::module_& m);
+
+}  // namespace superdex::python

@@ -1,0 +1,66 @@
+// Module functions: engine lifecycle, scenes and primitive shapes.
+
+#include <nanobind/stl/string.h>
+
+#include "bind_common.h"
+#include "superdex/physics/engine.h"
+#include "superdex/physics/scene.h"
+
+namespace superdex::python {
+
+namespace {
+
+// A shape handle as seen from Python.
+struct Shape {
+  ShapeHandle handle = 0;
+};
+
+real read_real(nb::handle obj, const std::string& arg) {
+  double x;
+  if (!nb::try_cast(obj, x)) throw Error(arg + ": expected a number");
+  if (!std::isfinite(x)) throw Error(arg + ": must be finite, got " + std::to_string(x));
+  return static_cast<real>(x);
+}
+
+}  // namespace
+
+void export_engine(nb::module_& m) {
+  m.def("initialize", &physics::initialize, "num_worker_threads"_a = 0,
+        "Starts the engine: 0 single-threaded, -1 one worker per core, N worker threads.");
+  m.def("shutdown", &physics::shutdown, "Destroys every scene and shape and stops the engine.");
+  m.def("is_initialized", &physics::is_initialized);
+  m.def("uses_double_precision", [] { return kUsesDoublePrecision; }, "True in the float64 build (SUPERDEX_PRECISION=double).");
+  m.def("create_scene", &physics::create_scene, "name"_a = "scene");
+  m.def("destroy_scene", [](const Scene& s) { physics::destroy_scene(s.handle()); }, "scene"_a);
+
+  nb::class_<Shape>(m, "Shape", "A shape registered with the engine, referenced by handle.")
+      .def("get_handle", [](const Shape& s) { return s.handle; })
+      .def("__repr__", [](const Shape& s) { return "Shape(" + std::to_string(s.handle) + ")"; });
+  m.def("create_plane_shape", [](nb::handle normal, nb::handle distance) {
+          return Shape{create_shape(PlaneShape{read_vec3(normal, "create_plane_shape: normal"), read_real(distance, "create_plane_shape: distance")})};
+        }, "normal"_a, "distance"_a, "Infinite plane n . x = distance (world frame when static), solid below.");
+  m.def("create_sphere_shape", [](nb::handle center, nb::handle radius) {
+          return Shape{create_shape(SphereShape{read_vec3(center, "create_sphere_shape: center"), read_real(radius, "create_sphere_shape: radius")})};
+        }, "center"_a, "radius"_a, "Solid ball; center (m) in the body frame, radius (m).");
+  m.def("create_box_shape", [](nb::handle half_extents) {
+          return Shape{create_shape(BoxShape{read_vec3(half_extents, "create_box_shape: half_extents")})};
+        }, "half_extents"_a, "Solid box centred at the body origin; half extents (m) along x, y, z.");
+  m.def("create_capsule_shape", [](nb::handle radius, nb::handle half_length) {
+          return Shape{create_shape(CapsuleShape{read_real(radius, "create_capsule_shape: radius"), read_real(half_length, "create_capsule_shape: half_length")})};
+        }, "radius"_a, "half_length"_a, "Solid capsule along the body z axis: segment from -half_length to +half_length (m), radius (m).");
+  m.def("release_shape", [](const Shape& s) { physics::release_shape(s.handle); }, "shape"_a);
+
+  nb::enum_<ColliderType>(m, "ColliderType")
+      .value("AUTO", ColliderType::Auto).value("NONE", ColliderType::None).value("SPHERE", ColliderType::Sphere)
+      .value("BOX", ColliderType::Box).value("PLANE", ColliderType::Plane).value("MESH", ColliderType::Mesh)
+      .value("SDF", ColliderType::Sdf);
+}
+
+// Exposed for bind_scene.cpp.
+ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg) {
+  Shape s;
+  if (!nb::try_cast(obj, s)) throw Error(arg + ": expected a Shape from create_*_shape, got " + std::string(nb::inst_name(obj).c_str()));
+  return s.handle;
+}
+
+}  // namespace superdex::python

@@ -1,0 +1,149 @@
+// The Scene class: settings, stepping, actor creation and lookup, solver parameters and stats.
+
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <nlohmann/json.hpp>
+
+#include "bind_common.h"
+#include "superdex/physics/articulation_json.h"
+#include "superdex/physics/engine.h"
+
+namespace superdex::python {
+
+namespace {
+
+std::optional<real> optional_positive(nb::handle obj, const std::string& arg) {
+  if (obj.is_none()) return std::nullopt;
+  double x;
+  if (!nb::try_cast(obj, x)) throw Error(arg + ": expected a number or None");
+  if (!std::isfinite(x) || x <= 0) throw Error(arg + ": must be a positive finite number, got " + std::to_string(x));
+  return static_cast<real>(x);
+}
+
+// A Python object made of dicts, lists, strings, numbers, booleans and None, as JSON.
+// Non-finite floats are kept so that the reader can name the field that holds them.
+nlohmann::json to_json(nb::handle obj, const std::string& path) {
+  if (obj.is_none()) return nullptr;
+  if (nb::isinstance<nb::bool_>(obj)) return nb::cast<bool>(obj);
+  if (nb::isinstance<nb::int_>(obj)) return nb::cast<long long>(obj);
+  if (nb::isinstance<nb::float_>(obj)) return nb::cast<double>(obj);
+  if (nb::isinstance<nb::str>(obj)) return nb::cast<std::string>(obj);
+  if (nb::isinstance<nb::dict>(obj)) {
+    nlohmann::json out = nlohmann::json::object();
+    for (auto [k, v] : nb::cast<nb::dict>(obj)) {
+      if (!nb::isinstance<nb::str>(k)) throw Error(path + ": dict keys must be strings");
+      const std::string key = nb::cast<std::string>(k);
+      out[key] = to_json(v, path + "." + key);
+    }
+    return out;
+  }
+  if (nb::isinstance<nb::list>(obj) || nb::isinstance<nb::tuple>(obj) || nb::hasattr(obj, "tolist")) {
+    nb::object seq = nb::hasattr(obj, "tolist") ? obj.attr("tolist")() : nb::borrow(obj);
+    if (!nb::isinstance<nb::list>(seq) && !nb::isinstance<nb::tuple>(seq)) return to_json(seq, path);
+    nlohmann::json out = nlohmann::json::array();
+    size_t i = 0;
+    for (nb::handle item : seq) out.push_back(to_json(item, path + "[" + std::to_string(i++) + "]"));
+    return out;
+  }
+  if (nb::hasattr(obj, "__float__")) return nb::cast<double>(obj.attr("__float__")());
+  throw Error(path + ": cannot be read as JSON (got " + std::string(nb::inst_name(obj).c_str()) + ")");
+}
+
+void emit_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
+}
+
+}  // namespace
+
+void export_scene(nb::module_& m) {
+  nb::class_<SolverParams>(m, "SolverParams", "Parameters of the implicit solve.")
+      .def(nb::init<>())
+      .def_rw("max_newton_iterations", &SolverParams::max_newton_iterations)
+      .def_rw("absolute_tolerance", &SolverParams::absolute_tolerance)
+      .def_rw("relative_tolerance", &SolverParams::relative_tolerance)
+      .def_rw("max_line_search_iterations", &SolverParams::max_line_search_iterations)
+      .def_rw("near_rigid_beta", &SolverParams::near_rigid_beta)
+      .def_rw("friction_sigma", &SolverParams::friction_sigma);
+
+  nb::class_<SolverStats>(m, "SolverStats", "What the last step did.")
+      .def_ro("newton_iterations", &SolverStats::newton_iterations)
+      .def_ro("total_newton_iterations", &SolverStats::total_newton_iterations)
+      .def_ro("residual", &SolverStats::residual)
+      .def_ro("converged", &SolverStats::converged)
+      .def_ro("num_islands", &SolverStats::num_islands)
+      .def_ro("num_constraints", &SolverStats::num_constraints)
+      .def_ro("num_contacts", &SolverStats::num_contacts)
+      .def_ro("time_kinematics", &SolverStats::time_kinematics)
+      .def_ro("time_solve", &SolverStats::time_solve)
+      .def_ro("time_total", &SolverStats::time_total);
+
+  nb::class_<Scene>(m, "Scene", "A set of actors stepped together. Not thread-safe: use one scene from one thread at a time.")
+      .def("get_name", &Scene::name)
+      .def("get_handle", &Scene::handle)
+      .def("set_gravity", [](Scene& s, nb::handle g) { s.set_gravity(read_vec3(g, "set_gravity: gravity")); }, "gravity"_a,
+           "Gravity in m/s^2, world frame (Z up).")
+      .def("get_gravity", [](const Scene& s) { const Vec3 g = s.gravity(); return numpy_copy(g.data(), {3}); })
+      .def("step", &Scene::step, "dt"_a, nb::call_guard<nb::gil_scoped_release>(),
+           "Advances the scene by dt seconds (releases the GIL).")
+      .def("get_total_simulation_time", &Scene::total_simulation_time)
+      .def("get_solver_params", &Scene::solver_params)
+      .def("set_solver_params", &Scene::set_solver_params, "params"_a)
+      .def("get_solver_stats", &Scene::solver_stats)
+      .def("create_rigid_actor",
+           [](Scene& s, const std::string& name, nb::handle shape, bool is_static, nb::handle world_from_local,
+              ColliderType collider_type, nb::handle density, nb::handle mass, int layer, nb::handle contact) {
+             const std::string where = "create_rigid_actor('" + name + "')";
+             const ShapeHandle h = shape_handle_of(shape, where + ": shape");
+             const Transform X = read_transform(world_from_local, where + ": world_from_local");
+             const ActorHandle a = s.create_rigid_actor(name, h, is_static, X, optional_positive(density, where + ": density"),
+                                                        optional_positive(mass, where + ": mass"));
+             return Actor{s, a};
+           },
+           "name"_a, "shape"_a, "is_static"_a = false, "world_from_local"_a = nb::none(),
+           "collider_type"_a = ColliderType::Auto, "density"_a = nb::none(), "mass"_a = nb::none(), "layer"_a = 0,
+           "contact"_a = nb::none(),
+           "A rigid body: static, or dynamic (mass from `mass` kg, else `density` kg/m^3, default 1000).")
+      .def("create_articulated_actor",
+           [](Scene& s, const std::string& name, nb::handle links, nb::handle joints, nb::handle world_from_root,
+              nb::handle default_pose) {
+             const std::string source = "create_articulated_actor('" + name + "')";
+             nlohmann::json doc;
+             doc["name"] = name;
+             doc["links"] = to_json(links, "links");
+             doc["joints"] = to_json(joints, "joints");
+             if (!default_pose.is_none()) doc["defaultPose"] = to_json(default_pose, "defaultPose");
+             std::vector<std::string> warnings;
+             ArticulationDesc desc = articulation_desc_from_json(doc, source, &warnings);
+             desc.world_from_root = read_transform(world_from_root, source + ": world_from_root");
+             emit_warnings(warnings);
+             return Actor{s, s.create_articulated_actor(desc, source)};
+           },
+           "name"_a, "links"_a, "joints"_a, "world_from_root"_a = nb::none(), "default_pose"_a = nb::none(),
+           "An articulation from lists of link and joint dicts with the .superdex_bot fields (FORMATS.md).")
+      .def("get_actor", [](Scene& s, ActorHandle h) {
+             if (!s.has_actor(h)) throw Error("get_actor: actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
+             return Actor{s, h};
+           }, "handle"_a)
+      .def("destroy_actor", [](Scene& s, nb::handle actor) {
+             ActorHandle h;
+             if (nb::isinstance<Actor>(actor)) h = nb::cast<Actor&>(actor).handle;
+             else if (!nb::try_cast(actor, h)) throw Error("destroy_actor: expected an Actor or an actor handle");
+             s.destroy_actor(h);
+           }, "actor"_a)
+      .def("for_each_actor", [](Scene& s, nb::callable fn) {
+             for (ActorHandle h : s.actors())
+               if (s.has_actor(h)) fn(Actor{s, h});
+           }, "fn"_a, "Calls fn(actor) for every rigid and articulated actor, in creation order.")
+      .def("get_actors", [](Scene& s) {
+             std::vector<Actor> out;
+             for (ActorHandle h : s.actors()) out.push_back(Actor{s, h});
+             return out;
+           })
+      .def("__eq__", [](const Scene& a, const Scene& b) { return a.handle() == b.handle(); })
+      .def("__hash__", [](const Scene& a) { return a.handle(); })
+      .def("__repr__", [](const Scene& s) { return "Scene(" + std::to_string(s.handle()) + ")"; });
+}
+
+}  // namespace superdex::python

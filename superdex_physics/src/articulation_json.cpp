@@ -1,0 +1,260 @@
+// JSON reader for articulation descriptions (the link and joint fields of `.superdex_bot`).
+
+#include "superdex/physics/articulation_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "superdex/physics/error.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+using json = nlohmann::json;
+
+const char* type_name(const json& j) {
+  switch (j.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return "a boolean";
+    case json::value_t::string: return "a string";
+    case json::value_t::array: return "an array";
+    case json::value_t::object: return "an object";
+    default: return "a number";
+  }
+}
+
+// Reads fields of one JSON object, naming the source and path in every error.
+class Reader {
+ public:
+  Reader(const json& j, const std::string& source, std::string path, std::vector<std::string>* warnings)
+      : j_(j), source_(source), path_(std::move(path)), warnings_(warnings) {
+    if (!j_.is_object()) fail(path_, std::string("expected an object, got ") + type_name(j_));
+  }
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw Error(source_ + ": " + (path.empty() ? std::string("(top level)") : path) + ": " + what);
+  }
+  std::string field_path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
+  const json& at(const char* key) const { return j_.at(key); }
+
+  real number(const char* key) const {
+    const json& v = j_.at(key);
+    if (!v.is_number()) fail(field_path(key), std::string("expected a number, got ") + type_name(v));
+    const real x = v.get<real>();
+    if (!std::isfinite(x)) fail(field_path(key), "must be finite");
+    return x;
+  }
+  std::optional<real> opt_number(const char* key) const { return has(key) ? std::optional<real>(number(key)) : std::nullopt; }
+  int integer(const char* key) const {
+    const json& v = j_.at(key);
+    if (!v.is_number_integer()) fail(field_path(key), std::string("expected an integer, got ") + type_name(v));
+    return v.get<int>();
+  }
+  std::string string(const char* key) const {
+    const json& v = j_.at(key);
+    if (!v.is_string()) fail(field_path(key), std::string("expected a string, got ") + type_name(v));
+    return v.get<std::string>();
+  }
+  bool boolean(const char* key) const {
+    const json& v = j_.at(key);
+    if (!v.is_boolean()) fail(field_path(key), std::string("expected true or false, got ") + type_name(v));
+    return v.get<bool>();
+  }
+  template <int N>
+  Eigen::Matrix<real, N, 1> vec(const char* key) const {
+    const json& v = j_.at(key);
+    if (!v.is_array() || v.size() != N)
+      fail(field_path(key), "expected an array of " + std::to_string(N) + " numbers, got " +
+                                (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(type_name(v))));
+    Eigen::Matrix<real, N, 1> out;
+    for (int i = 0; i < N; ++i) {
+      if (!v[i].is_number()) fail(field_path(key) + "[" + std::to_string(i) + "]", std::string("expected a number, got ") + type_name(v[i]));
+      out[i] = v[i].get<real>();
+      if (!std::isfinite(out[i])) fail(field_path(key) + "[" + std::to_string(i) + "]", "must be finite");
+    }
+    return out;
+  }
+  // A limit vector, also accepting a single number (the value along the axis).
+  Vec3 limit(const char* key, const Vec3& axis) const {
+    if (at(key).is_number()) return axis.normalized() * number(key);
+    return vec<3>(key);
+  }
+  // Warns about keys not in `known`.
+  void check_unknown(std::initializer_list<const char*> known, const std::vector<std::string>& extra) const {
+    if (!warnings_) return;
+    for (auto it = j_.begin(); it != j_.end(); ++it) {
+      const std::string& k = it.key();
+      if (std::find_if(known.begin(), known.end(), [&](const char* s) { return k == s; }) != known.end()) continue;
+      if (std::find(extra.begin(), extra.end(), k) != extra.end()) continue;
+      warnings_->push_back(source_ + ": " + field_path(k.c_str()) + ": unknown field, ignored");
+    }
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  const json& j_;
+  const std::string& source_;
+  std::string path_;
+  std::vector<std::string>* warnings_;
+};
+
+std::string index_path(const char* list, size_t i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
+
+JointType joint_type_from(const Reader& r, const char* key) {
+  const std::string s = r.string(key);
+  for (JointType t : {JointType::Hard, JointType::Free, JointType::Revolute, JointType::Prismatic, JointType::Spherical})
+    if (s == joint_type_name(t)) return t;
+  r.fail(r.field_path(key), "unknown joint type '" + s + "' (expected Hard, Free, Revolute, Prismatic or Spherical)");
+}
+
+LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
+  LinkDesc L;
+  L.name = r.has("name") ? r.string("name") : "";
+  if (r.has("parentLink")) L.parent_link = r.integer("parentLink");
+  L.mass = r.opt_number("mass");
+  if (r.has("centerOfMass")) L.center_of_mass = r.vec<3>("centerOfMass");
+  if (r.has("momentOfInertia")) {
+    const auto v = r.vec<6>("momentOfInertia");
+    L.moment_of_inertia = std::array<real, 6>{v[0], v[1], v[2], v[3], v[4], v[5]};
+  }
+  L.density = r.opt_number("density");
+  if (r.has("shape")) {
+    if (r.at("shape").is_string()) {
+      L.shape_file = r.string("shape");
+    } else {
+      L.shape = shape_from_json(r.at("shape"), "", r.field_path("shape"));
+    }
+  }
+  if (r.has("shapeScale")) L.shape_scale = r.vec<3>("shapeScale");
+  if (r.has("colliderType")) L.collider_type = r.string("colliderType");
+  if (r.has("renderModel")) L.render_model = r.string("renderModel");
+  if (r.has("renderModelScale")) L.render_model_scale = r.vec<3>("renderModelScale");
+  if (r.has("contact")) {
+    Reader c(r.at("contact"), "", r.field_path("contact"), nullptr);
+    L.friction_coefficient = c.opt_number("coulombFrictionCoefficient");
+  }
+  if (r.has("hasGravity")) L.has_gravity = r.boolean("hasGravity");
+  r.check_unknown({"name", "parentLink", "mass", "centerOfMass", "momentOfInertia", "density", "shape", "shapeScale",
+                   "colliderType", "renderModel", "renderModelScale", "contact", "hasGravity", "sensors", "actuators"},
+                  extra);
+  return L;
+}
+
+JointDesc joint_from(const Reader& r, const std::vector<std::string>& extra) {
+  JointDesc J;
+  J.name = r.has("name") ? r.string("name") : "";
+  if (!r.has("type")) r.fail(r.field_path("type"), "required (Hard, Free, Revolute, Prismatic or Spherical)");
+  J.type = joint_type_from(r, "type");
+  if (r.has("axis")) J.axis = r.vec<3>("axis");
+  else if (J.type == JointType::Revolute || J.type == JointType::Prismatic) r.fail(r.field_path("axis"), "required for a " + std::string(joint_type_name(J.type)) + " joint");
+  if (r.has("parentLinkFromJoint")) J.parent_link_from_joint = transform_from_json(r.at("parentLinkFromJoint"), "", r.field_path("parentLinkFromJoint"));
+  const Vec3 axis = J.axis.norm() > 0 ? J.axis : Vec3::UnitZ();
+  if (r.has("minLimit")) J.min_limit = r.limit("minLimit", axis);
+  if (r.has("maxLimit")) J.max_limit = r.limit("maxLimit", axis);
+  if (r.has("effortLimit")) J.effort_limit = r.number("effortLimit");
+  if (r.has("friction")) {
+    Reader f(r.at("friction"), "", r.field_path("friction"), nullptr);
+    J.coulomb_friction = f.opt_number("coulomb").value_or(0);
+    J.viscous_friction = f.opt_number("viscous").value_or(0);
+  }
+  if (r.has("inertia")) J.armature = r.number("inertia");
+  if (r.has("limitStiffness")) J.limit_stiffness = r.number("limitStiffness");
+  if (r.has("limitDamping")) J.limit_damping = r.number("limitDamping");
+  r.check_unknown({"name", "type", "axis", "parentLinkFromJoint", "minLimit", "maxLimit", "effortLimit", "friction",
+                   "inertia", "limitStiffness", "limitDamping"},
+                  extra);
+  return J;
+}
+
+// Prefixes nested readers' errors (which carry an empty source) with the real source.
+template <class F>
+auto with_source(const std::string& source, F&& f) {
+  try {
+    return f();
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    if (msg.rfind(": ", 0) == 0) throw Error(source + msg);
+    throw;
+  }
+}
+
+}  // namespace
+
+Transform transform_from_json(const json& j, const std::string& source, const std::string& path) {
+  return with_source(source, [&] {
+    Reader r(j, source, path, nullptr);
+    Transform X;
+    if (r.has("translation")) X.translation = r.vec<3>("translation");
+    if (r.has("rotation")) {
+      const auto q = r.vec<4>("rotation");
+      if (q.norm() < real(1e-6)) r.fail(r.field_path("rotation"), "must be a non-zero quaternion [x, y, z, w]");
+      X.rotation = Quat(q[3], q[0], q[1], q[2]).normalized();
+    }
+    return X;
+  });
+}
+
+ShapeGeometry shape_from_json(const json& j, const std::string& source, const std::string& path) {
+  return with_source(source, [&]() -> ShapeGeometry {
+    Reader r(j, source, path, nullptr);
+    if (j.size() != 1) r.fail(path, "expected exactly one of sphere, box, capsule, plane");
+    if (r.has("sphere")) {
+      Reader s(r.at("sphere"), source, r.field_path("sphere"), nullptr);
+      SphereShape sh;
+      sh.radius = s.number("radius");
+      if (s.has("center")) sh.center = s.vec<3>("center");
+      return sh;
+    }
+    if (r.has("box")) {
+      Reader s(r.at("box"), source, r.field_path("box"), nullptr);
+      return BoxShape{s.vec<3>("halfExtents")};
+    }
+    if (r.has("capsule")) {
+      Reader s(r.at("capsule"), source, r.field_path("capsule"), nullptr);
+      return CapsuleShape{s.number("radius"), s.number("halfLength")};
+    }
+    if (r.has("plane")) {
+      Reader s(r.at("plane"), source, r.field_path("plane"), nullptr);
+      PlaneShape p;
+      if (s.has("normal")) p.normal = s.vec<3>("normal");
+      if (s.has("distance")) p.distance = s.number("distance");
+      return p;
+    }
+    r.fail(path, "unknown inline shape '" + j.begin().key() + "' (expected sphere, box, capsule or plane)");
+  });
+}
+
+ArticulationDesc articulation_desc_from_json(const json& doc, const std::string& source, std::vector<std::string>* warnings,
+                                             const std::vector<std::string>& extra) {
+  return with_source(source, [&] {
+    Reader top(doc, source, "", warnings);
+    ArticulationDesc d;
+    if (top.has("name")) d.name = top.string("name");
+    for (const char* key : {"links", "joints"}) {
+      if (!top.has(key)) top.fail(key, "required: an array of objects");
+      if (!top.at(key).is_array()) top.fail(key, std::string("expected an array, got ") + type_name(top.at(key)));
+    }
+    const json& links = top.at("links");
+    for (size_t i = 0; i < links.size(); ++i) d.links.push_back(link_from(Reader(links[i], source, index_path("links", i), warnings), extra));
+    const json& joints = top.at("joints");
+    for (size_t i = 0; i < joints.size(); ++i) d.joints.push_back(joint_from(Reader(joints[i], source, index_path("joints", i), warnings), extra));
+    if (top.has("defaultPose")) {
+      const json& p = top.at("defaultPose");
+      if (!p.is_array()) top.fail("defaultPose", std::string("expected an array of numbers, got ") + type_name(p));
+      for (size_t i = 0; i < p.size(); ++i) {
+        if (!p[i].is_number()) top.fail(index_path("defaultPose", i), std::string("expected a number, got ") + type_name(p[i]));
+        d.default_pose.push_back(p[i].get<real>());
+      }
+    }
+    if (top.has("worldFromRoot")) d.world_from_root = transform_from_json(top.at("worldFromRoot"), source, "worldFromRoot");
+    top.check_unknown({"name", "links", "joints", "defaultPose", "worldFromRoot", "contactOverrides"}, extra);
+    return d;
+  });
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

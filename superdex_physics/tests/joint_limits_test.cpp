@@ -1,0 +1,105 @@
+/// @file joint_limits_test.cpp
+/// Joint limits and implicit viscous friction at a large step (25 ms): a rigid limit stops a
+/// falling arm with little penetration and brings it to rest; a very stiff damper gives a
+/// stable, monotone creep matching the overdamped analytic solution; a compliant limit of
+/// stiffness k deflects by torque / k under a static load.
+
+#include "test_helpers.h"
+
+namespace superdex::physics::test {
+namespace {
+
+constexpr double kM = 1.0, kL = 1.0;
+constexpr double kICom = 0.001;
+constexpr double kIPivot = kICom + kM * kL * kL;
+
+/// Arm about Y with its COM at (L, 0, 0): positive angles lower it, gravity torque m g L cos(theta).
+ArticulationDesc horizontal_arm() {
+  return one_dof_desc(JointType::Revolute, Vec3::UnitY(), kM, Vec3(kL, 0, 0), Vec3::Constant(kICom));
+}
+
+class JointLimitsTest : public EngineTest {};
+
+TEST_F(JointLimitsTest, RigidLimitStopsFallingArmAtLargeStep) {
+  const double dt = 0.025, upper = 0.5;
+  ArticulationDesc desc = horizontal_arm();
+  desc.joints[1].max_limit = Vec3(0, upper, 0);  // limit value = axis . vector
+  desc.default_pose = {-1.0};                     // arm raised: it swings 1.5 rad down onto the limit
+  Scene scene = create_scene("rigid_limit");
+  const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
+  double max_penetration = 0;
+  for (int n = 0; n < 160; ++n) {  // 4 s
+    scene.step(dt);
+    const double q = scene.pose(arm)[0];
+    ASSERT_TRUE(std::isfinite(q));
+    max_penetration = std::max(max_penetration, q - upper);
+  }
+  EXPECT_LT(max_penetration, 0.01);
+  // at rest against the limit
+  EXPECT_NEAR(scene.pose(arm)[0], upper, 0.01);
+  EXPECT_LT(std::abs(scene.joint_velocities(arm)[0]), 1e-6);
+  EXPECT_TRUE(scene.solver_stats().converged);
+}
+
+TEST_F(JointLimitsTest, StiffViscousFrictionIsStableAndMonotone) {
+  const double dt = 0.025, damping = 1e4, theta0 = 0.5;
+  ArticulationDesc desc = one_dof_desc(JointType::Revolute, Vec3::UnitY(), kM, Vec3(0, 0, -kL), Vec3::Constant(kICom));
+  desc.joints[1].viscous_friction = damping;
+  desc.default_pose = {theta0};
+  Scene scene = create_scene("stiff_damper");
+  const ActorHandle p = scene.create_articulated_actor(desc, "pendulum");
+  const int steps = 400;  // 10 s
+  double prev = theta0;
+  for (int n = 0; n < steps; ++n) {
+    scene.step(dt);
+    const double q = scene.pose(p)[0];
+    const double v = scene.joint_velocities(p)[0];
+    ASSERT_TRUE(std::isfinite(q));
+    // always moving down towards 0, never overshooting back
+    EXPECT_LE(v, 0) << "step " << n;
+    EXPECT_LE(q, prev) << "step " << n;
+    EXPECT_GT(q, 0) << "step " << n;
+    prev = q;
+  }
+  // overdamped limit D theta' = -m g L sin(theta): tan(theta/2) = tan(theta0/2) exp(-m g L t / D)
+  const double t = steps * dt;
+  const double expected = 2 * std::atan(std::tan(theta0 / 2) * std::exp(-kM * kG * kL * t / damping));
+  EXPECT_NEAR(theta0 - prev, theta0 - expected, 0.01 * (theta0 - expected));
+}
+
+TEST_F(JointLimitsTest, CompliantLimitDeflectsByTorqueOverStiffness) {
+  const double dt = 0.01, k = 500;
+  ArticulationDesc desc = horizontal_arm();
+  desc.joints[1].min_limit = Vec3(0, -0.2, 0);
+  desc.joints[1].max_limit = Vec3(0, 0.3, 0);
+  desc.joints[1].limit_stiffness = k;
+  desc.joints[1].limit_damping = 30;
+  // a constant torque pushing into the upper, then into the lower limit
+  for (const auto& [torque, limit] : {std::pair{5.0, 0.3}, std::pair{-4.0, -0.2}}) {
+    Scene scene = create_scene("compliant_limit");
+    scene.set_gravity(Vec3::Zero());
+    const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
+    scene.set_external_forces_on_dofs(arm, {0}, {real(torque)});
+    for (int n = 0; n < 500; ++n) scene.step(dt);  // 5 s, many damped periods
+    const double deflection = scene.pose(arm)[0] - limit;
+    EXPECT_NEAR(deflection, torque / k, 0.05 * std::abs(torque / k)) << "torque " << torque;
+    EXPECT_LT(std::abs(scene.joint_velocities(arm)[0]), 1e-6);
+  }
+}
+
+TEST_F(JointLimitsTest, CompliantLimitHoldsGravityLoad) {
+  const double dt = 0.01, k = 1000;
+  ArticulationDesc desc = horizontal_arm();
+  desc.joints[1].max_limit = Vec3(0, 0, 0);
+  desc.joints[1].limit_stiffness = k;
+  desc.joints[1].limit_damping = 40;
+  Scene scene = create_scene("compliant_limit_gravity");
+  const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
+  for (int n = 0; n < 500; ++n) scene.step(dt);
+  // gravity torque m g L cos(delta) ~ m g L for the small deflection delta
+  const double expected = kM * kG * kL / k;
+  EXPECT_NEAR(scene.pose(arm)[0], expected, 0.05 * expected);
+}
+
+}  // namespace
+}  // namespace superdex::physics::test

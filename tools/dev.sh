@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The project's entry points. Each command installs what is missing first (tools/bootstrap.sh),
+# then builds incrementally into build/ (one build directory shared by Python and C++ tests).
+#   tools/dev.sh demo   run the main demo
+#   tools/dev.sh test   run every test: C++ (ctest) and Python (pytest, float and double builds)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash tools/bootstrap.sh
+export PATH="$HOME/.local/bin:$PATH"
+
+# Python environment and the editable native modules (scikit-build-core, build/<wheel tag>/).
+uv sync --quiet
+
+build_dir() {
+  # the directory scikit-build-core configured for this interpreter
+  uv run --quiet python - <<'PY'
+import sysconfig, pathlib, glob
+dirs = sorted(glob.glob("build/cp*"), key=lambda p: pathlib.Path(p).stat().st_mtime)
+print(dirs[-1] if dirs else "")
+PY
+}
+
+case "${1:-}" in
+  demo)
+    shift
+    exec uv run python superdex_physics/examples/double_pendulum.py "$@"
+    ;;
+  test)
+    dir=$(build_dir)
+    [[ -n "$dir" ]] || { echo "no build directory under build/" >&2; exit 1; }
+    echo "== C++ tests ($dir)"
+    cmake --build "$dir" --parallel 2
+    ctest --test-dir "$dir" --output-on-failure --parallel 2
+    echo "== Python tests (float build)"
+    SUPERDEX_PRECISION=float uv run pytest -q
+    echo "== Python tests (double build)"
+    SUPERDEX_PRECISION=double uv run pytest -q
+    ;;
+  *)
+    echo "usage: tools/dev.sh demo|test" >&2
+    exit 2
+    ;;
+esac
