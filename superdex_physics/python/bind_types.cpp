@@ -45,6 +45,10 @@ real* out_buffer(nb::handle out, const std::string& arg, size_t n) {
   }
   const std::string expect = "a writable, contiguous numpy array of dtype " + std::string(real_dtype_name()) +
                              " and shape (" + std::to_string(n) + ",)";
+  // read-only arrays do not convert to a writable ndarray: name that defect first
+  if (nb::hasattr(out, "flags") && nb::hasattr(out.attr("flags"), "writeable") &&
+      !nb::cast<bool>(out.attr("flags").attr("writeable")))
+    throw Error(arg + ": expected " + expect + ", got a read-only array");
   nb::ndarray<> a;
   if (!nb::try_cast(out, a, false)) throw Error(arg + ": expected " + expect + ", got " + nb::inst_name(out).c_str());
   if (a.dtype() != nb::dtype<real>() || a.ndim() != 1 || a.shape(0) != n || (n > 1 && a.stride(0) != 1)) {
@@ -52,8 +56,6 @@ real* out_buffer(nb::handle out, const std::string& arg, size_t n) {
     if (a.ndim() == 1) got = "shape (" + std::to_string(a.shape(0)) + ",)";
     throw Error(arg + ": expected " + expect + ", got " + got + (a.dtype() != nb::dtype<real>() ? " with another dtype" : ""));
   }
-  if (a.is_valid() && nb::hasattr(out, "flags") && !nb::cast<bool>(out.attr("flags").attr("writeable")))
-    throw Error(arg + ": expected " + expect + ", got a read-only array");
   return static_cast<real*>(a.data());
 }
 

@@ -27,7 +27,8 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
   for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
     const int i = *it;
     const JointModel& j = model.joints[i];
-    tau.segment(j.v_offset, j.nv) = j.S.leftCols(j.nv).transpose() * F[i];
+    // armature (rotor inertia) acts on the joint acceleration directly, as in mass_matrix()
+    tau.segment(j.v_offset, j.nv) = j.S.leftCols(j.nv).transpose() * F[i] + j.armature * a.segment(j.v_offset, j.nv);
     const int p = model.parent[i];
     if (p >= 0) F[p] += kin.X_PL[i].apply_force(F[i]);
   }

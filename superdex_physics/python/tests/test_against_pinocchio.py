@@ -14,6 +14,9 @@ SuperDex through the Python API and, identically, as a Pinocchio model:
   that joint with the composed placement. A Hard root is a fixed base: link 0 is attached
   to the universe (joint 0).
 * Every link gets a Pinocchio frame at its origin, so its Jacobian can be queried.
+* Joints are added to Pinocchio in depth-first order (its crba needs every subtree on
+  consecutive indices) and its results are permuted back to SuperDex's DOF order (joints
+  in link order, which the generator leaves non-depth-first on purpose).
 
 For a few random states (q, v, tau) per tree the test compares the joint-space mass
 matrix, the bias forces c(q, v) (gravity included), forward-dynamics accelerations and the
@@ -220,8 +223,45 @@ def world_from_root_desc(tree: Tree):
 
 @dataclass
 class PinTree:
+    """A Pinocchio model of a tree. Pinocchio's algorithms (crba in particular) need each
+    joint's subtree to occupy consecutive indices, so joints are added in depth-first order,
+    which differs from SuperDex's link order in general: `q_index[i]` and `v_index[i]` give
+    link i's joint coordinates in Pinocchio's q and v, and `perm` maps SuperDex DOF k to
+    Pinocchio's v index perm[k]."""
+
     model: pin.Model
     frame_ids: list[int]  # frame at each link's origin, in link order
+    q_index: list[np.ndarray]
+    v_index: list[np.ndarray]
+    perm: np.ndarray
+
+    @staticmethod
+    def of(model: pin.Model, tree: Tree) -> "PinTree":
+        q_index, v_index = [], []
+        for i in range(tree.num_links):
+            if tree.types[i] == "Hard":
+                q_index.append(np.zeros(0, dtype=int))
+                v_index.append(np.zeros(0, dtype=int))
+                continue
+            joint = model.joints[model.getJointId(f"joint{i}")]
+            q_index.append(np.arange(joint.idx_q, joint.idx_q + joint.nq))
+            v_index.append(np.arange(joint.idx_v, joint.idx_v + joint.nv))
+        perm = np.concatenate(v_index)
+        assert model.nv == tree.num_dofs and sorted(perm.tolist()) == list(range(model.nv))
+        frame_ids = [model.getFrameId(f"link{i}") for i in range(tree.num_links)]
+        return PinTree(model, frame_ids, q_index, v_index, perm)
+
+
+def depth_first_order(tree: Tree) -> list[int]:
+    children: list[list[int]] = [[] for _ in range(tree.num_links)]
+    for i in range(1, tree.num_links):
+        children[tree.parents[i]].append(i)
+    order, stack = [], [0]
+    while stack:
+        i = stack.pop()
+        order.append(i)
+        stack.extend(reversed(children[i]))
+    return order
 
 
 def pin_inertia(tree: Tree, i: int) -> pin.Inertia:
@@ -241,16 +281,20 @@ def pin_joint_model(tree: Tree, i: int):
     raise ValueError(t)
 
 
-def build_pin_model(tree: Tree) -> PinTree:
-    """Hard joints merged into their moving ancestor; a frame at every link origin."""
+def new_pin_model() -> pin.Model:
     model = pin.Model()
     model.gravity = pin.Motion(GRAVITY, np.zeros(3))
-    body_joint: list[int] = []  # Pinocchio joint that carries link i
-    joint_from_link: list[pin.SE3] = []  # link i's frame in that joint's frame
-    frame_ids: list[int] = []
-    for i in range(tree.num_links):
+    return model
+
+
+def build_pin_model(tree: Tree) -> PinTree:
+    """Hard joints merged into their moving ancestor; a frame at every link origin."""
+    model = new_pin_model()
+    body_joint: dict[int, int] = {}  # Pinocchio joint that carries link i
+    joint_from_link: dict[int, pin.SE3] = {}  # link i's frame in that joint's frame
+    for i in depth_first_order(tree):
         p = tree.parents[i]
-        if p < 0:
+        if p < 0:  # a Hard root welds link 0 to the universe (joint 0)
             parent_joint, parent_from_joint = 0, tree.world_from_root * tree.parent_from_joint[0]
         else:
             parent_joint, parent_from_joint = body_joint[p], joint_from_link[p] * tree.parent_from_joint[i]
@@ -260,20 +304,18 @@ def build_pin_model(tree: Tree) -> PinTree:
             jid = model.addJoint(parent_joint, pin_joint_model(tree, i), parent_from_joint, f"joint{i}")
             placement = pin.SE3.Identity()
         model.appendBodyToJoint(jid, pin_inertia(tree, i), placement)
-        body_joint.append(jid)
-        joint_from_link.append(placement)
-        frame_ids.append(model.addFrame(pin.Frame(f"link{i}", jid, placement, pin.FrameType.OP_FRAME)))
-    assert model.nv == tree.num_dofs
-    return PinTree(model, frame_ids)
+        body_joint[i] = jid
+        joint_from_link[i] = placement
+        model.addFrame(pin.Frame(f"link{i}", jid, placement, pin.FrameType.OP_FRAME))
+    return PinTree.of(model, tree)
 
 
 def build_pin_model_by_reduction(tree: Tree) -> PinTree:
     """The same tree with every Hard joint modelled as a revolute joint, then locked at zero
     by pinocchio.buildReducedModel (an independent construction of the reference)."""
-    full = pin.Model()
-    full.gravity = pin.Motion(GRAVITY, np.zeros(3))
-    jids: list[int] = []
-    for i in range(tree.num_links):
+    full = new_pin_model()
+    jids: dict[int, int] = {}
+    for i in depth_first_order(tree):
         p = tree.parents[i]
         parent_joint = 0 if p < 0 else jids[p]
         placement = tree.parent_from_joint[i]
@@ -284,13 +326,11 @@ def build_pin_model_by_reduction(tree: Tree) -> PinTree:
         full.addJointFrame(jid, -1)
         full.appendBodyToJoint(jid, pin_inertia(tree, i), pin.SE3.Identity())
         full.addFrame(pin.Frame(f"link{i}", jid, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
-        jids.append(jid)
+        jids[i] = jid
     locked = [jids[i] for i in range(tree.num_links) if tree.types[i] == "Hard"]
     reduced = pin.buildReducedModel(full, locked, pin.neutral(full))
     reduced.gravity = pin.Motion(GRAVITY, np.zeros(3))
-    frame_ids = [reduced.getFrameId(f"link{i}") for i in range(tree.num_links)]
-    assert reduced.nv == tree.num_dofs
-    return PinTree(reduced, frame_ids)
+    return PinTree.of(reduced, tree)
 
 
 # --------------------------------------------------------------------------------------
@@ -300,9 +340,9 @@ def build_pin_model_by_reduction(tree: Tree) -> PinTree:
 @dataclass
 class State:
     pose: np.ndarray  # SuperDex pose: joint values, rotation vectors, free [p, rotation vector]
-    q: np.ndarray  # Pinocchio configuration
-    v: np.ndarray
-    tau: np.ndarray
+    q_parts: list[np.ndarray]  # Pinocchio configuration of each link's joint (quaternions x y z w)
+    v: np.ndarray  # SuperDex DOF order
+    tau: np.ndarray  # SuperDex DOF order
 
 
 def random_rotation_vector(rng: np.random.Generator) -> np.ndarray:
@@ -314,29 +354,28 @@ def quat_coeffs_from_rotation_vector(r: np.ndarray) -> np.ndarray:
 
 
 def random_state(tree: Tree, rng: np.random.Generator) -> State:
-    pose, q = [], []
+    pose, q_parts = [], []
     for t in tree.types:
-        if t == "Revolute":
-            x = rng.uniform(-np.pi, np.pi)
-            pose.append([x])
-            q.append([x])
+        if t == "Hard":
+            pose_i, q_i = np.zeros(0), np.zeros(0)
+        elif t == "Revolute":
+            pose_i = q_i = np.array([rng.uniform(-np.pi, np.pi)])
         elif t == "Prismatic":
-            x = rng.uniform(-0.3, 0.3)
-            pose.append([x])
-            q.append([x])
+            pose_i = q_i = np.array([rng.uniform(-0.3, 0.3)])
         elif t == "Spherical":
-            r = random_rotation_vector(rng)
-            pose.append(r)
-            q.append(quat_coeffs_from_rotation_vector(r))
+            pose_i = random_rotation_vector(rng)
+            q_i = quat_coeffs_from_rotation_vector(pose_i)
         elif t == "Free":
             p = rng.uniform(-1.0, 1.0, 3)
             r = random_rotation_vector(rng)
-            pose.append(np.concatenate([p, r]))
-            q.append(np.concatenate([p, quat_coeffs_from_rotation_vector(r)]))
+            pose_i = np.concatenate([p, r])
+            q_i = np.concatenate([p, quat_coeffs_from_rotation_vector(r)])
+        pose.append(pose_i)
+        q_parts.append(np.asarray(q_i, dtype=float))
     n = tree.num_dofs
     return State(
-        pose=np.concatenate(pose).astype(float) if pose else np.zeros(0),
-        q=np.concatenate(q).astype(float) if q else np.zeros(0),
+        pose=np.concatenate(pose).astype(float),
+        q_parts=q_parts,
         v=rng.normal(0.0, 1.0, n),
         tau=rng.normal(0.0, 5.0, n),
     )
@@ -355,19 +394,27 @@ class Reference:
 
 
 def pinocchio_reference(pt: PinTree, s: State) -> Reference:
-    model = pt.model
+    """Pinocchio's quantities at state s, permuted to SuperDex's DOF order."""
+    model, perm = pt.model, pt.perm
     data = model.createData()
-    M = np.array(pin.crba(model, data, s.q)).reshape(model.nv, model.nv)
+    q = pin.neutral(model)
+    for idx, part in zip(pt.q_index, s.q_parts):
+        q[idx] = part
+    v, tau = np.zeros(model.nv), np.zeros(model.nv)
+    v[perm], tau[perm] = s.v, s.tau
+    M = np.array(pin.crba(model, data, q)).reshape(model.nv, model.nv)
     M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle
-    bias = np.array(pin.nonLinearEffects(model, data, s.q, s.v), copy=True)
-    accel = np.array(pin.aba(model, data, s.q, s.v, s.tau), copy=True)
-    pin.computeJointJacobians(model, data, s.q)
+    bias = np.array(pin.nonLinearEffects(model, data, q, v)).reshape(model.nv)
+    accel = np.array(pin.aba(model, data, q, v, tau)).reshape(model.nv)
+    pin.computeJointJacobians(model, data, q)
     pin.updateFramePlacements(model, data)
     jacobians = [  # reshaped: eigenpy returns a 6 x 1 matrix as a vector
         np.array(pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)).reshape(6, model.nv)
         for fid in pt.frame_ids
     ]
-    return Reference(M, bias, accel, jacobians)
+    return Reference(
+        M=M[np.ix_(perm, perm)], bias=bias[perm], accel=accel[perm], jacobians=[J[:, perm] for J in jacobians]
+    )
 
 
 def assert_close(actual, reference, what: str) -> None:
@@ -408,6 +455,8 @@ def test_reference_model_matches_reduced_model(case):
         s = random_state(tree, rng)
         a, b = pinocchio_reference(merged, s), pinocchio_reference(reduced, s)
         where = f"tree seed {seed} ({describe(tree)}), state {k}"
+        # the reference is self-consistent: M(q) aba(q, v, tau) + c(q, v) = tau
+        assert_close(a.M @ a.accel + a.bias, s.tau, f"Pinocchio M a + c = tau, {where}")
         assert_close(a.M, b.M, f"mass matrix, {where}")
         assert_close(a.bias, b.bias, f"bias forces, {where}")
         assert_close(a.accel, b.accel, f"forward dynamics, {where}")
