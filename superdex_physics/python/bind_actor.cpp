@@ -54,6 +54,26 @@ void export_actor(nb::module_& m) {
       })
       .def_ro("dof_info", &ArticulatedShapeInfo::dof_info);
 
+  nb::enum_<QueryType>(m, "QueryType")
+      .value("TOTAL_CONTACT_FORCE", QueryType::TotalContactForce)
+      .value("CONTACT_POINTS", QueryType::ContactPoints)
+      .value("NODE_POSITIONS", QueryType::NodePositions)
+      .value("NODE_CONTACT_FORCES", QueryType::NodeContactForces)
+      .value("CONSTRAINT_FORCE", QueryType::ConstraintForce)
+      .value("ARTICULATED_CONTROLLER_FORCE", QueryType::ArticulatedControllerForce);
+
+  nb::class_<ContactPointInfo>(m, "ContactPoint", "One contact of the last step, seen from actor_a.")
+      .def_ro("actor_a", &ContactPointInfo::actor_a)
+      .def_ro("actor_b", &ContactPointInfo::actor_b)
+      .def_prop_ro("position", [](const ContactPointInfo& c) { return numpy_copy(c.position.data(), {3}); }, nb::rv_policy::move)
+      .def_prop_ro("normal", [](const ContactPointInfo& c) { return numpy_copy(c.normal.data(), {3}); }, nb::rv_policy::move)
+      .def_ro("distance", &ContactPointInfo::distance)
+      .def_prop_ro("force", [](const ContactPointInfo& c) { return numpy_copy(c.force.data(), {3}); }, nb::rv_policy::move)
+      .def("__repr__", [](const ContactPointInfo& c) {
+        return "ContactPoint(actor_a=" + std::to_string(c.actor_a) + ", actor_b=" + std::to_string(c.actor_b) +
+               ", distance=" + std::to_string(c.distance) + ")";
+      });
+
   nb::class_<Actor>(m, "Actor", "A rigid body, an articulation, or one link of an articulation, by handle.")
       .def("get_handle", [](const Actor& a) { return a.handle; })
       .def("get_name", [](const Actor& a) { return a.scene.actor_name(a.handle); })
@@ -125,6 +145,19 @@ void export_actor(nb::module_& m) {
       .def("compute_articulated_forward_dynamics", [](const Actor& a, nb::handle tau) {
              return numpy_copy(a.scene.forward_dynamics(a.handle, read_vector(tau, "compute_articulated_forward_dynamics: tau")));
            }, "tau"_a, "Joint accelerations M^-1 (tau - c) of the unconstrained articulation.")
+      .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
+           "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
+      .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)
+      .def("get_contact_force_world", [](const Actor& a) { const Vec3 f = a.scene.contact_force(a.handle); return numpy_copy(f.data(), {3}); },
+           "Total contact force applied TO this actor by everything touching it (N, world). Needs TOTAL_CONTACT_FORCE.")
+      .def("get_contact_torque_world", [](const Actor& a) { const Vec3 t = a.scene.contact_torque(a.handle); return numpy_copy(t.data(), {3}); },
+           "Total contact torque about the actor's origin (N m, world). Needs TOTAL_CONTACT_FORCE.")
+      .def("get_contact_force_from_actor_world", [](const Actor& a, nb::handle other) {
+             const Vec3 f = a.scene.contact_force_from(a.handle, actor_handle_of(other, "get_contact_force_from_actor_world: other"));
+             return numpy_copy(f.data(), {3});
+           }, "other"_a, "Contact force applied to this actor by `other` (N, world). Needs TOTAL_CONTACT_FORCE.")
+      .def("get_contact_points_world", [](const Actor& a) { return a.scene.contact_points(a.handle); },
+           "This actor's contacts of the last step (position, normal, distance, force on this actor). Needs CONTACT_POINTS.")
       .def("__eq__", [](const Actor& a, const Actor& b) { return a.handle == b.handle && a.scene.handle() == b.scene.handle(); })
       .def("__hash__", [](const Actor& a) { return a.handle; })
       .def("__repr__", [](const Actor& a) { return "Actor(" + std::to_string(a.handle) + ")"; });

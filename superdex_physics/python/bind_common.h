@@ -62,8 +62,18 @@ struct Actor {
   ActorHandle handle;
 };
 
+// A captured scene state.
+struct SceneState {
+  std::vector<std::uint8_t> bytes;
+};
+
+// The handle of an Actor object or an integer handle (bind_scene.cpp).
+ActorHandle actor_handle_of(nb::handle obj, const std::string& arg);
+
 // The shape handle behind a Shape object (bind_engine.cpp).
 ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg);
+// A Shape object for a registered shape (bind_engine.cpp).
+nb::object shape_object(ShapeHandle handle);
 
 // Transform from a TransformRT or None (identity).
 Transform read_transform(nb::handle obj, const std::string& arg);
@@ -72,5 +82,6 @@ void export_types(nb::module_& m);
 void export_engine(nb::module_& m);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
+void export_meshes(nb::module_& m);
 
 }  // namespace superdex::python

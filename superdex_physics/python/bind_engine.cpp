@@ -56,6 +56,9 @@ void export_engine(nb::module_& m) {
       .value("SDF", ColliderType::Sdf);
 }
 
+// Exposed for bind_meshes.cpp.
+nb::object shape_object(ShapeHandle handle) { return nb::cast(Shape{handle}); }
+
 // Exposed for bind_scene.cpp.
 ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg) {
   Shape s;

@@ -57,7 +57,17 @@ void emit_warnings(const std::vector<std::string>& warnings) {
 
 }  // namespace
 
+ActorHandle actor_handle_of(nb::handle obj, const std::string& arg) {
+  if (nb::isinstance<Actor>(obj)) return nb::cast<Actor&>(obj).handle;
+  ActorHandle h;
+  if (!nb::try_cast(obj, h)) throw Error(arg + ": expected an Actor or an actor handle");
+  return h;
+}
+
 void export_scene(nb::module_& m) {
+  nb::class_<SceneState>(m, "SceneState", "A captured scene state (see Scene.capture_state).")
+      .def("to_bytes", [](const SceneState& st) { return nb::bytes(reinterpret_cast<const char*>(st.bytes.data()), st.bytes.size()); });
+
   nb::class_<SolverParams>(m, "SolverParams", "Parameters of the implicit solve.")
       .def(nb::init<>())
       .def_rw("max_newton_iterations", &SolverParams::max_newton_iterations)
@@ -65,7 +75,10 @@ void export_scene(nb::module_& m) {
       .def_rw("relative_tolerance", &SolverParams::relative_tolerance)
       .def_rw("max_line_search_iterations", &SolverParams::max_line_search_iterations)
       .def_rw("near_rigid_beta", &SolverParams::near_rigid_beta)
-      .def_rw("friction_sigma", &SolverParams::friction_sigma);
+      .def_rw("friction_sigma", &SolverParams::friction_sigma)
+      .def_rw("contact_margin", &SolverParams::contact_margin)
+      .def_rw("max_friction_passes", &SolverParams::max_friction_passes)
+      .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance);
 
   nb::class_<SolverStats>(m, "SolverStats", "What the last step did.")
       .def_ro("newton_iterations", &SolverStats::newton_iterations)
@@ -76,6 +89,7 @@ void export_scene(nb::module_& m) {
       .def_ro("num_constraints", &SolverStats::num_constraints)
       .def_ro("num_contacts", &SolverStats::num_contacts)
       .def_ro("time_kinematics", &SolverStats::time_kinematics)
+      .def_ro("time_collision", &SolverStats::time_collision)
       .def_ro("time_solve", &SolverStats::time_solve)
       .def_ro("time_total", &SolverStats::time_total);
 
@@ -97,8 +111,11 @@ void export_scene(nb::module_& m) {
              const std::string where = "create_rigid_actor('" + name + "')";
              const ShapeHandle h = shape_handle_of(shape, where + ": shape");
              const Transform X = read_transform(world_from_local, where + ": world_from_local");
+             ContactMaterial material;
+             if (!contact.is_none()) material = contact_material_from_json(to_json(contact, "contact"), where, "contact");
+             if (layer < 0 || layer > 63) throw Error(where + ": layer must be between 0 and 63, got " + std::to_string(layer));
              const ActorHandle a = s.create_rigid_actor(name, h, is_static, X, optional_positive(density, where + ": density"),
-                                                        optional_positive(mass, where + ": mass"));
+                                                        optional_positive(mass, where + ": mass"), material, layer, collider_type);
              return Actor{s, a};
            },
            "name"_a, "shape"_a, "is_static"_a = false, "world_from_local"_a = nb::none(),
@@ -126,12 +143,7 @@ void export_scene(nb::module_& m) {
              if (!s.has_actor(h)) throw Error("get_actor: actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
              return Actor{s, h};
            }, "handle"_a)
-      .def("destroy_actor", [](Scene& s, nb::handle actor) {
-             ActorHandle h;
-             if (nb::isinstance<Actor>(actor)) h = nb::cast<Actor&>(actor).handle;
-             else if (!nb::try_cast(actor, h)) throw Error("destroy_actor: expected an Actor or an actor handle");
-             s.destroy_actor(h);
-           }, "actor"_a)
+      .def("destroy_actor", [](Scene& s, nb::handle actor) { s.destroy_actor(actor_handle_of(actor, "destroy_actor")); }, "actor"_a)
       .def("for_each_actor", [](Scene& s, nb::callable fn) {
              for (ActorHandle h : s.actors())
                if (s.has_actor(h)) fn(Actor{s, h});
@@ -141,6 +153,23 @@ void export_scene(nb::module_& m) {
              for (ActorHandle h : s.actors()) out.push_back(Actor{s, h});
              return out;
            })
+      .def("enable_actor_contact_symmetric", [](Scene& s, nb::handle a, nb::handle b, bool enable) {
+             s.enable_actor_contact(actor_handle_of(a, "enable_actor_contact_symmetric: a"),
+                                    actor_handle_of(b, "enable_actor_contact_symmetric: b"), enable);
+           }, "a"_a, "b"_a, "enable"_a, "Enables or disables contact between two actors (both ways).")
+      .def("enable_layer_contact_symmetric", &Scene::enable_layer_contact, "layer_a"_a, "layer_b"_a, "enable"_a,
+           "Enables or disables contact between two collision layers (0..63, both ways).")
+      .def("capture_state", [](const Scene& s) { return SceneState{s.capture_state()}; },
+           "The evolving state; restore_state() replays bitwise identically.")
+      .def("restore_state", [](Scene& s, const SceneState& st) { s.restore_state(st.bytes); }, "state"_a)
+      .def("capture_state_to_bytes", [](const Scene& s) {
+             const std::vector<std::uint8_t> b = s.capture_state();
+             return nb::bytes(reinterpret_cast<const char*>(b.data()), b.size());
+           })
+      .def("restore_state_from_bytes", [](Scene& s, nb::bytes b) {
+             const auto* p = static_cast<const std::uint8_t*>(b.data());
+             s.restore_state(std::vector<std::uint8_t>(p, p + b.size()));
+           }, "data"_a)
       .def("__eq__", [](const Scene& a, const Scene& b) { return a.handle() == b.handle(); })
       .def("__hash__", [](const Scene& a) { return a.handle(); })
       .def("__repr__", [](const Scene& s) { return "Scene(" + std::to_string(s.handle()) + ")"; });

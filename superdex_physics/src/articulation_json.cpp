@@ -127,19 +127,19 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
       L.shape_file = r.string("shape");
     } else {
       L.shape = shape_from_json(r.at("shape"), "", r.field_path("shape"));
+      L.link_from_shape = shape_pose_from_json(r.at("shape"), "", r.field_path("shape"));
     }
   }
   if (r.has("shapeScale")) L.shape_scale = r.vec<3>("shapeScale");
   if (r.has("colliderType")) L.collider_type = r.string("colliderType");
   if (r.has("renderModel")) L.render_model = r.string("renderModel");
   if (r.has("renderModelScale")) L.render_model_scale = r.vec<3>("renderModelScale");
-  if (r.has("contact")) {
-    Reader c(r.at("contact"), "", r.field_path("contact"), nullptr);
-    L.friction_coefficient = c.opt_number("coulombFrictionCoefficient");
-  }
+  if (r.has("contact")) L.contact = contact_material_from_json(r.at("contact"), "", r.field_path("contact"));
+  if (r.has("layer")) L.layer = r.integer("layer");
   if (r.has("hasGravity")) L.has_gravity = r.boolean("hasGravity");
   r.check_unknown({"name", "parentLink", "mass", "centerOfMass", "momentOfInertia", "density", "shape", "shapeScale",
-                   "colliderType", "renderModel", "renderModelScale", "contact", "hasGravity", "sensors", "actuators"},
+                   "colliderType", "renderModel", "renderModelScale", "contact", "layer", "hasGravity", "sensors",
+                   "actuators"},
                   extra);
   return L;
 }
@@ -228,6 +228,37 @@ ShapeGeometry shape_from_json(const json& j, const std::string& source, const st
   });
 }
 
+Transform shape_pose_from_json(const json& j, const std::string& source, const std::string& path) {
+  return with_source(source, [&] {
+    Transform X;
+    for (const char* kind : {"box", "capsule"}) {
+      if (!j.is_object() || !j.contains(kind)) continue;
+      Reader s(j.at(kind), source, path + "." + kind, nullptr);
+      if (s.has("center")) X.translation = s.vec<3>("center");
+      if (s.has("rotation")) {
+        const auto q = s.vec<4>("rotation");
+        if (q.norm() < real(1e-6)) s.fail(s.field_path("rotation"), "must be a non-zero quaternion [x, y, z, w]");
+        X.rotation = Quat(q[3], q[0], q[1], q[2]).normalized();
+      }
+    }
+    return X;
+  });
+}
+
+ContactMaterial contact_material_from_json(const json& j, const std::string& source, const std::string& path) {
+  return with_source(source, [&] {
+    Reader c(j, source, path, nullptr);
+    ContactMaterial m;
+    if (c.has("coulombFrictionCoefficient")) m.friction = c.number("coulombFrictionCoefficient");
+    if (c.has("stiffness")) m.stiffness = c.number("stiffness");
+    if (c.has("dissipationTimeScale")) m.dissipation_time = c.number("dissipationTimeScale");
+    if (m.friction < 0) c.fail(c.field_path("coulombFrictionCoefficient"), "must be >= 0");
+    if (m.stiffness < 0) c.fail(c.field_path("stiffness"), "must be >= 0 (0 means rigid)");
+    if (m.dissipation_time < 0) c.fail(c.field_path("dissipationTimeScale"), "must be >= 0");
+    return m;
+  });
+}
+
 ArticulationDesc articulation_desc_from_json(const json& doc, const std::string& source, std::vector<std::string>* warnings,
                                              const std::vector<std::string>& extra) {
   return with_source(source, [&] {
@@ -251,6 +282,16 @@ ArticulationDesc articulation_desc_from_json(const json& doc, const std::string&
       }
     }
     if (top.has("worldFromRoot")) d.world_from_root = transform_from_json(top.at("worldFromRoot"), source, "worldFromRoot");
+    if (top.has("contactOverrides")) {
+      const json& list = top.at("contactOverrides");
+      if (!list.is_array()) top.fail("contactOverrides", std::string("expected an array, got ") + type_name(list));
+      for (size_t i = 0; i < list.size(); ++i) {
+        Reader o(list[i], source, index_path("contactOverrides", i), warnings);
+        for (const char* key : {"linkA", "linkB", "enable"})
+          if (!o.has(key)) o.fail(o.field_path(key), "required");
+        d.contact_overrides.push_back({o.string("linkA"), o.string("linkB"), o.boolean("enable")});
+      }
+    }
     top.check_unknown({"name", "links", "joints", "defaultPose", "worldFromRoot", "contactOverrides"}, extra);
     return d;
   });

@@ -231,6 +231,16 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       shape = scaled(*L.shape, L.shape_scale, r, at("links", i, "shapeScale"));
     }
     if (L.center_of_mass && !L.center_of_mass->allFinite()) r.fail(at("links", i, "centerOfMass"), "must be finite");
+    if (!L.link_from_shape.translation.allFinite() || !L.link_from_shape.rotation.coeffs().allFinite())
+      r.fail(at("links", i, "shape"), "center and rotation must be finite");
+    const SpatialTransform X_LS = SpatialTransform::from(Transform{L.link_from_shape.rotation.normalized(), L.link_from_shape.translation});
+    // mass properties of the shape, expressed in the link frame
+    auto shape_props = [&](real density) {
+      MassProperties mp = shape_mass_properties(*shape, density);
+      mp.center_of_mass = X_LS.R * mp.center_of_mass + X_LS.p;
+      mp.inertia_about_com = X_LS.R * mp.inertia_about_com * X_LS.R.transpose();
+      return mp;
+    };
     SpatialInertia& I = m.inertia[i];
     if (L.mass) {
       if (!std::isfinite(*L.mass) || *L.mass <= 0) r.fail(at("links", i, "mass"), "must be a positive finite number, got " + num(*L.mass));
@@ -240,7 +250,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
         I.inertia_com << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
         I.com = L.center_of_mass.value_or(Vec3::Zero());
       } else if (shape && !std::holds_alternative<PlaneShape>(*shape)) {
-        MassProperties mp = shape_mass_properties(*shape, 1);
+        MassProperties mp = shape_props(1);
         I.com = L.center_of_mass.value_or(mp.center_of_mass);
         I.inertia_com = mp.inertia_about_com * (I.mass / mp.mass);
       } else {
@@ -252,13 +262,42 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
         r.fail(at("links", i, "mass"), "required: the link has no bounded shape to compute it from");
       const real density = L.density.value_or(real(1000));
       if (!std::isfinite(density) || density <= 0) r.fail(at("links", i, "density"), "must be a positive finite number, got " + num(density));
-      MassProperties mp = shape_mass_properties(*shape, density);
+      MassProperties mp = shape_props(density);
       I.mass = mp.mass;
       I.com = L.center_of_mass.value_or(mp.center_of_mass);
       I.inertia_com = mp.inertia_about_com;
     }
     check_inertia(I.inertia_com, r, at("links", i, "momentOfInertia"));
     m.has_gravity[i] = L.has_gravity;
+    // contact surface
+    if (L.layer < 0 || L.layer > 63) r.fail(at("links", i, "layer"), "must be between 0 and 63, got " + std::to_string(L.layer));
+    const ContactMaterial& cm = L.contact;
+    if (!std::isfinite(cm.friction) || cm.friction < 0) r.fail(at("links", i, "contact.coulombFrictionCoefficient"), "must be a finite number >= 0");
+    if (!std::isfinite(cm.stiffness) || cm.stiffness < 0) r.fail(at("links", i, "contact.stiffness"), "must be a finite number >= 0 (0: rigid)");
+    if (!std::isfinite(cm.dissipation_time) || cm.dissipation_time < 0)
+      r.fail(at("links", i, "contact.dissipationTimeScale"), "must be a finite number >= 0");
+    if (shape && L.collider_type != "None") {
+      LinkCollider c;
+      c.link = i;
+      c.shape = *shape;
+      c.X_LS = X_LS;
+      c.material = cm;
+      c.layer = L.layer;
+      c.samples_S = shape_surface_samples(*shape);
+      c.aabb_S = shape_local_aabb(*shape);
+      m.colliders.push_back(std::move(c));
+    }
+  }
+
+  for (size_t k = 0; k < desc.contact_overrides.size(); ++k) {
+    const ContactOverride& o = desc.contact_overrides[k];
+    auto index_of = [&](const std::string& name, const char* field) {
+      for (int i = 0; i < n; ++i)
+        if (m.link_names[i] == name) return i;
+      r.fail(at("contactOverrides", k, field), "no link named '" + name + "'");
+    };
+    const int a = index_of(o.link_a, "linkA"), b = index_of(o.link_b, "linkB");
+    m.contact_overrides[{std::min(a, b), std::max(a, b)}] = o.enable;
   }
 
   const int pose_size = m.nv - m.root_nv;

@@ -3,9 +3,11 @@
 // and the evolving state that capture/restore copies. Derived per-step quantities live
 // in ArticulationKinematics, recomputed from the state.
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "collision_geometry.h"
 #include "spatial.h"
 #include "superdex/physics/articulation_desc.h"
 
@@ -19,11 +21,23 @@ struct JointModel {
   int q_offset = 0, nq = 0;    // position coordinates: 1 (revolute, prismatic), 4 (spherical quat xyzw), 7 (free: p, quat)
   int v_offset = 0, nv = 0;    // velocity coordinates (DOFs)
   Mat6 S = Mat6::Zero();       // motion subspace in the child link frame, first nv columns used
+                               // (Free joints: configuration-dependent, see ArticulationKinematics::S)
   bool has_lower = false, has_upper = false;
   real lower = 0, upper = 0;   // position limits along the axis (rad or m)
   real coulomb = 0, viscous = 0, armature = 0;
   real limit_stiffness = 0, limit_damping = 0;  // 0 stiffness: near-rigid limits
   real effort_limit = -1;
+};
+
+// A collision shape carried by a link.
+struct LinkCollider {
+  int link = 0;
+  ShapeGeometry shape;
+  SpatialTransform X_LS;           // shape frame in the link frame
+  ContactMaterial material;
+  int layer = 0;
+  std::vector<Vec3> samples_S;     // surface samples in the shape frame
+  Aabb aabb_S;                     // bounds in the shape frame
 };
 
 struct ArticulationModel {
@@ -38,6 +52,8 @@ struct ArticulationModel {
   std::vector<SpatialInertia> inertia; // spatial inertia of each link about its origin (num_links)
   std::vector<char> has_gravity;       // per link (num_links)
   std::vector<std::string> link_names, joint_names;
+  std::vector<LinkCollider> colliders; // collision shapes, in link order
+  std::map<std::pair<int, int>, bool> contact_overrides;  // (link a < link b) -> enabled
   ArticulationDesc desc;               // the validated description it was built from
 };
 
@@ -54,6 +70,7 @@ struct ArticulationKinematics {
   std::vector<SpatialTransform> X_PL;  // parent-from-link (world-from-base composed for the root)
   std::vector<SpatialTransform> X_WL;  // world-from-link
   std::vector<Vec6> V_L;               // link spatial velocity in its own frame
+  std::vector<Mat6> S;                 // each joint's motion subspace in its child link frame at q
 };
 
 // Validates `desc` and builds the model; errors name `source` and the field path.

@@ -1,24 +1,33 @@
 #pragma once
-// One implicit step of a single articulation (its own island while there is no contact):
-// assembles the convex problem of newton_solver.h from dynamics, joint damping, joint
-// friction and joint limits, solves it and integrates positions.
+// Per-articulation terms of the implicit step: the momentum matrix A = M + dt D (implicit
+// viscous joint friction), the free-motion momentum r = M v + dt (tau - c), A's Cholesky
+// factor, and the joint-limit and joint-friction rows.
 
+#include "newton_solver.h"
 #include "scene_data.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-struct ArticulationStepResult {
-  VecX q, v;              // next positions and velocities (not yet committed)
-  int iterations = 0;
-  real residual = 0;
-  bool converged = true;
-  int active_rows = 0;    // constraint rows with a non-zero impulse
-  double time_dynamics = 0, time_solve = 0;
+// A one-row block acting on a single DOF with Jacobian entry `sign`.
+struct JointRow {
+  int dof = 0;
+  real sign = 1;
+  ConstraintBlock block;
 };
 
-// Computes the next state of `a` over dt under gravity g_W. Reads a.state and a.kin.
-ArticulationStepResult step_articulation(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params);
+struct ArticulationTerms {
+  MatX A;                        // nv x nv
+  VecX r;                        // nv
+  Eigen::LLT<MatX> A_llt;
+  std::vector<JointRow> joint_rows;
+  double seconds = 0;            // time spent computing these
+};
+
+ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params);
+
+// Near-rigid compliance factor beta^2 / (4 pi^2).
+real near_rigid_factor(const SolverParams& params);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

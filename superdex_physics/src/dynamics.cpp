@@ -9,12 +9,15 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
                       const ArticulationKinematics& kin, const VecX& a, const Vec3& g_W) {
   const int n = model.num_links;
   std::vector<Vec6> A(n), F(n);
-  // forward pass: link accelerations (S is constant in the child frame, so no Sdot term)
+  // forward pass: link accelerations
   for (int i : model.order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
-    const Vec6 vJ = j.S.leftCols(j.nv) * state.v.segment(j.v_offset, j.nv);
-    Vec6 A_i = j.S.leftCols(j.nv) * a.segment(j.v_offset, j.nv) + cross_motion(kin.V_L[i], vJ);
+    const auto S = kin.S[i].leftCols(j.nv);
+    const Vec6 vJ = S * state.v.segment(j.v_offset, j.nv);
+    Vec6 A_i = S * a.segment(j.v_offset, j.nv) + cross_motion(kin.V_L[i], vJ);
+    // a Free joint's S changes with its rotation: Sdot qdot = (-w x (R^T v), 0)
+    if (j.type == JointType::Free) A_i.head<3>() -= vJ.tail<3>().cross(vJ.head<3>());
     if (p >= 0) A_i += kin.X_PL[i].apply_motion_inverse(A[p]);
     A[i] = A_i;
     const SpatialInertia& I = model.inertia[i];
@@ -28,7 +31,7 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
     const int i = *it;
     const JointModel& j = model.joints[i];
     // armature (rotor inertia) acts on the joint acceleration directly, as in mass_matrix()
-    tau.segment(j.v_offset, j.nv) = j.S.leftCols(j.nv).transpose() * F[i] + j.armature * a.segment(j.v_offset, j.nv);
+    tau.segment(j.v_offset, j.nv) = kin.S[i].leftCols(j.nv).transpose() * F[i] + j.armature * a.segment(j.v_offset, j.nv);
     const int p = model.parent[i];
     if (p >= 0) F[p] += kin.X_PL[i].apply_force(F[i]);
   }
@@ -53,15 +56,15 @@ MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
   for (int i = 0; i < n; ++i) {
     const JointModel& ji = model.joints[i];
     if (ji.nv == 0) continue;
-    Eigen::Matrix<real, 6, Eigen::Dynamic, 0, 6, 6> F = Ic[i] * ji.S.leftCols(ji.nv);
-    M.block(ji.v_offset, ji.v_offset, ji.nv, ji.nv) = ji.S.leftCols(ji.nv).transpose() * F;
+    Eigen::Matrix<real, 6, Eigen::Dynamic, 0, 6, 6> F = Ic[i] * kin.S[i].leftCols(ji.nv);
+    M.block(ji.v_offset, ji.v_offset, ji.nv, ji.nv) = kin.S[i].leftCols(ji.nv).transpose() * F;
     // off-diagonal blocks with every ancestor joint
     for (int k = i; model.parent[k] >= 0;) {
       F = kin.X_PL[k].force_matrix() * F;
       k = model.parent[k];
       const JointModel& jk = model.joints[k];
       if (jk.nv == 0) continue;
-      auto block = (jk.S.leftCols(jk.nv).transpose() * F).eval();
+      auto block = (kin.S[k].leftCols(jk.nv).transpose() * F).eval();
       M.block(jk.v_offset, ji.v_offset, jk.nv, ji.nv) = block;
       M.block(ji.v_offset, jk.v_offset, ji.nv, jk.nv) = block.transpose();
     }

@@ -25,11 +25,16 @@ void update_kinematics(const ArticulationModel& model, const ArticulationState& 
   kin.X_PL.resize(n);
   kin.X_WL.resize(n);
   kin.V_L.resize(n);
+  kin.S.resize(n);
   for (int i : model.order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
-    kin.X_PL[i] = j.X_PJ * joint_transform(j, state.q.data() + j.q_offset);
-    const Vec6 vJ = j.S.leftCols(j.nv) * state.v.segment(j.v_offset, j.nv);
+    const SpatialTransform X_J = joint_transform(j, state.q.data() + j.q_offset);
+    kin.X_PL[i] = j.X_PJ * X_J;
+    kin.S[i] = j.S;
+    // a Free joint's linear velocity is in the joint (parent) frame: rotate it into the link frame
+    if (j.type == JointType::Free) kin.S[i].topLeftCorner<3, 3>() = X_J.R.transpose();
+    const Vec6 vJ = kin.S[i].leftCols(j.nv) * state.v.segment(j.v_offset, j.nv);
     if (p < 0) {
       kin.X_PL[i] = state.X_W_base * kin.X_PL[i];
       kin.X_WL[i] = kin.X_PL[i];
@@ -51,8 +56,8 @@ void link_jacobian_world(const ArticulationModel& model, const ArticulationKinem
     const Mat3& R_WK = kin.X_WL[k].R;
     const Vec3 r = p_WL - kin.X_WL[k].p;
     for (int c = 0; c < j.nv; ++c) {
-      const Vec3 w = R_WK * j.S.col(c).tail<3>();
-      const Vec3 v = R_WK * j.S.col(c).head<3>() + w.cross(r);
+      const Vec3 w = R_WK * kin.S[k].col(c).tail<3>();
+      const Vec3 v = R_WK * kin.S[k].col(c).head<3>() + w.cross(r);
       J_WL.block<3, 1>(0, j.v_offset + c) = v;
       J_WL.block<3, 1>(3, j.v_offset + c) = w;
     }
@@ -73,9 +78,9 @@ void integrate_positions(const ArticulationModel& model, VecX& q, const VecX& v,
         break;
       }
       case JointType::Free: {
-        // linear velocity is in the body frame: rotate it to the base frame with the current orientation
+        // linear velocity is in the parent frame, angular velocity in the body frame
         const Quat rot = quat_at(qj + 3).normalized();
-        map3(qj) += rot * (dt * Vec3(vj[0], vj[1], vj[2]));
+        map3(qj) += dt * Vec3(vj[0], vj[1], vj[2]);
         const Quat next = (rot * quat_exp(dt * Vec3(vj[3], vj[4], vj[5]))).normalized();
         map4(qj + 3) = next.coeffs();
         break;

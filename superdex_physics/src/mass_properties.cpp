@@ -1,9 +1,10 @@
-// Volume, mass properties and validation of primitive shapes.
+// Volume, mass properties and validation of shapes (meshes: mesh_properties.cpp).
 
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
+#include "mesh_properties.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/shape.h"
 
@@ -31,11 +32,14 @@ real shape_volume(const ShapeGeometry& shape) {
                  [](const CapsuleShape& c) -> real {
                    const real r2 = c.radius * c.radius;
                    return kPi * r2 * (2 * c.half_length) + 4 * kPi * r2 * c.radius / 3;
-                 }},
+                 },
+                 [](const MeshShape& m) -> real { return mesh_volume(m); }},
       shape);
 }
 
 MassProperties shape_mass_properties(const ShapeGeometry& shape, real density) {
+  // meshes integrate volume, centre of mass and inertia in one pass
+  if (const auto* mesh = std::get_if<MeshShape>(&shape)) return mesh_mass_properties(*mesh, density);
   MassProperties mp;
   mp.mass = density * shape_volume(shape);
   std::visit(Overloaded{[](const PlaneShape&) {},
@@ -58,7 +62,8 @@ MassProperties shape_mass_properties(const ShapeGeometry& shape, real density) {
                           const real i_hemi_com = real(0.4) * m_hemi * r2 - m_hemi * (3 * r / 8) * (3 * r / 8);
                           const real ixx = m_cyl * (3 * r2 + h * h) / 12 + 2 * (i_hemi_com + m_hemi * d * d);
                           mp.inertia_about_com = Vec3(ixx, ixx, izz).asDiagonal();
-                        }},
+                        },
+                        [](const MeshShape&) {}},
              shape);
   return mp;
 }
@@ -87,7 +92,8 @@ void validate_shape(const ShapeGeometry& shape, const std::string& where) {
                           positive(c.radius, "capsule radius");
                           if (!std::isfinite(c.half_length) || c.half_length < 0)
                             fail("capsule halfLength must be a finite number >= 0");
-                        }},
+                        },
+                        [&](const MeshShape& m) { validate_mesh_shape(m, where); }},
              shape);
 }
 

@@ -9,23 +9,77 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-namespace {
-
-// Impulse gamma and curvature d(gamma)/d(-vc) of row i at constraint velocity vc.
-inline void row_response(const ConstraintRows& rows, int i, real vc, real& gamma, real& curvature) {
-  const real R = rows.R[i];
-  if (rows.kind[i] == RowKind::Unilateral) {
-    const real y = (rows.vhat[i] - vc) / R;
-    gamma = y > 0 ? y : 0;
-    curvature = y > 0 ? 1 / R : 0;
-  } else {
-    const real y = -vc / R, b = rows.bound[i];
-    gamma = std::clamp(y, -b, b);
-    curvature = std::abs(y) < b ? 1 / R : 0;
+void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real* G) {
+  switch (b.kind) {
+    case BlockKind::Unilateral: {
+      const real y = (b.vhat - vc[0]) / b.R;
+      gamma[0] = y > 0 ? y : 0;
+      G[0] = y > 0 ? 1 / b.R : 0;
+      return;
+    }
+    case BlockKind::BoundedFriction: {
+      const real y = -vc[0] / b.R;
+      gamma[0] = std::clamp(y, -b.bound, b.bound);
+      G[0] = std::abs(y) < b.bound ? 1 / b.R : 0;
+      return;
+    }
+    case BlockKind::ContactFixedFriction: {
+      Eigen::Map<Eigen::Matrix<real, 3, 3>> Gm(G);
+      Gm.setZero();
+      const real yn = (b.vhat - vc[2]) / b.Rn;
+      gamma[2] = yn > 0 ? yn : 0;
+      Gm(2, 2) = yn > 0 ? 1 / b.Rn : 0;
+      const real yt0 = -vc[0] / b.R, yt1 = -vc[1] / b.R;
+      const real yr = std::sqrt(yt0 * yt0 + yt1 * yt1);
+      if (yr <= b.bound) {
+        gamma[0] = yt0, gamma[1] = yt1;
+        Gm(0, 0) = Gm(1, 1) = 1 / b.R;
+      } else {
+        // projection onto the disk of radius `bound` and its derivative (b / |y|)(I - t t^T)
+        const Eigen::Matrix<real, 2, 1> t(yt0 / yr, yt1 / yr);
+        gamma[0] = b.bound * t[0], gamma[1] = b.bound * t[1];
+        Gm.topLeftCorner<2, 2>() = (b.bound / yr / b.R) * (Eigen::Matrix<real, 2, 2>::Identity() - t * t.transpose());
+      }
+      return;
+    }
+    case BlockKind::FrictionalContact: {
+      const real Rt = b.R, Rn = b.Rn, mu = b.bound;
+      const real yt0 = -vc[0] / Rt, yt1 = -vc[1] / Rt, yn = (b.vhat - vc[2]) / Rn;
+      const real yr = std::sqrt(yt0 * yt0 + yt1 * yt1);
+      Eigen::Map<Eigen::Matrix<real, 3, 3>> Gm(G);
+      if (yr <= mu * yn) {
+        // stiction: inside the cone
+        gamma[0] = yt0, gamma[1] = yt1, gamma[2] = yn;
+        Gm.setZero();
+        Gm(0, 0) = Gm(1, 1) = 1 / Rt;
+        Gm(2, 2) = 1 / Rn;
+        return;
+      }
+      const real mu_tilde = mu * Rt / Rn;
+      if (yn + mu_tilde * yr <= 0) {
+        // separation
+        gamma[0] = gamma[1] = gamma[2] = 0;
+        Gm.setZero();
+        return;
+      }
+      // sliding: projection onto the cone's surface
+      const real denom = 1 + mu * mu_tilde;
+      const real gn = (yn + mu_tilde * yr) / denom;
+      const Eigen::Matrix<real, 2, 1> t(yt0 / yr, yt1 / yr);
+      gamma[0] = mu * gn * t[0], gamma[1] = mu * gn * t[1], gamma[2] = gn;
+      Eigen::Matrix<real, 3, 3> dP;
+      const Eigen::Matrix<real, 2, 2> ttT = t * t.transpose();
+      dP.topLeftCorner<2, 2>() = (mu * mu_tilde / denom) * ttT + (mu * gn / yr) * (Eigen::Matrix<real, 2, 2>::Identity() - ttT);
+      dP.topRightCorner<2, 1>() = (mu / denom) * t;
+      dP.bottomLeftCorner<1, 2>() = (mu_tilde / denom) * t.transpose();
+      dP(2, 2) = 1 / denom;
+      const Eigen::Matrix<real, 3, 1> Rinv(1 / Rt, 1 / Rt, 1 / Rn);
+      Eigen::Matrix<real, 3, 3> H = dP * Rinv.asDiagonal();
+      Gm = (H + H.transpose()) / 2;
+      return;
+    }
   }
 }
-
-}  // namespace
 
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params) {
@@ -38,12 +92,24 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
   const VecX D = A.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
   const real r_norm = (D.asDiagonal() * r).norm();
 
-  VecX vc(m), curvature(m), grad(n), dv(n), dvc(m);
-  MatX H(n, n);
+  VecX vc(m), grad(n), dv(n), dvc(m), jc(n);
+  std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
+  MatX H(n, n), GJ(m, n);
+
+  // impulses and Hessian blocks at the current constraint velocities
+  auto respond = [&](const VecX& velocities, VecX& gamma) {
+    for (size_t k = 0; k < rows.blocks.size(); ++k)
+      block_response(rows.blocks[k], velocities.data() + rows.blocks[k].row, gamma.data() + rows.blocks[k].row, G[k].data());
+  };
+
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
-    if (m > 0) vc.noalias() = rows.J * out.v;
-    for (int i = 0; i < m; ++i) row_response(rows, i, vc[i], out.gamma[i], curvature[i]);
-    VecX jc = m > 0 ? VecX(rows.J.transpose() * out.gamma) : VecX::Zero(n);
+    if (m > 0) {
+      vc.noalias() = rows.J * out.v;
+      respond(vc, out.gamma);
+      jc.noalias() = rows.J.transpose() * out.gamma;
+    } else {
+      jc.setZero();
+    }
     grad.noalias() = A * out.v - r - jc;
     out.residual = (D.asDiagonal() * grad).norm();
     out.iterations = it;
@@ -53,22 +119,32 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
       break;
     }
     if (it == params.max_newton_iterations) break;
-    // Newton direction from the Hessian A + J^T diag(curvature) J
+    // Newton direction from the Hessian A + J^T G J (G block diagonal)
     H = A;
-    if (m > 0) H.noalias() += rows.J.transpose() * curvature.asDiagonal() * rows.J;
+    if (m > 0) {
+      for (size_t k = 0; k < rows.blocks.size(); ++k) {
+        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+        GJ.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * rows.J.middleRows(r0, s);
+      }
+      H.noalias() += rows.J.transpose() * GJ;
+    }
     Eigen::LLT<MatX> llt(H);
     dv = -llt.solve(grad);
     if (m > 0) dvc.noalias() = rows.J * dv;
-    // exact line search: the directional derivative phi'(alpha) is monotone and piecewise linear
+    // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
     const real a0 = dv.dot(A * out.v - r);
     const real a1 = dv.dot(A * dv);
+    VecX vc_alpha(m), gamma_alpha(m);
     auto dphi = [&](real alpha, real* ddphi) {
       real d = a0 + alpha * a1, dd = a1;
-      for (int i = 0; i < m; ++i) {
-        real g, c;
-        row_response(rows, i, vc[i] + alpha * dvc[i], g, c);
-        d -= dvc[i] * g;
-        dd += dvc[i] * dvc[i] * c;
+      if (m > 0) {
+        vc_alpha = vc + alpha * dvc;
+        respond(vc_alpha, gamma_alpha);
+        d -= dvc.dot(gamma_alpha);
+        for (size_t k = 0; k < rows.blocks.size(); ++k) {
+          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+          dd += dvc.segment(r0, s).dot(G[k].topLeftCorner(s, s) * dvc.segment(r0, s));
+        }
       }
       if (ddphi) *ddphi = dd;
       return d;
@@ -77,11 +153,10 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
     if (dphi(1, nullptr) > 0) {
       // safeguarded Newton on phi' over [lo, hi]
       real lo = 0, hi = 1;
-      alpha = 1;
       for (int ls = 0; ls < params.max_line_search_iterations; ++ls) {
         real dd;
         const real d = dphi(alpha, &dd);
-        if (std::abs(d) <= real(1e-12) * (std::abs(a0) + 1e-30)) break;
+        if (std::abs(d) <= real(1e-10) * (std::abs(a0) + std::numeric_limits<real>::min())) break;
         (d > 0 ? hi : lo) = alpha;
         real next = dd > 0 ? alpha - d / dd : (lo + hi) / 2;
         if (!(next > lo && next < hi)) next = (lo + hi) / 2;
@@ -90,10 +165,12 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
       }
     }
     out.v += alpha * dv;
-    if (alpha * dv.norm() <= std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
-      // no further progress possible at this precision
-      if (m > 0) vc.noalias() = rows.J * out.v;
-      for (int i = 0; i < m; ++i) row_response(rows, i, vc[i], out.gamma[i], curvature[i]);
+    if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
+      // no further progress is possible at this precision
+      if (m > 0) {
+        vc.noalias() = rows.J * out.v;
+        respond(vc, out.gamma);
+      }
       out.iterations = it + 1;
       out.converged = true;
       break;

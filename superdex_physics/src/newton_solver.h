@@ -1,14 +1,15 @@
 #pragma once
 // The implicit step as a convex problem in the next generalized velocities v:
 //
-//   min_v  l(v) = 1/2 v^T A v - r^T v + sum_i l_i(J_i v)
+//   min_v  l(v) = 1/2 v^T A v - r^T v + sum_b l_b(J_b v)
 //
-// A is the SPD momentum matrix (mass matrix, armature, implicit damping), r the momentum
-// of the free motion; each constraint row i contributes a convex, C1, piecewise-quadratic
-// potential l_i of its velocity vc_i = J_i v whose negative derivative is the impulse
-// gamma_i the constraint applies (as in Castro et al. 2022, SAP). Stationarity gives the
-// momentum balance A v = r + J^T gamma. Newton's method with an exact line search
-// converges in a few iterations and the reported impulses are exactly those applied.
+// A is the SPD momentum matrix (mass matrices, armature, implicit damping), r the momentum
+// of the free motion; each constraint block b (1 row, or 3 rows for a frictional contact)
+// contributes a convex, C1, piecewise-smooth potential l_b of its velocity vc_b = J_b v whose
+// negative gradient is the impulse gamma_b the block applies (Castro et al. 2022, SAP).
+// Stationarity is the momentum balance A v = r + J^T gamma. Newton's method with an exact
+// line search converges in a few iterations, and the reported impulses are exactly those
+// applied.
 
 #include <vector>
 
@@ -18,28 +19,36 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-enum class RowKind : unsigned char {
-  // gamma = max(0, (vhat - vc) / R): a compliant one-sided constraint (limits, contact normals)
+enum class BlockKind : unsigned char {
+  // 1 row: gamma = max(0, (vhat - vc) / R); a compliant one-sided constraint (joint limits)
   Unilateral,
-  // gamma = -clamp(vc / R, -bound, bound): regularised Coulomb friction with impulse bound
+  // 1 row: gamma = -clamp(vc / R, -bound, bound); regularised Coulomb friction (joint friction)
   BoundedFriction,
+  // 3 rows (t1, t2, n): gamma = projection of y = -R^-1 (vc - vhat) onto the friction cone
+  // |gamma_t| <= mu gamma_n in the R-norm, R = diag(Rt, Rt, Rn), vhat = (0, 0, vhat_n)
+  FrictionalContact,
+  // 3 rows (t1, t2, n): a unilateral normal row, and friction on the disk |gamma_t| <= bound with
+  // a fixed impulse bound (mu gamma_n of a previous solve); no normal-tangential coupling, so a
+  // sliding contact does not drift apart as in the cone model
+  ContactFixedFriction,
+};
+
+struct ConstraintBlock {
+  BlockKind kind = BlockKind::Unilateral;
+  int row = 0;      // first row in J
+  real R = 0;       // regularisation (velocity per impulse); tangential for contacts
+  real Rn = 0;      // normal regularisation of contacts
+  real vhat = 0;    // target velocity: unilateral rows, contact normals
+  real bound = 0;   // impulse bound of friction rows and fixed-friction contacts; mu of cone contacts
+
+  int size() const { return kind == BlockKind::FrictionalContact || kind == BlockKind::ContactFixedFriction ? 3 : 1; }
 };
 
 struct ConstraintRows {
-  MatX J;                       // constraint Jacobian (m x n)
-  std::vector<RowKind> kind;    // (m)
-  VecX R;                       // regularisation, velocity per impulse (m)
-  VecX vhat;                    // target velocity of unilateral rows (m)
-  VecX bound;                   // impulse bound of friction rows (m)
+  MatX J;                              // constraint Jacobian (m x n)
+  std::vector<ConstraintBlock> blocks; // in row order, covering all m rows
 
-  int size() const { return static_cast<int>(kind.size()); }
-  void resize(int m, int n) {
-    J.setZero(m, n);
-    kind.assign(m, RowKind::Unilateral);
-    R.setZero(m);
-    vhat.setZero(m);
-    bound.setZero(m);
-  }
+  int size() const { return static_cast<int>(J.rows()); }
 };
 
 struct ConvexResult {
@@ -53,6 +62,10 @@ struct ConvexResult {
 // Solves the problem from the unconstrained optimum A^-1 r. `A_llt` is A's Cholesky factor.
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params);
+
+// Impulse and Hessian block d(-gamma)/d(vc) of one block at constraint velocity vc (the
+// block's segment). Exposed for tests.
+void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real* G);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -1,10 +1,13 @@
 // Scene settings, actor creation and destruction, and the step pipeline.
 
+#include <algorithm>
+#include <set>
 #include <chrono>
+#include <tuple>
 #include <cmath>
 #include <oneapi/tbb/parallel_for.h>
 
-#include "articulation_step.h"
+#include "island_solver.h"
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
@@ -53,7 +56,8 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
 }  // namespace
 
 ActorHandle Scene::create_rigid_actor(const std::string& name, ShapeHandle shape, bool is_static, const Transform& X_WL,
-                                      std::optional<real> density, std::optional<real> mass) {
+                                      std::optional<real> density, std::optional<real> mass, const ContactMaterial& contact,
+                                      int layer, ColliderType collider_type) {
   SceneData& s = scene_data(handle_);
   const ShapeGeometry geometry = shape_geometry(shape);
   const std::string source = "create_rigid_actor('" + name + "')";
@@ -66,6 +70,9 @@ ActorHandle Scene::create_rigid_actor(const std::string& name, ShapeHandle shape
   LinkDesc link;
   link.name = name;
   link.shape = geometry;
+  link.contact = contact;
+  link.layer = layer;
+  if (collider_type == ColliderType::None) link.collider_type = "None";
   if (is_static) {
     // welded bodies never move: their inertia only needs to be valid
     link.mass = 1;
@@ -102,9 +109,20 @@ void Scene::destroy_actor(ActorHandle actor) {
     throw Error("destroy_actor: actor " + std::to_string(actor) + " is a link of articulation " +
                 std::to_string(it->second.articulation->handle) + "; destroy the articulation instead");
   Articulation* a = it->second.articulation;
-  for (ActorHandle link : a->link_handles) s.actors.erase(link);
-  s.actors.erase(a->handle);
-  std::erase_if(s.articulations, [&](const auto& p) { return p.get() == a; });
+  std::set<ActorHandle> gone(a->link_handles.begin(), a->link_handles.end());
+  gone.insert(a->handle);
+  for (ActorHandle h : gone) s.actors.erase(h);
+  std::erase_if(s.queries, [&](const auto& q) { return gone.count(q.second.actor) > 0; });
+  std::erase_if(s.disabled_actor_pairs, [&](const auto& p) { return gone.count(p.first) || gone.count(p.second); });
+  // contact records refer to bodies by index: drop this body's and renumber the rest
+  const int index = static_cast<int>(std::find_if(s.articulations.begin(), s.articulations.end(),
+                                                  [&](const auto& p) { return p.get() == a; }) - s.articulations.begin());
+  std::erase_if(s.contacts, [&](const ContactRecord& c) { return c.body_a == index || c.body_b == index; });
+  for (ContactRecord& c : s.contacts) {
+    if (c.body_a > index) --c.body_a;
+    if (c.body_b > index) --c.body_b;
+  }
+  s.articulations.erase(s.articulations.begin() + index);
 }
 
 bool Scene::has_actor(ActorHandle actor) const { return scene_data(handle_).actors.count(actor) > 0; }
@@ -118,43 +136,90 @@ std::vector<ActorHandle> Scene::actors() const {
 void Scene::step(real dt) {
   SceneData& s = scene_data(handle_);
   if (!std::isfinite(dt) || dt <= 0) throw Error("step: dt must be a positive finite number of seconds, got " + std::to_string(dt));
-  const auto t0 = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   const size_t n = s.articulations.size();
-  std::vector<ArticulationStepResult> results(n);
-  auto work = [&](size_t i) { results[i] = step_articulation(*s.articulations[i], s.gravity, dt, s.params); };
   EngineData& e = engine_data();
-  if (e.arena && n > 1) {
-    e.arena->execute([&] { oneapi::tbb::parallel_for(size_t(0), n, work); });
-  } else {
-    for (size_t i = 0; i < n; ++i) work(i);
-  }
-  // a non-finite result leaves every actor in its last good state
-  for (size_t i = 0; i < n; ++i) {
-    const Articulation& a = *s.articulations[i];
-    if (!results[i].v.allFinite() || !results[i].q.allFinite())
+  // runs work(i) for i < count on the worker threads when there are any
+  auto parallel = [&](size_t count, auto&& work) {
+    if (e.arena && count > 1) e.arena->execute([&] { oneapi::tbb::parallel_for(size_t(0), count, work); });
+    else for (size_t i = 0; i < count; ++i) work(i);
+  };
+
+  // 1. dynamics terms of every body
+  std::vector<ArticulationTerms> terms(n);
+  parallel(n, [&](size_t i) { terms[i] = articulation_terms(*s.articulations[i], s.gravity, dt, s.params); });
+  // 2. collision detection
+  const auto t1 = Clock::now();
+  const std::vector<Contact> contacts = detect_contacts(s, s.params.contact_margin, dt);
+  const double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
+  // 3. islands, each one implicit solve
+  std::vector<int> num_dofs(n);
+  for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
+  const std::vector<Island> islands = build_islands(num_dofs, contacts);
+  std::vector<IslandSolution> solutions(islands.size());
+  parallel(islands.size(), [&](size_t k) { solutions[k] = solve_island(s, islands[k], terms, contacts, dt, s.params); });
+
+  // 4. next states; a non-finite result leaves every actor in its last good state
+  std::vector<VecX> q_next(n), v_next(n);
+  for (size_t k = 0; k < islands.size(); ++k)
+    for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
+      const int b = islands[k].bodies[j];
+      v_next[b] = solutions[k].v[j];
+      q_next[b] = s.articulations[b]->state.q;
+      integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
+    }
+  for (size_t b = 0; b < n; ++b) {
+    if (num_dofs[b] == 0) continue;
+    const Articulation& a = *s.articulations[b];
+    if (!v_next[b].allFinite() || !q_next[b].allFinite())
       throw Error("step: actor '" + a.model.name + "' (handle " + std::to_string(a.handle) + "): " +
-                  (results[i].v.allFinite() ? "positions" : "velocities") +
+                  (v_next[b].allFinite() ? "positions" : "velocities") +
                   " became non-finite; the scene keeps its last good state (check forces, masses and dt)");
   }
-  SolverStats stats;
-  for (size_t i = 0; i < n; ++i) {
-    Articulation& a = *s.articulations[i];
-    ArticulationStepResult& r = results[i];
-    a.state.q = std::move(r.q);
-    a.state.v = std::move(r.v);
+  for (size_t b = 0; b < n; ++b) {
+    if (num_dofs[b] == 0) continue;
+    Articulation& a = *s.articulations[b];
+    a.state.q = std::move(q_next[b]);
+    a.state.v = std::move(v_next[b]);
     refresh_kinematics(a);
-    if (a.model.nv == 0) continue;
-    stats.num_islands += 1;
-    stats.newton_iterations = std::max(stats.newton_iterations, r.iterations);
-    stats.total_newton_iterations += r.iterations;
-    stats.residual = std::max(stats.residual, r.residual);
-    stats.converged = stats.converged && r.converged;
-    stats.num_constraints += r.active_rows;
-    stats.time_kinematics += r.time_dynamics;
-    stats.time_solve += r.time_solve;
+  }
+
+  // 5. contact results for queries
+  s.contacts.clear();
+  for (size_t k = 0; k < islands.size(); ++k)
+    for (size_t j = 0; j < islands[k].contacts.size(); ++j) {
+      const Contact& c = contacts[islands[k].contacts[j]];
+      ContactRecord rec;
+      rec.body_a = c.body_a, rec.body_b = c.body_b, rec.link_a = c.link_a, rec.link_b = c.link_b;
+      rec.actor_a = s.articulations[c.body_a]->link_handles[c.link_a];
+      rec.actor_b = s.articulations[c.body_b]->link_handles[c.link_b];
+      rec.position = c.p_W;
+      rec.normal = c.n_W;
+      rec.distance = c.phi;
+      rec.force = solutions[k].contact_force[j];
+      s.contacts.push_back(rec);
+    }
+  std::sort(s.contacts.begin(), s.contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
+    return std::tie(x.body_a, x.link_a, x.body_b, x.link_b) < std::tie(y.body_a, y.link_a, y.body_b, y.link_b);
+  });
+
+  SolverStats stats;
+  stats.num_islands = static_cast<int>(islands.size());
+  stats.num_contacts = static_cast<int>(contacts.size());
+  stats.time_collision = time_collision;
+  for (const ArticulationTerms& t : terms) stats.time_kinematics += t.seconds;
+  for (const IslandSolution& sol : solutions) {
+    stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
+    stats.total_newton_iterations += sol.iterations;
+    stats.residual = std::max(stats.residual, sol.residual);
+    stats.converged = stats.converged && sol.converged;
+    stats.num_constraints += sol.active_rows;
+    stats.time_solve += sol.seconds;
   }
   s.time += dt;
-  stats.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.step_count += 1;
+  stats.time_total = std::chrono::duration<double>(Clock::now() - t0).count();
   s.stats = stats;
 }
 

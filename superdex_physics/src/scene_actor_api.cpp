@@ -95,9 +95,10 @@ void Scene::set_velocity(ActorHandle h, const Vec3& v_W, const Vec3& w_W) {
   if (a.model.joints[0].type != JointType::Free)
     throw Error("set_velocity: " + describe(h) + " ('" + a.model.name + "') has no free root: it is static or welded");
   if (!v_W.allFinite() || !w_W.allFinite()) throw Error("set_velocity: linear and angular velocity must be finite");
-  const Mat3& R_WL = a.kin.X_WL[0].R;
-  a.state.v.segment<3>(0) = R_WL.transpose() * v_W;
-  a.state.v.segment<3>(3) = R_WL.transpose() * w_W;
+  // linear velocity in the free joint's parent frame, angular velocity in the body frame
+  const Mat3 R_WP = (a.state.X_W_base * a.model.joints[0].X_PJ).R;
+  a.state.v.segment<3>(0) = R_WP.transpose() * v_W;
+  a.state.v.segment<3>(3) = a.kin.X_WL[0].R.transpose() * w_W;
   refresh_kinematics(a);
 }
 

@@ -2,7 +2,9 @@
 // Private storage of the engine and its scenes. Scenes own articulations (rigid bodies are
 // one-link articulations); the public API reaches them only through handles.
 
+#include <array>
 #include <map>
+#include <set>
 #include <memory>
 #include <shared_mutex>
 #include <unordered_map>
@@ -18,6 +20,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 struct Articulation {
   ActorHandle handle = 0;
+  int layer = 0;           // rigid bodies: collision layer
   bool is_rigid = false;   // created by create_rigid_actor
   bool is_static = false;  // welded rigid body
   ShapeHandle shape = 0;   // rigid bodies: the shape they carry
@@ -33,6 +36,24 @@ struct ActorRef {
   int link = -1;
 };
 
+// One contact of the last step, as reported to queries. Force is applied to actor_a (world).
+struct ContactRecord {
+  ActorHandle actor_a = 0, actor_b = 0;  // link or rigid actors
+  int body_a = -1, body_b = -1;          // articulation indices at the time of the step
+  int link_a = 0, link_b = 0;
+  Vec3 position = Vec3::Zero();          // world (m)
+  Vec3 normal = Vec3::Zero();            // unit, from b towards a
+  real distance = 0;                     // signed gap before the step (m), negative when penetrating
+  Vec3 force = Vec3::Zero();             // force on a (N), world
+};
+
+// A registered query of one actor.
+struct QueryRecord {
+  ActorHandle actor = 0;
+  int type = 0;             // QueryType
+  long long since_step = 0; // results are valid once a step completed after this
+};
+
 struct SceneData {
   SceneHandle handle = 0;
   std::string name;
@@ -42,6 +63,19 @@ struct SceneData {
   SolverStats stats;
   std::vector<std::unique_ptr<Articulation>> articulations;  // creation order
   std::unordered_map<ActorHandle, ActorRef> actors;
+  long long step_count = 0;
+  // contact filtering: disabled actor pairs (smaller handle first) and per-layer masks
+  std::set<std::pair<ActorHandle, ActorHandle>> disabled_actor_pairs;
+  std::array<std::uint64_t, 64> layer_masks = filled_layer_masks();
+  // results of the last step and the queries that read them
+  std::vector<ContactRecord> contacts;
+  std::map<std::int64_t, QueryRecord> queries;
+
+  static std::array<std::uint64_t, 64> filled_layer_masks() {
+    std::array<std::uint64_t, 64> m;
+    m.fill(~std::uint64_t(0));
+    return m;
+  }
 };
 
 struct EngineData {

@@ -13,6 +13,9 @@ DynamicArrayReal = _m.DynamicArrayReal
 ActorType = _m.ActorType
 JointType = _m.JointType
 ColliderType = _m.ColliderType
+QueryType = _m.QueryType
+ContactPoint = _m.ContactPoint
+SceneState = _m.SceneState
 Scene = _m.Scene
 Actor = _m.Actor
 Shape = _m.Shape
@@ -32,6 +35,8 @@ create_sphere_shape = _m.create_sphere_shape
 create_box_shape = _m.create_box_shape
 create_capsule_shape = _m.create_capsule_shape
 release_shape = _m.release_shape
+create_tri_mesh_shape = _m.create_tri_mesh_shape
+load_shape_from_file = _m.load_shape_from_file
 
 from superdex.physics import paths  # noqa: E402  (submodule, after the native names)
 

@@ -7,8 +7,10 @@ random masses, centres of mass and physically valid inertias. Each tree is built
 SuperDex through the Python API and, identically, as a Pinocchio model:
 
 * Revolute / Prismatic -> JointModelRevoluteUnaligned / JointModelPrismaticUnaligned,
-  Spherical -> JointModelSpherical, Free root -> JointModelFreeFlyer (same velocity
-  conventions as SuperDex).
+  Spherical -> JointModelSpherical, Free root -> JointModelFreeFlyer. A SuperDex Free
+  joint's linear velocity is in its parent frame, Pinocchio's in the body frame: with
+  v_pin = T v (T rotates the first three DOFs by R^T), the references are mapped exactly:
+  M = T^T M_pin T, c = T^T (c_pin + M_pin Tdot v), vdot = T^T (vdot_pin - Tdot v), J = J_pin T.
 * Hard joints have no Pinocchio joint: the link's inertia is merged into its nearest moving
   ancestor joint (appendBodyToJoint at the composed placement) and its children attach to
   that joint with the composed placement. A Hard root is a fixed base: link 0 is attached
@@ -417,6 +419,18 @@ def pinocchio_reference(pt: PinTree, s: State) -> Reference:
     )
 
 
+def free_velocity_map(tree: Tree, s: State) -> tuple[np.ndarray, np.ndarray]:
+    """T with v_pin = T v for SuperDex velocities v, and Tdot v (zero without a Free root)."""
+    n = tree.num_dofs
+    T, Tdot_v = np.eye(n), np.zeros(n)
+    if tree.types[0] == "Free":
+        R = pin.exp3(s.pose[3:6])  # rotation of the free joint (root DOFs come first)
+        T[:3, :3] = R.T
+        # d/dt(R^T) v_lin = -w_body x (R^T v_lin)
+        Tdot_v[:3] = -np.cross(s.v[3:6], R.T @ s.v[:3])
+    return T, Tdot_v
+
+
 def assert_close(actual, reference, what: str) -> None:
     actual = np.asarray(actual, dtype=float)
     reference = np.asarray(reference, dtype=float)
@@ -487,13 +501,16 @@ def test_dynamics_match_pinocchio(engine, case):
         s = random_state(tree, rng)
         art.set_articulated_pose_from_joints(s.pose)
         art.set_articulated_joint_velocities(s.v)
-        ref = pinocchio_reference(reference_model, s)
+        T, Tdot_v = free_velocity_map(tree, s)
+        # T is orthogonal, so tau_pin = T^-T tau = T tau keeps the power tau . v
+        ref = pinocchio_reference(reference_model, State(pose=s.pose, q_parts=s.q_parts, v=T @ s.v, tau=T @ s.tau))
         where = f"tree seed {seed} ({describe(tree)}), state {k}"
 
         M = np.asarray(art.get_articulated_mass_matrix())
-        assert_close(M, ref.M, f"mass matrix, {where}")
-        assert_close(art.get_articulated_bias_forces(), ref.bias, f"bias forces, {where}")
-        assert_close(art.compute_articulated_forward_dynamics(s.tau), ref.accel, f"forward dynamics, {where}")
+        assert_close(M, T.T @ ref.M @ T, f"mass matrix, {where}")
+        assert_close(art.get_articulated_bias_forces(), T.T @ (ref.bias + ref.M @ Tdot_v), f"bias forces, {where}")
+        assert_close(art.compute_articulated_forward_dynamics(s.tau), T.T @ (ref.accel - Tdot_v),
+                     f"forward dynamics, {where}")
         for i, actor in enumerate(link_actors):
             J = np.asarray(actor.get_articulated_jacobian()).reshape(6, n)
-            assert_close(J, ref.jacobians[i], f"Jacobian of link{i} ({tree.types[i]} joint), {where}")
+            assert_close(J, ref.jacobians[i] @ T, f"Jacobian of link{i} ({tree.types[i]} joint), {where}")

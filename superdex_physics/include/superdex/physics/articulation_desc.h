@@ -19,7 +19,8 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 /// How a link moves relative to its parent.
 enum class JointType {
   Hard,       ///< welded: 0 DOFs
-  Free,       ///< 6 DOFs, root only: velocity is (linear, angular) of the link origin in the link frame
+  Free,       ///< 6 DOFs, root only: velocity of the link origin in the parent (world-aligned) frame,
+              ///< then angular velocity in the link frame
   Revolute,   ///< 1 DOF: rotation about `axis` (rad)
   Prismatic,  ///< 1 DOF: translation along `axis` (m)
   Spherical,  ///< 3 DOFs: angular velocity in the child link frame
@@ -78,9 +79,19 @@ struct LinkDesc {
   std::string collider_type = "Auto";
   std::string render_model;
   Vec3 render_model_scale = Vec3::Ones();
-  /// Coulomb friction coefficient of the link's contacts; absent: the scene default.
-  std::optional<real> friction_coefficient;
+  /// Pose of the shape in the link frame (inline primitives: their "center" and "rotation").
+  Transform link_from_shape;
+  /// Contact parameters of the link's surface.
+  ContactMaterial contact;
+  /// Collision layer, 0..63 (see Scene::enable_layer_contact).
+  int layer = 0;
   bool has_gravity = true;
+};
+
+/// Enables or disables contact between two links of the same articulation, by name.
+struct ContactOverride {
+  std::string link_a, link_b;
+  bool enable = false;
 };
 
 /// A whole articulation: links[i] is attached to its parent by joints[i].
@@ -92,6 +103,8 @@ struct ArticulationDesc {
   std::vector<real> default_pose;
   /// Pose of the root joint's parent frame in the world.
   Transform world_from_root;
+  /// Link pairs whose contact differs from the default (joined links off, others on).
+  std::vector<ContactOverride> contact_overrides;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

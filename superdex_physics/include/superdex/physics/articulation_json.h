@@ -29,5 +29,12 @@ Transform transform_from_json(const nlohmann::json& j, const std::string& source
 /// {"plane": {"normal": [..], "distance": d}}.
 ShapeGeometry shape_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
 
+/// Pose of an inline box or capsule in the link frame, from its optional "center" and
+/// "rotation" [x, y, z, w] fields (identity otherwise).
+Transform shape_pose_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+
+/// Parses `{coulombFrictionCoefficient, stiffness, dissipationTimeScale}` (all optional).
+ContactMaterial contact_material_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -12,12 +12,33 @@
 #include "superdex/physics/articulation_desc.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/real.h"
+#include "superdex/physics/shape.h"
 #include "superdex/physics/transform.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 enum class ActorType { Rigid, Soft, Articulated, Link };
+
+/// Results an actor can ask the step to report (register before reading; valid after the next step).
+enum class QueryType {
+  TotalContactForce,
+  ContactPoints,
+  NodePositions,
+  NodeContactForces,
+  ConstraintForce,
+  ArticulatedControllerForce,
+};
+const char* query_type_name(QueryType type);
+
+/// One contact of the last step seen from actor a.
+struct ContactPointInfo {
+  ActorHandle actor_a = 0, actor_b = 0;  ///< link or rigid actors
+  Vec3 position = Vec3::Zero();          ///< world (m)
+  Vec3 normal = Vec3::Zero();            ///< unit, from b towards a
+  real distance = 0;                     ///< signed gap at the start of the step (m), negative when penetrating
+  Vec3 force = Vec3::Zero();             ///< force applied to a (N), world
+};
 
 /// Parameters of the implicit solve.
 struct SolverParams {
@@ -30,6 +51,14 @@ struct SolverParams {
   real near_rigid_beta = 1;
   /// Regularisation of friction rows relative to their effective compliance w.
   real friction_sigma = real(1e-3);
+  /// Pairs of shapes closer than this (m) produce contact candidates (speculative contact).
+  real contact_margin = real(0.01);
+  /// Friction refinement: after the convex cone solve, up to this many re-solves with the
+  /// friction bound fixed at mu times the previous normal impulse (removes the cone model's
+  /// separation of sliding contacts); 0 keeps the pure cone model.
+  int max_friction_passes = 4;
+  /// Stop refining when the friction bounds change by less than this fraction.
+  real friction_pass_tolerance = real(1e-3);
 };
 
 /// What the last step did.
@@ -42,6 +71,7 @@ struct SolverStats {
   int num_constraints = 0;        ///< active constraint rows (limits, friction)
   int num_contacts = 0;
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
+  double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves
   double time_total = 0;
 };
@@ -83,8 +113,12 @@ class Scene {
 
   /// A rigid body carrying `shape`: static (welded) or dynamic (a Free one-link articulation).
   /// Mass from `mass`, else from `density` (kg/m^3, default 1000) and the shape's volume.
+  /// Its surface has the contact parameters `contact`, collision `layer` (0..63), and no
+  /// collider when `collider_type` is None.
   ActorHandle create_rigid_actor(const std::string& name, ShapeHandle shape, bool is_static, const Transform& X_WL,
-                                 std::optional<real> density, std::optional<real> mass);
+                                 std::optional<real> density, std::optional<real> mass,
+                                 const ContactMaterial& contact = {}, int layer = 0,
+                                 ColliderType collider_type = ColliderType::Auto);
   /// An articulation from its description; `source` names it in error messages (a file).
   /// Creates one link actor per link.
   ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);
@@ -134,6 +168,29 @@ class Scene {
   VecX bias_forces(ActorHandle articulation) const;
   /// vdot = M^-1 (tau - c): forward dynamics of the unconstrained articulation.
   VecX forward_dynamics(ActorHandle articulation, const VecX& tau) const;
+
+  /// Registers a query on an actor; returns its handle. Results are valid after the next step.
+  std::int64_t register_query(ActorHandle actor, QueryType type);
+  void cancel_query(ActorHandle actor, std::int64_t query);
+  /// Total contact force applied TO the actor by everything touching it (N, world). For an
+  /// articulation: all its links; for a link: its own contacts. Needs TotalContactForce.
+  Vec3 contact_force(ActorHandle actor) const;
+  /// Total contact torque about the actor's origin (N m, world). Needs TotalContactForce.
+  Vec3 contact_torque(ActorHandle actor) const;
+  /// Contact force applied to `actor` by `other` (N, world). Needs TotalContactForce.
+  Vec3 contact_force_from(ActorHandle actor, ActorHandle other) const;
+  /// The actor's contacts of the last step, each seen from the actor. Needs ContactPoints.
+  std::vector<ContactPointInfo> contact_points(ActorHandle actor) const;
+
+  /// Enables or disables contact between two actors (rigid, articulated or link actors).
+  void enable_actor_contact(ActorHandle a, ActorHandle b, bool enable);
+  /// Enables or disables contact between collision layers (0..63).
+  void enable_layer_contact(int layer_a, int layer_b, bool enable);
+
+  /// The scene's evolving state (time, every body's positions, velocities and held forces) as
+  /// bytes; restoring it into a scene with the same actors replays bitwise identically.
+  std::vector<std::uint8_t> capture_state() const;
+  void restore_state(const std::vector<std::uint8_t>& state);
 
  private:
   SceneHandle handle_;

@@ -3,8 +3,11 @@
 /// Collision and mass-property shapes. Primitive shapes are defined in the frame of the
 /// body that carries them; all lengths in metres.
 
+#include <array>
+#include <memory>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "superdex/physics/real.h"
 
@@ -32,11 +35,48 @@ struct CapsuleShape {
   real half_length = 0;
 };
 
+/// A triangle surface mesh: vertices (m) and triangles as vertex indices, counter-clockwise
+/// seen from outside when the mesh is closed.
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// Signed distances (m, negative inside) sampled on a regular grid spanning
+/// [grid_min, grid_max]; `values` has size[0] * size[1] * size[2] entries, x fastest
+/// (index = i + size[0] * (j + size[1] * k)).
+struct SdfGrid {
+  Vec3 grid_min = Vec3::Zero();
+  Vec3 grid_max = Vec3::Zero();
+  std::array<int, 3> size{0, 0, 0};
+  std::vector<real> values;
+};
+
+/// A mesh shape: a triangle mesh (convex or not) with, when it is closed, a signed-distance
+/// grid used for contact. Shared, immutable data.
+struct MeshShape {
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::shared_ptr<const SdfGrid> sdf;  ///< null for open meshes (they only offer surface samples)
+  bool convex = false;
+  std::string source;                  ///< file it came from, for messages
+};
+
+/// Contact parameters of a body's surface. A pair combines them: friction
+/// 2 mu_a mu_b / (mu_a + mu_b), stiffness in series, dissipation time scale the larger.
+struct ContactMaterial {
+  /// Coulomb friction coefficient (>= 0).
+  real friction = real(0.5);
+  /// Normal stiffness in N/m; 0 means rigid (the solver's near-rigid regularisation).
+  real stiffness = 0;
+  /// Dissipation time scale in s (normal damping = stiffness * time scale); used with a stiffness.
+  real dissipation_time = 0;
+};
+
 /// How a body's collision geometry is derived from its shape.
 enum class ColliderType { Auto, None, Sphere, Box, Plane, Mesh, Sdf };
 
 /// The geometry of one shape.
-using ShapeGeometry = std::variant<PlaneShape, SphereShape, BoxShape, CapsuleShape>;
+using ShapeGeometry = std::variant<PlaneShape, SphereShape, BoxShape, CapsuleShape, MeshShape>;
 
 /// Mass properties of a solid of uniform density: mass (kg), centre of mass and
 /// rotational inertia about the centre of mass (kg m^2), in the shape's frame.

@@ -1,0 +1,34 @@
+#pragma once
+/// @file mesh_io.h
+/// Reading triangle meshes from OBJ, STL (ASCII and binary) and PLY (ASCII and binary) files.
+/// Coordinates are taken as they are in the file (metres, in the file's frame); polygons are
+/// fan-triangulated; STL vertices shared by several facets are welded (exact duplicates).
+///
+/// Every reader throws superdex::Error naming the file, the line (text formats) and the defect:
+/// missing file, unknown extension, malformed number, index out of range, empty mesh,
+/// non-finite coordinate, degenerate (zero-area) triangles.
+
+#include <string>
+
+#include "superdex/physics/shape.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+/// Reads a mesh file chosen by extension (.obj, .stl, .ply; case-insensitive) and checks it
+/// with check_triangle_mesh (mesh_validation.h).
+TriangleMesh read_mesh_file(const std::string& path);
+
+/// Wavefront OBJ: `v x y z` and `f a b c ...` records (1-based, negative = relative to the end
+/// of the vertex list so far, `a/t/n` forms accepted); every other record is ignored.
+TriangleMesh read_obj_file(const std::string& path);
+/// STL, ASCII (`solid ... facet ... vertex x y z`) or binary (80-byte header, uint32 count,
+/// 50-byte records); identical vertex positions are welded into one vertex.
+TriangleMesh read_stl_file(const std::string& path);
+/// PLY, `ascii`, `binary_little_endian` or `binary_big_endian`: element `vertex` with float or
+/// double properties x, y, z and element `face` with a list property `vertex_indices` (or
+/// `vertex_index`); other elements and properties are skipped.
+TriangleMesh read_ply_file(const std::string& path);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

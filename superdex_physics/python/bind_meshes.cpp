@@ -1,0 +1,112 @@
+// Mesh shapes from Python: create_tri_mesh_shape (numpy arrays) and load_shape_from_file
+// (.mochi.h5, .obj, .stl, .ply with an optional baked scale and transform).
+
+#include <nanobind/stl/string.h>
+
+#include "bind_common.h"
+#include "superdex/physics/engine.h"
+#include "superdex/physics/mesh_shape.h"
+
+namespace superdex::python {
+
+namespace {
+
+// "(4, 3)" for messages.
+std::string shape_text(const nb::ndarray<>& a) {
+  std::string s = "(";
+  for (size_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// "float32", "int64", ... for messages.
+std::string dtype_text(const nb::dlpack::dtype& d) {
+  const char* kind = d.code == static_cast<uint8_t>(nb::dlpack::dtype_code::Int)     ? "int"
+                     : d.code == static_cast<uint8_t>(nb::dlpack::dtype_code::UInt)  ? "uint"
+                     : d.code == static_cast<uint8_t>(nb::dlpack::dtype_code::Float) ? "float"
+                     : d.code == static_cast<uint8_t>(nb::dlpack::dtype_code::Bool)  ? "bool"
+                                                                                      : "other";
+  return kind + std::to_string(d.bits);
+}
+
+// obj as a C-contiguous (rows x 3) numpy array of float64 or int64, after checking its kind and
+// shape.
+nb::object rows_of_three(nb::handle obj, const std::string& arg, bool integers) {
+  nb::object np = nb::module_::import_("numpy");
+  nb::object a;
+  try {
+    a = np.attr("asarray")(obj);
+  } catch (nb::python_error&) {
+    throw Error(arg + ": expected an array of shape (N, 3)");
+  }
+  nb::ndarray<> view;
+  if (!nb::try_cast(a, view, false)) throw Error(arg + ": expected an array of numbers, got dtype " + std::string(nb::str(a.attr("dtype")).c_str()));
+  const auto code = static_cast<nb::dlpack::dtype_code>(view.dtype().code);
+  const bool is_int = code == nb::dlpack::dtype_code::Int || code == nb::dlpack::dtype_code::UInt;
+  if (integers && !is_int) throw Error(arg + ": expected integers, got dtype " + dtype_text(view.dtype()));
+  if (!integers && !is_int && code != nb::dlpack::dtype_code::Float) throw Error(arg + ": expected numbers, got dtype " + dtype_text(view.dtype()));
+  if (view.ndim() != 2 || view.shape(1) != 3)
+    throw Error(arg + ": expected shape (" + (integers ? "M" : "N") + ", 3), got " + shape_text(view));
+  return np.attr("ascontiguousarray")(a, "dtype"_a = np.attr(integers ? "int64" : "float64"));
+}
+
+// A bake scale: None (1), a number (uniform) or 3 numbers.
+Vec3 read_scale(nb::handle obj, const std::string& arg) {
+  if (obj.is_none()) return Vec3::Ones();
+  const VecX v = read_vector(obj, arg);
+  if (v.size() != 1 && v.size() != 3) throw Error(arg + ": expected a number or 3 numbers, got " + std::to_string(v.size()) + " values");
+  const Vec3 s = v.size() == 1 ? Vec3::Constant(v[0]) : Vec3(v[0], v[1], v[2]);
+  if (!s.allFinite() || (s.array() <= 0).any())
+    throw Error(arg + ": must be positive and finite, got (" + std::to_string(s.x()) + ", " + std::to_string(s.y()) + ", " +
+                std::to_string(s.z()) + ")");
+  return s;
+}
+
+}  // namespace
+
+void export_meshes(nb::module_& m) {
+  m.def("create_tri_mesh_shape", [](nb::handle coordinates, nb::handle connectivity) {
+          const std::string where = "create_tri_mesh_shape";
+          const nb::object c = rows_of_three(coordinates, where + ": coordinates", false);
+          const nb::object t = rows_of_three(connectivity, where + ": connectivity", true);
+          const auto cv = nb::cast<nb::ndarray<const double, nb::ndim<2>, nb::c_contig>>(c);
+          const auto tv = nb::cast<nb::ndarray<const std::int64_t, nb::ndim<2>, nb::c_contig>>(t);
+          TriangleMesh mesh;
+          const size_t n = cv.shape(0);
+          mesh.vertices.reserve(n);
+          for (size_t i = 0; i < n; ++i) mesh.vertices.emplace_back(real(cv(i, 0)), real(cv(i, 1)), real(cv(i, 2)));
+          for (size_t i = 0; i < tv.shape(0); ++i) {
+            std::array<int, 3> tri;
+            for (size_t k = 0; k < 3; ++k) {
+              const std::int64_t index = tv(i, k);
+              if (index < 0 || index >= static_cast<std::int64_t>(n))
+                throw Error(where + ": connectivity[" + std::to_string(i) + ", " + std::to_string(k) + "] = " + std::to_string(index) +
+                            " is out of range [0, " + std::to_string(n) + ")");
+              tri[k] = static_cast<int>(index);
+            }
+            mesh.triangles.push_back(tri);
+          }
+          return shape_object(create_shape(make_mesh_shape(std::move(mesh), where)));
+        }, "coordinates"_a, "connectivity"_a,
+        "A triangle mesh shape: coordinates (N, 3) in metres in the body frame, connectivity (M, 3) vertex indices,\n"
+        "counter-clockwise seen from outside. Closed meshes get a signed-distance grid (cached on disk); open ones\n"
+        "only offer surface points and cannot carry mass from a density.");
+  m.def("load_shape_from_file", [](nb::handle file_path, nb::handle bake_scale, nb::handle bake_transform) {
+          const std::string where = "load_shape_from_file";
+          std::string path;
+          try {
+            path = nb::cast<std::string>(nb::module_::import_("os").attr("fspath")(file_path));
+          } catch (const std::exception&) {
+            throw Error(where + ": file_path: expected a str or os.PathLike");
+          }
+          ShapeBake bake;
+          bake.scale = read_scale(bake_scale, where + ": bake_scale");
+          const Transform X = read_transform(bake_transform, where + ": bake_transform");
+          bake.rotation = X.rotation;
+          bake.translation = X.translation;
+          return shape_object(create_shape(load_shape_file(path, bake)));
+        }, "file_path"_a, "bake_scale"_a = nb::none(), "bake_transform"_a = nb::none(),
+        "A shape from a .mochi.h5, .obj, .stl or .ply file. bake_scale (a number or 3 numbers) and then\n"
+        "bake_transform (TransformRT) are applied to the vertices before the distance grid is computed.");
+}
+
+}  // namespace superdex::python

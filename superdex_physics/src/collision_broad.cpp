@@ -1,0 +1,134 @@
+// Broad phase (sweep and prune on world bounds along x), contact filters, and the loop that
+// turns overlapping pairs into contacts.
+
+#include <algorithm>
+
+#include "collision_detection.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+ContactMaterial combine_materials(const ContactMaterial& a, const ContactMaterial& b) {
+  ContactMaterial m;
+  m.friction = a.friction + b.friction > 0 ? 2 * a.friction * b.friction / (a.friction + b.friction) : 0;
+  // springs in series; a rigid side (0) leaves the other's stiffness
+  if (a.stiffness > 0 && b.stiffness > 0) m.stiffness = a.stiffness * b.stiffness / (a.stiffness + b.stiffness);
+  else m.stiffness = std::max(a.stiffness, b.stiffness);
+  m.dissipation_time = std::max(a.dissipation_time, b.dissipation_time);
+  return m;
+}
+
+namespace {
+
+struct PosedCollider {
+  int body, collider;
+  SpatialTransform X_WS;
+  Aabb box;
+  bool unbounded;
+  real sweep;  // how far its surface can move within the step (m)
+};
+
+Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
+  Aabb out;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 c(i & 1 ? local.max.x() : local.min.x(), i & 2 ? local.max.y() : local.min.y(),
+                 i & 4 ? local.max.z() : local.min.z());
+    out.extend(X.R * c + X.p);
+  }
+  return out;
+}
+
+ActorHandle link_actor(const Articulation& a, int link) { return a.link_handles[link]; }
+
+bool actor_pair_disabled(const SceneData& s, ActorHandle x, ActorHandle y) {
+  if (s.disabled_actor_pairs.empty()) return false;
+  return s.disabled_actor_pairs.count({std::min(x, y), std::max(x, y)}) > 0;
+}
+
+// Whether two colliders may touch: not both immovable, layers, per-actor switches, and
+// within one articulation the joined-links rule and its overrides.
+bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider& ca, const Articulation& B,
+                  const LinkCollider& cb) {
+  if (A.model.nv == 0 && B.model.nv == 0) return false;
+  if (!((s.layer_masks[ca.layer] >> cb.layer) & 1)) return false;
+  if (&A == &B) {
+    if (ca.link == cb.link) return false;
+    const auto key = std::make_pair(std::min(ca.link, cb.link), std::max(ca.link, cb.link));
+    auto it = A.model.contact_overrides.find(key);
+    if (it != A.model.contact_overrides.end()) return it->second;
+    if (A.model.parent[ca.link] == cb.link || A.model.parent[cb.link] == ca.link) return false;
+    return !actor_pair_disabled(s, link_actor(A, ca.link), link_actor(B, cb.link));
+  }
+  const ActorHandle la = link_actor(A, ca.link), lb = link_actor(B, cb.link);
+  return !(actor_pair_disabled(s, A.handle, B.handle) || actor_pair_disabled(s, la, lb) ||
+           actor_pair_disabled(s, A.handle, lb) || actor_pair_disabled(s, la, B.handle));
+}
+
+}  // namespace
+
+std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
+  // posed colliders and their world bounds, grown by the margin
+  std::vector<PosedCollider> posed, planes;
+  for (size_t b = 0; b < s.articulations.size(); ++b) {
+    const Articulation& a = *s.articulations[b];
+    for (size_t c = 0; c < a.model.colliders.size(); ++c) {
+      const LinkCollider& col = a.model.colliders[c];
+      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, false, 0};
+      if (std::holds_alternative<PlaneShape>(col.shape)) {
+        pc.unbounded = true;
+        pc.sweep = dt * a.kin.V_L[col.link].norm() * (a.model.nv > 0);
+        planes.push_back(pc);
+        continue;
+      }
+      // speed bound of the surface: origin speed plus angular speed times the farthest extent
+      real reach = 0;
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner(k & 1 ? col.aabb_S.max.x() : col.aabb_S.min.x(), k & 2 ? col.aabb_S.max.y() : col.aabb_S.min.y(),
+                          k & 4 ? col.aabb_S.max.z() : col.aabb_S.min.z());
+        reach = std::max(reach, (col.X_LS.R * corner + col.X_LS.p).norm());
+      }
+      const Vec6& V = a.kin.V_L[col.link];
+      pc.sweep = dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
+      pc.box = world_bounds(col.aabb_S, pc.X_WS);
+      pc.box.min.array() -= margin + pc.sweep;
+      pc.box.max.array() += margin + pc.sweep;
+      posed.push_back(pc);
+    }
+  }
+  // sweep and prune along x
+  std::vector<int> order(posed.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if (posed[i].box.min.x() != posed[j].box.min.x()) return posed[i].box.min.x() < posed[j].box.min.x();
+    return i < j;
+  });
+  std::vector<std::pair<int, int>> pairs;  // indices into posed (or planes, encoded negative)
+  for (size_t k = 0; k < order.size(); ++k) {
+    const PosedCollider& p = posed[order[k]];
+    for (size_t l = k + 1; l < order.size() && posed[order[l]].box.min.x() <= p.box.max.x(); ++l)
+      if (p.box.overlaps(posed[order[l]].box)) pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (size_t pl = 0; pl < planes.size(); ++pl)
+    for (size_t i = 0; i < posed.size(); ++i) pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+
+  std::vector<Contact> contacts;
+  std::vector<ContactPoint> points;
+  for (const auto& [i, j] : pairs) {
+    const PosedCollider& pa = posed[i];
+    const PosedCollider& pb = j >= 0 ? posed[j] : planes[-1 - j];
+    const Articulation& A = *s.articulations[pa.body];
+    const Articulation& B = *s.articulations[pb.body];
+    const LinkCollider& ca = A.model.colliders[pa.collider];
+    const LinkCollider& cb = B.model.colliders[pb.collider];
+    if (!pair_enabled(s, A, ca, B, cb)) continue;
+    points.clear();
+    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, margin + pa.sweep + pb.sweep, points);
+    const ContactMaterial m = combine_materials(ca.material, cb.material);
+    for (const ContactPoint& p : points) contacts.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
+  }
+  return contacts;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

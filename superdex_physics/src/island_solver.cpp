@@ -1,0 +1,157 @@
+// Assembly and solution of one island's convex problem.
+
+#include "island_solver.h"
+
+#include <chrono>
+#include <map>
+
+#include "kinematics.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+// Orthonormal contact frame [t1 t2 n] (columns) around the normal n.
+Mat3 contact_frame(const Vec3& n) {
+  const Vec3 helper = std::abs(n.x()) < real(0.9) ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 t1 = n.cross(helper).normalized();
+  Mat3 R;
+  R.col(0) = t1;
+  R.col(1) = n.cross(t1);
+  R.col(2) = n;
+  return R;
+}
+
+}  // namespace
+
+IslandSolution solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
+                            const std::vector<Contact>& contacts, real dt, const SolverParams& params) {
+  const auto t0 = std::chrono::steady_clock::now();
+  IslandSolution out;
+  // DOF offsets of the island's bodies
+  std::map<int, int> offset;
+  int n = 0;
+  for (int b : island.bodies) offset[b] = n, n += s.articulations[b]->model.nv;
+
+  int m = 0;
+  for (int b : island.bodies) m += static_cast<int>(terms[b].joint_rows.size());
+  const int joint_rows = m;
+  m += 3 * static_cast<int>(island.contacts.size());
+
+  MatX A = MatX::Zero(n, n);
+  VecX r(n);
+  for (int b : island.bodies) {
+    const int o = offset[b], nb = s.articulations[b]->model.nv;
+    A.block(o, o, nb, nb) = terms[b].A;
+    r.segment(o, nb) = terms[b].r;
+  }
+  ConstraintRows rows;
+  rows.J.setZero(m, n);
+  rows.blocks.reserve(joint_rows + island.contacts.size());
+  int row = 0;
+  for (int b : island.bodies)
+    for (const JointRow& jr : terms[b].joint_rows) {
+      rows.J(row, offset[b] + jr.dof) = jr.sign;
+      ConstraintBlock blk = jr.block;
+      blk.row = row++;
+      rows.blocks.push_back(blk);
+    }
+
+  // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
+  std::map<std::pair<int, int>, MatXR> link_jacobians;
+  auto point_jacobian = [&](int body, int link, const Vec3& p_W) {
+    const Articulation& a = *s.articulations[body];
+    auto it = link_jacobians.find({body, link});
+    if (it == link_jacobians.end()) {
+      MatXR J;
+      link_jacobian_world(a.model, a.kin, link, J);
+      it = link_jacobians.emplace(std::make_pair(body, link), std::move(J)).first;
+    }
+    const MatXR& J = it->second;
+    return MatX(J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>());
+  };
+  const real near_rigid = near_rigid_factor(params);
+  // velocities of the free (unconstrained) motion, for the near-rigid target compensation
+  VecX v_free(n);
+  for (int b : island.bodies) v_free.segment(offset[b], s.articulations[b]->model.nv) = terms[b].A_llt.solve(terms[b].r);
+  std::vector<Mat3> frames;
+  std::vector<real> contact_mu;
+  for (int ci : island.contacts) {
+    const Contact& c = contacts[ci];
+    const Mat3 R_C = contact_frame(c.n_W);
+    frames.push_back(R_C);
+    Mat3 W = Mat3::Zero();
+    for (int side = 0; side < 2; ++side) {
+      const int body = side == 0 ? c.body_a : c.body_b;
+      const int link = side == 0 ? c.link_a : c.link_b;
+      const int nb = s.articulations[body]->model.nv;
+      if (nb == 0) continue;
+      const MatX Jc = (side == 0 ? real(1) : real(-1)) * R_C.transpose() * point_jacobian(body, link, c.p_W);
+      rows.J.block(row, offset.at(body), 3, nb) += Jc;
+      W += Jc * terms[body].A_llt.solve(Jc.transpose());
+    }
+    const real w = W.trace() / 3;
+    ConstraintBlock blk;
+    blk.kind = BlockKind::FrictionalContact;
+    blk.row = row;
+    if (c.material.stiffness > 0) {
+      // compliant contact (SAP): impulse = dt k (-(phi + dt vn) - tau_d vn), no stiffer than near-rigid
+      const real tau_d = c.material.dissipation_time;
+      blk.Rn = std::max(near_rigid * w, 1 / (dt * c.material.stiffness * (dt + tau_d)));
+      blk.vhat = -c.phi / (dt + tau_d);
+    } else {
+      // near-rigid contact: remove the predicted penetration within one step, with the target
+      // compensated for the regularisation (for an isolated contact vn = vhat exactly), so that
+      // an impact does not overshoot into the surface and resting bodies do not sag
+      blk.Rn = near_rigid * w;
+      const real vhat = -c.phi / dt;
+      const real vn_free = rows.J.row(row + 2).dot(v_free);
+      blk.vhat = vhat + (blk.Rn / W(2, 2)) * (vhat - vn_free);
+    }
+    blk.R = params.friction_sigma * w;
+    blk.bound = c.material.friction;
+    contact_mu.push_back(c.material.friction);
+    rows.blocks.push_back(blk);
+    row += 3;
+  }
+
+  Eigen::LLT<MatX> A_llt;
+  const Eigen::LLT<MatX>* llt = &terms[island.bodies[0]].A_llt;
+  if (island.bodies.size() > 1) {
+    A_llt.compute(A);
+    llt = &A_llt;
+  }
+  ConvexResult sol = solve_convex(A, *llt, r, rows, params);
+  // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
+  // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
+  const int first_contact = static_cast<int>(rows.blocks.size() - island.contacts.size());
+  for (int pass = 0; pass < params.max_friction_passes && !island.contacts.empty(); ++pass) {
+    real change = 0, scale = 0;
+    for (size_t k = first_contact; k < rows.blocks.size(); ++k) {
+      ConstraintBlock& blk = rows.blocks[k];
+      const real mu = blk.kind == BlockKind::FrictionalContact ? blk.bound : contact_mu[k - first_contact];
+      const real bound = mu * sol.gamma[blk.row + 2];
+      change = std::max(change, std::abs(bound - (blk.kind == BlockKind::ContactFixedFriction ? blk.bound : real(-1))));
+      scale = std::max(scale, bound);
+      blk.kind = BlockKind::ContactFixedFriction;
+      blk.bound = bound;
+    }
+    if (pass > 0 && change <= params.friction_pass_tolerance * scale) break;
+    const int previous = sol.iterations;
+    sol = solve_convex(A, *llt, r, rows, params);
+    sol.iterations += previous;
+  }
+  out.iterations = sol.iterations;
+  out.residual = sol.residual;
+  out.converged = sol.converged;
+  for (int i = 0; i < joint_rows; ++i) out.active_rows += sol.gamma[i] != 0;
+  for (int b : island.bodies) out.v.push_back(sol.v.segment(offset[b], s.articulations[b]->model.nv));
+  for (size_t k = 0; k < island.contacts.size(); ++k)
+    out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

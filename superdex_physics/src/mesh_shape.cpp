@@ -1,0 +1,67 @@
+// Mesh shapes from triangle arrays or shape files: checks, orientation, distance grid, baking.
+
+#include "superdex/physics/mesh_shape.h"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "superdex/physics/error.h"
+#include "superdex/physics/mesh_io.h"
+#include "superdex/physics/mesh_validation.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+bool ShapeBake::is_identity() const {
+  return scale == Vec3::Ones() && translation.isZero() && rotation.angularDistance(Quat::Identity()) == 0;
+}
+
+MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options, std::shared_ptr<const SdfGrid> sdf) {
+  check_triangle_mesh(mesh, source);
+  MeshShape shape;
+  shape.source = source;
+  if (is_closed(mesh)) {
+    // inside-out meshes (clockwise seen from outside) are turned right side out
+    if (signed_volume(mesh) < 0)
+      for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    shape.convex = is_convex(mesh);
+    shape.sdf = sdf ? std::move(sdf) : cached_sdf(mesh, options, source);
+  } else {
+    shape.sdf = std::move(sdf);
+  }
+  shape.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+  return shape;
+}
+
+void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where) {
+  if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) {
+    std::ostringstream os;
+    os << where << ": bake scale must be positive and finite, got (" << bake.scale.x() << ", " << bake.scale.y() << ", " << bake.scale.z() << ")";
+    throw Error(os.str());
+  }
+  if (!bake.translation.allFinite() || !bake.rotation.coeffs().allFinite() || bake.rotation.norm() < real(1e-6))
+    throw Error(where + ": bake transform must be finite with a non-zero rotation quaternion");
+  const Quat q = bake.rotation.normalized();
+  for (Vec3& v : mesh.vertices) v = q * bake.scale.cwiseProduct(v) + bake.translation;
+}
+
+ShapeGeometry load_shape_file(const std::string& path, const ShapeBake& bake) {
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  auto ends_with = [&](const std::string& suffix) {
+    return lower.size() >= suffix.size() && lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends_with(".h5")) return shape_from_mochi_h5(path, bake);
+  if (!ends_with(".obj") && !ends_with(".stl") && !ends_with(".ply")) {
+    const size_t dot = path.find_last_of('.');
+    const std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos ? "" : path.substr(dot);
+    throw Error(path + ": unknown shape file extension '" + ext + "' (expected .mochi.h5, .obj, .stl or .ply)");
+  }
+  TriangleMesh mesh = read_mesh_file(path);
+  if (!bake.is_identity()) bake_mesh(mesh, bake, path);
+  return make_mesh_shape(std::move(mesh), path);
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
