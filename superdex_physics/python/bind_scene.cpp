@@ -124,13 +124,14 @@ void export_scene(nb::module_& m) {
            "A rigid body: static, or dynamic (mass from `mass` kg, else `density` kg/m^3, default 1000).")
       .def("create_articulated_actor",
            [](Scene& s, const std::string& name, nb::handle links, nb::handle joints, nb::handle world_from_root,
-              nb::handle default_pose) {
+              nb::handle default_pose, nb::handle contact_overrides) {
              const std::string source = "create_articulated_actor('" + name + "')";
              nlohmann::json doc;
              doc["name"] = name;
              doc["links"] = to_json(links, "links");
              doc["joints"] = to_json(joints, "joints");
              if (!default_pose.is_none()) doc["defaultPose"] = to_json(default_pose, "defaultPose");
+             if (!contact_overrides.is_none()) doc["contactOverrides"] = to_json(contact_overrides, "contactOverrides");
              std::vector<std::string> warnings;
              ArticulationDesc desc = articulation_desc_from_json(doc, source, &warnings);
              desc.world_from_root = read_transform(world_from_root, source + ": world_from_root");
@@ -138,7 +139,9 @@ void export_scene(nb::module_& m) {
              return Actor{s, s.create_articulated_actor(desc, source)};
            },
            "name"_a, "links"_a, "joints"_a, "world_from_root"_a = nb::none(), "default_pose"_a = nb::none(),
-           "An articulation from lists of link and joint dicts with the .superdex_bot fields (FORMATS.md).")
+           "contact_overrides"_a = nb::none(),
+           "An articulation from lists of link and joint dicts with the .superdex_bot fields (FORMATS.md);\n"
+           "contact_overrides: [{linkA, linkB, enable}] as in bot files.")
       .def("get_actor", [](Scene& s, ActorHandle h) {
              if (!s.has_actor(h)) throw Error("get_actor: actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
              return Actor{s, h};
