@@ -51,6 +51,25 @@ nlohmann::json to_json(nb::handle obj, const std::string& path) {
   throw Error(path + ": cannot be read as JSON (got " + std::string(nb::inst_name(obj).c_str()) + ")");
 }
 
+// A Python callable kept by C++: dropped with the GIL held, since step() runs without it.
+struct PythonCallable {
+  nb::object fn;
+  ~PythonCallable() {
+    nb::gil_scoped_acquire gil;
+    fn.reset();
+  }
+};
+
+// A Python callable as a step callback: copies share one holder (no Python reference counting
+// without the GIL); a Python exception propagates out of step() as itself, traceback included.
+StepCallback python_step_callback(nb::callable fn) {
+  auto holder = std::make_shared<PythonCallable>(PythonCallable{std::move(fn)});
+  return [holder](Scene& scene, real dt) {
+    nb::gil_scoped_acquire gil;
+    holder->fn(scene, dt);
+  };
+}
+
 void emit_warnings(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
 }
@@ -118,9 +137,9 @@ void export_scene(nb::module_& m) {
                                                         optional_positive(mass, where + ": mass"), material, layer, collider_type);
              return Actor{s, a};
            },
-           "name"_a, "shape"_a, "is_static"_a = false, "world_from_local"_a = nb::none(),
-           "collider_type"_a = ColliderType::Auto, "density"_a = nb::none(), "mass"_a = nb::none(), "layer"_a = 0,
-           "contact"_a = nb::none(),
+           "name"_a, "shape"_a, "is_static"_a = false, "world_from_local"_a.none() = nb::none(),
+           "collider_type"_a = ColliderType::Auto, "density"_a.none() = nb::none(), "mass"_a.none() = nb::none(), "layer"_a = 0,
+           "contact"_a.none() = nb::none(),
            "A rigid body: static, or dynamic (mass from `mass` kg, else `density` kg/m^3, default 1000).")
       .def("create_articulated_actor",
            [](Scene& s, const std::string& name, nb::handle links, nb::handle joints, nb::handle world_from_root,
@@ -138,8 +157,8 @@ void export_scene(nb::module_& m) {
              emit_warnings(warnings);
              return Actor{s, s.create_articulated_actor(desc, source)};
            },
-           "name"_a, "links"_a, "joints"_a, "world_from_root"_a = nb::none(), "default_pose"_a = nb::none(),
-           "contact_overrides"_a = nb::none(),
+           "name"_a, "links"_a, "joints"_a, "world_from_root"_a.none() = nb::none(), "default_pose"_a.none() = nb::none(),
+           "contact_overrides"_a.none() = nb::none(),
            "An articulation from lists of link and joint dicts with the .superdex_bot fields (FORMATS.md);\n"
            "contact_overrides: [{linkA, linkB, enable}] as in bot files.")
       .def("get_actor", [](Scene& s, ActorHandle h) {
@@ -162,6 +181,14 @@ void export_scene(nb::module_& m) {
            }, "a"_a, "b"_a, "enable"_a, "Enables or disables contact between two actors (both ways).")
       .def("enable_layer_contact_symmetric", &Scene::enable_layer_contact, "layer_a"_a, "layer_b"_a, "enable"_a,
            "Enables or disables contact between two collision layers (0..63, both ways).")
+      .def("register_pre_step_callback", [](Scene& s, const std::string& name, nb::callable fn, int priority) {
+             s.register_pre_step_callback(name, python_step_callback(fn), priority);
+           }, "name"_a, "fn"_a, "priority"_a = 100,
+           "Calls fn(scene, dt) at the start of every step, lower priority first. Exceptions propagate to step().")
+      .def("register_post_step_callback", [](Scene& s, const std::string& name, nb::callable fn, int priority) {
+             s.register_post_step_callback(name, python_step_callback(fn), priority);
+           }, "name"_a, "fn"_a, "priority"_a = 100, "Calls fn(scene, dt) at the end of every step.")
+      .def("cancel_callback", &Scene::cancel_callback, "name"_a)
       .def("capture_state", [](const Scene& s) { return SceneState{s.capture_state()}; },
            "The evolving state; restore_state() replays bitwise identically.")
       .def("restore_state", [](Scene& s, const SceneState& st) { s.restore_state(st.bytes); }, "state"_a)

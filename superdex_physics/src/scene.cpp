@@ -133,9 +133,43 @@ std::vector<ActorHandle> Scene::actors() const {
   return out;
 }
 
+void Scene::register_pre_step_callback(const std::string& name, StepCallback fn, int priority) {
+  if (!fn) throw Error("register_pre_step_callback('" + name + "'): no function given");
+  scene_data(handle_).callbacks[name] = {false, priority, std::move(fn)};
+}
+
+void Scene::register_post_step_callback(const std::string& name, StepCallback fn, int priority) {
+  if (!fn) throw Error("register_post_step_callback('" + name + "'): no function given");
+  scene_data(handle_).callbacks[name] = {true, priority, std::move(fn)};
+}
+
+void Scene::cancel_callback(const std::string& name) {
+  if (scene_data(handle_).callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
+}
+
+namespace {
+
+// Runs the pre- or post-step callbacks by priority, then name. Copies them first so that a
+// callback may register or cancel callbacks.
+void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
+  std::vector<std::pair<std::pair<int, std::string>, StepCallback>> due;
+  for (const auto& [name, cb] : s.callbacks)
+    if (cb.post == post) due.push_back({{cb.priority, name}, cb.fn});
+  std::stable_sort(due.begin(), due.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [key, fn] : due) fn(scene, dt);
+}
+
+}  // namespace
+
 void Scene::step(real dt) {
-  SceneData& s = scene_data(handle_);
   if (!std::isfinite(dt) || dt <= 0) throw Error("step: dt must be a positive finite number of seconds, got " + std::to_string(dt));
+  run_callbacks(*this, scene_data(handle_), false, dt);
+  step_dynamics(dt);
+  run_callbacks(*this, scene_data(handle_), true, dt);
+}
+
+void Scene::step_dynamics(real dt) {
+  SceneData& s = scene_data(handle_);
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const size_t n = s.articulations.size();

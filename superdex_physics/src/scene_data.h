@@ -54,6 +54,12 @@ struct QueryRecord {
   long long since_step = 0; // results are valid once a step completed after this
 };
 
+struct StepCallbackRecord {
+  bool post = false;
+  int priority = 100;
+  StepCallback fn;
+};
+
 struct SceneData {
   SceneHandle handle = 0;
   std::string name;
@@ -70,6 +76,7 @@ struct SceneData {
   // results of the last step and the queries that read them
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
+  std::map<std::string, StepCallbackRecord> callbacks;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;

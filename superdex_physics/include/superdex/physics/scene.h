@@ -5,6 +5,7 @@
 /// was destroyed. Actors are addressed by ActorHandle. Frames: W is the world (Z up),
 /// L a link frame; spatial vectors are (linear, angular).
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,6 +93,10 @@ struct ArticulatedShapeInfo {
   std::vector<Vec3> joint_axes;        ///< unit axis in the joint frame
   std::vector<DofInfo> dof_info;
 };
+
+class Scene;
+/// Called before (pre) or after (post) each step with the scene and the step's dt (s).
+using StepCallback = std::function<void(Scene& scene, real dt)>;
 
 class Scene {
  public:
@@ -187,12 +192,22 @@ class Scene {
   /// Enables or disables contact between collision layers (0..63).
   void enable_layer_contact(int layer_a, int layer_b, bool enable);
 
+  /// Registers a callback run at the start of every step (pre) or after it (post), in order of
+  /// `priority` (lower first), then name. A name already registered is replaced. An exception
+  /// thrown by a pre-step callback aborts the step before anything changed.
+  void register_pre_step_callback(const std::string& name, StepCallback fn, int priority = 100);
+  void register_post_step_callback(const std::string& name, StepCallback fn, int priority = 100);
+  /// Removes a callback; throws if no callback has that name.
+  void cancel_callback(const std::string& name);
+
   /// The scene's evolving state (time, every body's positions, velocities and held forces) as
   /// bytes; restoring it into a scene with the same actors replays bitwise identically.
   std::vector<std::uint8_t> capture_state() const;
   void restore_state(const std::vector<std::uint8_t>& state);
 
  private:
+  // the physics of one step (between the callbacks)
+  void step_dynamics(real dt);
   SceneHandle handle_;
 };
 
