@@ -30,7 +30,7 @@ case "${1:-}" in
     dir=$(build_dir)
     [[ -n "$dir" ]] || { echo "no build directory under build/" >&2; exit 1; }
     echo "== C++ tests ($dir)"
-    cmake --build "$dir" --parallel 2 --target all superdex_physics_tests
+    cmake --build "$dir" --parallel 2 --target all superdex_physics_tests superdex_robotics_tests
     ctest --test-dir "$dir" --output-on-failure --parallel 2
     echo "== Python tests (float build)"
     SUPERDEX_PRECISION=float uv run pytest -q

@@ -121,15 +121,15 @@ void export_actor(nb::module_& m) {
                            "), got " + std::to_string(arr->items.size()));
              for (size_t i = 0; i < X.size(); ++i) arr->items[i] = TransformRT::from(X[i]);
              return nb::borrow(out);
-           }, "out"_a = nb::none(), "Fills `out` with world-from-link transforms in link order.")
+           }, "out"_a.none() = nb::none(), "Fills `out` with world-from-link transforms in link order.")
       .def("get_articulated_pose", [](const Actor& a, nb::handle out) { return fill_out(out, a.scene.pose(a.handle), "get_articulated_pose: out"); },
-           "out"_a = nb::none(), "Generalized positions, one per DOF (rotation vectors for spherical and free rotations).")
+           "out"_a.none() = nb::none(), "Generalized positions, one per DOF (rotation vectors for spherical and free rotations).")
       .def("set_articulated_pose_from_joints", [](Actor& a, nb::handle pose) {
              a.scene.set_pose(a.handle, read_vector(pose, "set_articulated_pose_from_joints: pose"));
            }, "pose"_a)
       .def("get_articulated_joint_velocities", [](const Actor& a, nb::handle out) {
              return fill_out(out, a.scene.joint_velocities(a.handle), "get_articulated_joint_velocities: out_velocities");
-           }, "out_velocities"_a = nb::none(),
+           }, "out_velocities"_a.none() = nb::none(),
            "Generalized velocities (rad/s, m/s); a Free root's are (linear, angular) in its link frame.")
       .def("set_articulated_joint_velocities", [](Actor& a, nb::handle v) {
              a.scene.set_joint_velocities(a.handle, read_vector(v, "set_articulated_joint_velocities: velocities"));

@@ -104,7 +104,7 @@ void export_meshes(nb::module_& m) {
           bake.rotation = X.rotation;
           bake.translation = X.translation;
           return shape_object(create_shape(load_shape_file(path, bake)));
-        }, "file_path"_a, "bake_scale"_a = nb::none(), "bake_transform"_a = nb::none(),
+        }, "file_path"_a, "bake_scale"_a.none() = nb::none(), "bake_transform"_a.none() = nb::none(),
         "A shape from a .mochi.h5, .obj, .stl or .ply file. bake_scale (a number or 3 numbers) and then\n"
         "bake_transform (TransformRT) are applied to the vertices before the distance grid is computed.");
 }

@@ -109,7 +109,7 @@ void export_types(nb::module_& m) {
       .def("__array__", [](const Quaternion& q, nb::handle, nb::handle) {
             const real v[4] = {q.x, q.y, q.z, q.w};
             return numpy_copy(v, {4});
-          }, "dtype"_a = nb::none(), "copy"_a = nb::none())
+          }, "dtype"_a.none() = nb::none(), "copy"_a.none() = nb::none())
       .def("__repr__", [](const Quaternion& q) {
             return "Quaternion(" + std::to_string(q.x) + ", " + std::to_string(q.y) + ", " + std::to_string(q.z) + ", " + std::to_string(q.w) + ")";
           });
@@ -119,7 +119,7 @@ void export_types(nb::module_& m) {
             new (self) TransformRT{};
             if (!rotation.is_none()) self->rotation = read_quaternion(rotation, "TransformRT: rotation");
             if (!translation.is_none()) self->translation = read_vec3(translation, "TransformRT: translation");
-          }, "rotation"_a = nb::none(), "translation"_a = nb::none())
+          }, "rotation"_a.none() = nb::none(), "translation"_a.none() = nb::none())
       .def_prop_rw("rotation", [](const TransformRT& t) { return t.rotation; },
                    [](TransformRT& t, nb::handle q) { t.rotation = read_quaternion(q, "TransformRT.rotation"); })
       .def_prop_rw("translation", [](const TransformRT& t) { return numpy_copy(t.translation.data(), {3}); },
@@ -152,7 +152,7 @@ void export_types(nb::module_& m) {
             auto& a = nb::cast<DynamicArrayReal&>(self);
             const size_t shape[1] = {a.values.size()};
             return NumpyArray(a.values.data(), 1, shape, self);
-          }, "dtype"_a = nb::none(), "copy"_a = nb::none());
+          }, "dtype"_a.none() = nb::none(), "copy"_a.none() = nb::none());
 
   nb::enum_<ActorType>(m, "ActorType")
       .value("RIGID", ActorType::Rigid).value("SOFT", ActorType::Soft)

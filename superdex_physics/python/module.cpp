@@ -9,5 +9,6 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   superdex::python::export_engine(m);
   superdex::python::export_scene(m);
   superdex::python::export_actor(m);
+  superdex::python::export_robotics(m);
   superdex::python::export_meshes(m);
 }

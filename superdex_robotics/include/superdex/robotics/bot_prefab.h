@@ -1,0 +1,45 @@
+#pragma once
+/// @file bot_prefab.h
+/// A robot description: the articulation (links, joints, default pose, placement, contact
+/// overrides) and the sensors and actuators declared on its links, as read from a
+/// `.superdex_bot` file (FORMATS.md) or imported from URDF. Editable before create_bot.
+
+#include <string>
+#include <vector>
+
+#include "superdex/physics/articulation_desc.h"
+
+namespace superdex::robotics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+using physics::ArticulationDesc;
+using physics::Transform;
+
+/// A sensor or actuator declared on a link.
+struct ComponentDecl {
+  std::string type;    ///< registered type name
+  std::string name;    ///< instance name, unique among the bot's components of its kind
+  std::string params;  ///< inline JSON ("{...}"), a JSON file path relative to the bot file, or empty
+  Transform parent_from_sensor;  ///< sensors: pose in the link frame
+};
+
+struct BotPrefab {
+  ArticulationDesc articulation;
+  /// Per link (same length as articulation.links).
+  std::vector<std::vector<ComponentDecl>> sensors, actuators;
+  /// The file it was read from ("" when built in code) and its folder, for relative paths.
+  std::string source, base_dir;
+
+  const std::string& name() const { return articulation.name; }
+};
+
+/// Reads a `.superdex_bot` file. Mesh shapes named by links are loaded (relative to the file)
+/// with their shapeScale baked in. Throws superdex::Error naming the file, the JSON path and
+/// what was expected; unknown fields are appended to `warnings`.
+BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings);
+
+/// Imports a URDF file (urdf_import.cpp). Throws superdex::Error naming the file and element.
+BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::robotics

@@ -1,0 +1,119 @@
+// BotPrefab and its links, joints and component declarations, editable from Python before
+// create_bot. Lists are bound by reference: prefab.links[2].mass = 3.0 edits the prefab.
+
+#include <nanobind/stl/bind_vector.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+
+#include "superdex/robotics/bot_prefab.h"
+
+// lists bound by reference (not converted to Python lists), so that edits reach the prefab
+NB_MAKE_OPAQUE(std::vector<superdex::physics::LinkDesc>)
+NB_MAKE_OPAQUE(std::vector<superdex::physics::JointDesc>)
+NB_MAKE_OPAQUE(std::vector<superdex::robotics::ComponentDecl>)
+NB_MAKE_OPAQUE(std::vector<std::vector<superdex::robotics::ComponentDecl>>)
+
+#include <nanobind/stl/vector.h>
+
+#include "bind_common.h"
+
+namespace superdex::python {
+
+using robotics::BotPrefab;
+using robotics::ComponentDecl;
+
+namespace {
+
+nb::object optional_vec3(const std::optional<Vec3>& v) { return v ? nb::cast(numpy_copy(v->data(), {3})) : nb::none(); }
+std::optional<Vec3> read_optional_vec3(nb::handle h, const char* what) {
+  if (h.is_none()) return std::nullopt;
+  return read_vec3(h, what);
+}
+
+}  // namespace
+
+void export_prefab(nb::module_& m) {
+  nb::class_<ComponentDecl>(m, "ComponentDecl", "A sensor or actuator declared on a link.")
+      .def(nb::init<>())
+      .def("__init__", [](ComponentDecl* d, std::string type, std::string name, std::string params) {
+             new (d) ComponentDecl{std::move(type), std::move(name), std::move(params), {}};
+           }, "type"_a, "name"_a, "params"_a = "")
+      .def_rw("type", &ComponentDecl::type)
+      .def_rw("name", &ComponentDecl::name)
+      .def_rw("params", &ComponentDecl::params)
+      .def("__repr__", [](const ComponentDecl& d) { return "ComponentDecl(type='" + d.type + "', name='" + d.name + "')"; });
+  nb::bind_vector<std::vector<ComponentDecl>, nb::rv_policy::reference_internal>(m, "ComponentDeclList");
+  nb::bind_vector<std::vector<std::vector<ComponentDecl>>, nb::rv_policy::reference_internal>(m, "ComponentDeclLists");
+
+  nb::class_<LinkDesc>(m, "LinkDesc", "One link of a bot (fields of the .superdex_bot format).")
+      .def(nb::init<>())
+      .def_rw("name", &LinkDesc::name)
+      .def_rw("parent_link", &LinkDesc::parent_link, "index of the parent link, -1 for the root")
+      .def_rw("mass", &LinkDesc::mass, "kg, or None to compute it from density and shape")
+      .def_prop_rw("center_of_mass", [](const LinkDesc& l) { return optional_vec3(l.center_of_mass); },
+                   [](LinkDesc& l, nb::handle v) { l.center_of_mass = read_optional_vec3(v, "center_of_mass"); })
+      .def_prop_rw("moment_of_inertia",
+                   [](const LinkDesc& l) -> nb::object {
+                     if (!l.moment_of_inertia) return nb::none();
+                     return nb::cast(numpy_copy(l.moment_of_inertia->data(), {6}));
+                   },
+                   [](LinkDesc& l, nb::handle v) {
+                     if (v.is_none()) return l.moment_of_inertia.reset();
+                     const VecX x = read_vector(v, "moment_of_inertia", 6);
+                     l.moment_of_inertia = std::array<real, 6>{x[0], x[1], x[2], x[3], x[4], x[5]};
+                   }, "Ixx, Ixy, Ixz, Iyy, Iyz, Izz about the COM in the link frame (kg m^2)")
+      .def_rw("density", &LinkDesc::density)
+      .def_rw("has_gravity", &LinkDesc::has_gravity)
+      .def_rw("layer", &LinkDesc::layer)
+      .def_rw("render_model", &LinkDesc::render_model)
+      .def_prop_rw("friction", [](const LinkDesc& l) { return l.contact.friction; },
+                   [](LinkDesc& l, real mu) { l.contact.friction = mu; }, "Coulomb friction coefficient of its contacts")
+      .def("__repr__", [](const LinkDesc& l) { return "LinkDesc('" + l.name + "')"; });
+  nb::bind_vector<std::vector<LinkDesc>, nb::rv_policy::reference_internal>(m, "LinkDescList");
+
+  nb::class_<JointDesc>(m, "JointDesc", "One joint of a bot (fields of the .superdex_bot format).")
+      .def(nb::init<>())
+      .def_rw("name", &JointDesc::name)
+      .def_rw("type", &JointDesc::type)
+      .def_prop_rw("axis", [](const JointDesc& j) { return numpy_copy(j.axis.data(), {3}); },
+                   [](JointDesc& j, nb::handle v) { j.axis = read_vec3(v, "axis"); }, nb::rv_policy::move)
+      .def_prop_rw("parent_link_from_joint", [](const JointDesc& j) { return TransformRT::from(j.parent_link_from_joint); },
+                   [](JointDesc& j, nb::handle t) { j.parent_link_from_joint = read_transform(t, "parent_link_from_joint"); })
+      .def_prop_rw("min_limit", [](const JointDesc& j) { return optional_vec3(j.min_limit); },
+                   [](JointDesc& j, nb::handle v) { j.min_limit = read_optional_vec3(v, "min_limit"); })
+      .def_prop_rw("max_limit", [](const JointDesc& j) { return optional_vec3(j.max_limit); },
+                   [](JointDesc& j, nb::handle v) { j.max_limit = read_optional_vec3(v, "max_limit"); })
+      .def_rw("effort_limit", &JointDesc::effort_limit)
+      .def_rw("coulomb_friction", &JointDesc::coulomb_friction)
+      .def_rw("viscous_friction", &JointDesc::viscous_friction)
+      .def_rw("armature", &JointDesc::armature)
+      .def_rw("limit_stiffness", &JointDesc::limit_stiffness)
+      .def_rw("limit_damping", &JointDesc::limit_damping)
+      .def("__repr__", [](const JointDesc& j) { return "JointDesc('" + j.name + "')"; });
+  nb::bind_vector<std::vector<JointDesc>, nb::rv_policy::reference_internal>(m, "JointDescList");
+
+  nb::class_<BotPrefab>(m, "BotPrefab", "A robot description; edit it before create_bot.")
+      .def_prop_rw("name", [](const BotPrefab& p) { return p.articulation.name; },
+                   [](BotPrefab& p, std::string n) { p.articulation.name = std::move(n); })
+      .def_prop_ro("links", [](BotPrefab& p) -> std::vector<LinkDesc>& { return p.articulation.links; },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("joints", [](BotPrefab& p) -> std::vector<JointDesc>& { return p.articulation.joints; },
+                   nb::rv_policy::reference_internal)
+      .def_prop_rw("default_pose", [](const BotPrefab& p) { return p.articulation.default_pose; },
+                   [](BotPrefab& p, nb::handle v) {
+                     const VecX x = read_vector(v, "default_pose");
+                     p.articulation.default_pose.assign(x.data(), x.data() + x.size());
+                   }, "joint positions in DOF order after the root joint's DOFs")
+      .def_prop_rw("world_from_root", [](const BotPrefab& p) { return TransformRT::from(p.articulation.world_from_root); },
+                   [](BotPrefab& p, nb::handle t) { p.articulation.world_from_root = read_transform(t, "world_from_root"); })
+      .def_prop_ro("sensors", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.sensors; },
+                   nb::rv_policy::reference_internal, "per link: the sensors declared on it")
+      .def_prop_ro("actuators", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.actuators; },
+                   nb::rv_policy::reference_internal, "per link: the actuators declared on it")
+      .def_ro("source", &BotPrefab::source)
+      .def("__repr__", [](const BotPrefab& p) {
+        return "BotPrefab('" + p.articulation.name + "', " + std::to_string(p.articulation.links.size()) + " links)";
+      });
+}
+
+}  // namespace superdex::python

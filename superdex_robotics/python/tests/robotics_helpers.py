@@ -1,0 +1,37 @@
+"""Shared pieces of the robotics tests: an engine fixture and the example bot's path."""
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+import superdex.physics as sdp
+from superdex.physics.paths import resolve_asset
+
+EXAMPLE_BOT = "bots/fun/example_bot_2dof/example_bot_2dof.superdex_bot"
+
+
+@pytest.fixture
+def scene():
+    sdp.initialize(num_worker_threads=0)
+    s = sdp.create_scene("robotics test")
+    s.set_gravity([0, 0, -9.81])
+    yield s
+    sdp.shutdown()
+
+
+def example_bot_json() -> dict:
+    return json.loads(Path(resolve_asset(EXAMPLE_BOT)).read_text())
+
+
+def write_bot(folder: Path, doc: dict, name: str = "bot.superdex_bot") -> Path:
+    path = folder / name
+    path.write_text(json.dumps(doc, indent=1))
+    return path
+
+
+def copy_example_bot(folder: Path) -> Path:
+    dst = folder / "example_bot_2dof.superdex_bot"
+    shutil.copy(resolve_asset(EXAMPLE_BOT), dst)
+    return dst

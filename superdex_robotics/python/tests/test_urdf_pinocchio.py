@@ -1,0 +1,345 @@
+"""SuperDex's URDF import checked against Pinocchio's URDF parser on real robots.
+
+The Franka Panda and the UR5 of the `example-robot-data` package (a dev dependency) are
+imported with `sdr.load_bot_prefab_from_urdf_file` and built with `sdr.create_bot`, and
+loaded independently with `pinocchio.buildModelFromUrdf`. At random configurations within
+the joint limits, random velocities and torques, the test compares to 1e-9 relative:
+
+* the world pose of every link against Pinocchio's BODY frame of the same name;
+* every link's Jacobian (world axes, at the link origin) against
+  `getFrameJacobian(..., LOCAL_WORLD_ALIGNED)`;
+* the mass matrix (`crba`), the bias forces with gravity (`nonLinearEffects`) and the
+  forward-dynamics accelerations (`aba`).
+
+DOFs are matched by joint name (SuperDex orders DOFs by link, Pinocchio by joint id).
+The importer's joint data (types, limits, effort limits, damping) is also checked against
+what Pinocchio read from the same file.
+
+Two modelling differences are accounted for, both documented in urdf_import.cpp:
+* Massless URDF links (frames such as `tool0`, `panda_hand_tcp`) are kept as links with
+  a negligible mass (1e-9 kg, inertia 1e-12 kg m^2 at their origin) because the engine
+  needs positive masses. Pinocchio gets exactly the same inertias added at those links'
+  frames, so the two models are identical and the comparison stays exact.
+* `<mimic>` (the Panda's second finger) is ignored by both: each finger is its own DOF.
+
+URDFs have no armature, so the mass matrices carry none on either side.
+
+Also: bad URDFs (missing mesh, unknown joint type, cycle) raise `sdp.Error`.
+
+Runs only in double precision (SUPERDEX_PRECISION=double); skipped in float builds.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+try:
+    import pinocchio as pin
+except ImportError as exc:  # a declared dev dependency: missing means a broken environment, not a skip
+    raise ImportError(
+        "pinocchio (PyPI package 'pin', a dev dependency in pyproject.toml) is required by this test; "
+        "run `uv sync` to install it"
+    ) from exc
+
+import superdex.physics as sdp
+import superdex.robotics as sdr
+
+if not sdp.uses_double_precision():
+    pytest.skip(
+        "the Pinocchio comparison needs double precision (run with SUPERDEX_PRECISION=double)",
+        allow_module_level=True,
+    )
+
+GRAVITY = np.array([0.0, 0.0, -9.81])
+RTOL = 1e-9
+NUM_STATES = 5
+# what the importer gives links that have no mass in the URDF (urdf_import.cpp)
+MASSLESS_LINK_MASS = 1e-9
+MASSLESS_LINK_INERTIA = 1e-12
+
+# robot -> URDF path inside example-robot-data's `robots/` folder
+ROBOTS = {
+    "panda": "panda_description/urdf/panda.urdf",
+    "ur5": "ur_description/urdf/ur5_robot.urdf",
+}
+
+
+def example_robot_data_file(relative: str) -> Path:
+    """A file of the installed example-robot-data distribution (its robots live under
+    cmeel.prefix/share/example-robot-data/robots; there is no Python module to ask)."""
+    try:
+        dist = importlib.metadata.distribution("example-robot-data")
+    except importlib.metadata.PackageNotFoundError as exc:
+        raise ImportError(
+            "example-robot-data (a dev dependency in pyproject.toml) is required by this test; run `uv sync`"
+        ) from exc
+    suffix = "robots/" + relative
+    for f in dist.files or []:
+        if str(f).replace("\\", "/").endswith(suffix):
+            return Path(dist.locate_file(f)).resolve()
+    raise FileNotFoundError(f"{suffix} is not part of example-robot-data {dist.version}")
+
+
+def massless_links(urdf: Path) -> set[str]:
+    """Links of the URDF without an <inertial> or with mass 0."""
+    out = set()
+    for link in ET.parse(urdf).getroot().iter("link"):
+        inertial = link.find("inertial")
+        if inertial is None or float(inertial.find("mass").get("value")) == 0.0:
+            out.add(link.get("name"))
+    return out
+
+
+def assert_close(actual, reference, what: str) -> None:
+    actual = np.asarray(actual, dtype=float)
+    reference = np.asarray(reference, dtype=float)
+    assert actual.shape == reference.shape, f"{what}: shape {actual.shape}, expected {reference.shape}"
+    scale = max(1.0, float(np.abs(reference).max())) if reference.size else 1.0
+    np.testing.assert_allclose(actual, reference, rtol=RTOL, atol=RTOL * scale, err_msg=what)
+
+
+def quat_xyzw_to_matrix(q) -> np.ndarray:
+    x, y, z, w = (float(c) for c in q)
+    return pin.Quaternion(w, x, y, z).normalized().toRotationMatrix()
+
+
+# --------------------------------------------------------------------------------------
+# fixtures
+
+
+@pytest.fixture(scope="module")
+def engine():
+    sdp.initialize()
+    yield sdp
+    sdp.shutdown()
+
+
+@dataclass
+class Robot:
+    name: str
+    urdf: Path
+    prefab: object  # sdr.BotPrefab
+    scene: object  # sdp.Scene
+    art: object  # the articulated actor
+    link_names: list[str]
+    model: pin.Model  # Pinocchio's model of the same URDF, massless links given the importer's inertia
+    perm: np.ndarray  # SuperDex DOF k is Pinocchio velocity index perm[k]
+    frame_ids: list[int]  # Pinocchio BODY frame of each SuperDex link
+
+
+def pinocchio_model(urdf: Path, massless: set[str], link_names: list[str]) -> pin.Model:
+    model = pin.buildModelFromUrdf(str(urdf))
+    model.gravity = pin.Motion(GRAVITY, np.zeros(3))
+    for name in massless & set(link_names):
+        # the same negligible inertia as the importer's, at the link origin
+        frame = model.frames[model.getFrameId(name, pin.FrameType.BODY)]
+        extra = pin.Inertia(MASSLESS_LINK_MASS, np.zeros(3), MASSLESS_LINK_INERTIA * np.eye(3))
+        model.inertias[frame.parentJoint] = model.inertias[frame.parentJoint] + frame.placement.act(extra)
+    return model
+
+
+@pytest.fixture(scope="module", params=sorted(ROBOTS))
+def robot(request, engine) -> Robot:
+    name = request.param
+    urdf = example_robot_data_file(ROBOTS[name])
+    prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf))
+    scene = sdp.create_scene(f"urdf_{name}")
+    scene.set_gravity(GRAVITY.tolist())
+    bot = sdr.create_bot(scene, prefab, sdr.create_context())
+    art = bot.get_articulated_actor()
+    info = art.get_articulated_shape_info()
+    link_names = list(info.link_names)
+
+    massless = massless_links(urdf)
+    model = pinocchio_model(urdf, massless, link_names)
+    assert art.get_num_dofs() == model.nv, f"{name}: {art.get_num_dofs()} DOFs, Pinocchio has {model.nv}"
+
+    # DOFs matched by joint name
+    perm = np.full(model.nv, -1)
+    for i, joint_name in enumerate(info.joint_names):
+        d = info.dof_info[i]
+        if d.get_size() == 0:
+            continue
+        assert model.existJointName(joint_name), f"{name}: Pinocchio has no joint {joint_name!r}"
+        jid = model.getJointId(joint_name)
+        assert model.nvs[jid] == d.get_size(), f"{name}: joint {joint_name!r} DOF count"
+        perm[d.offset : d.offset + d.get_size()] = np.arange(model.idx_vs[jid], model.idx_vs[jid] + model.nvs[jid])
+    assert sorted(perm) == list(range(model.nv)), f"{name}: DOF map {perm}"
+
+    frame_ids = []
+    for link in link_names:
+        assert model.existFrame(link, pin.FrameType.BODY), f"{name}: Pinocchio has no BODY frame {link!r}"
+        frame_ids.append(model.getFrameId(link, pin.FrameType.BODY))
+    return Robot(name, urdf, prefab, scene, art, link_names, model, perm, frame_ids)
+
+
+# --------------------------------------------------------------------------------------
+# the imported model
+
+
+def test_links_and_joints_match_the_urdf(robot: Robot):
+    """Every URDF link is a SuperDex link (the UR5's bare `world` link is the world itself),
+    parents come before children, and the joint data is what Pinocchio read."""
+    urdf_links = [link.get("name") for link in ET.parse(robot.urdf).getroot().iter("link")]
+    expected = [n for n in urdf_links if not (n == "world" and robot.name == "ur5")]
+    assert sorted(robot.link_names) == sorted(expected)
+    parents = [link.parent_link for link in robot.prefab.links]
+    assert parents[0] == -1 and all(0 <= p < i for i, p in enumerate(parents) if i > 0), parents
+
+    massless = massless_links(robot.urdf)
+    for link in robot.prefab.links:
+        if link.name in massless:
+            assert link.mass == MASSLESS_LINK_MASS, link.name
+            np.testing.assert_array_equal(link.moment_of_inertia, MASSLESS_LINK_INERTIA * np.array([1, 0, 0, 1, 0, 1]))
+
+    model = robot.model
+    for joint in robot.prefab.joints:
+        if not model.existJointName(joint.name):  # fixed joints are frames in Pinocchio
+            assert joint.type == sdp.JointType.HARD, joint.name
+            continue
+        jid = model.getJointId(joint.name)
+        k = model.idx_vs[jid]
+        axis = np.asarray(joint.axis, dtype=float)
+        assert joint.armature == 0.0
+        assert joint.effort_limit == pytest.approx(model.effortLimit[k], rel=1e-12), joint.name
+        assert joint.viscous_friction == pytest.approx(model.damping[k], rel=1e-12), joint.name
+        assert joint.coulomb_friction == pytest.approx(model.friction[k], rel=1e-12), joint.name
+        lower = float(axis @ np.asarray(joint.min_limit, dtype=float))
+        upper = float(axis @ np.asarray(joint.max_limit, dtype=float))
+        iq = model.idx_qs[jid]
+        assert lower == pytest.approx(model.lowerPositionLimit[iq], abs=1e-12), joint.name
+        assert upper == pytest.approx(model.upperPositionLimit[iq], abs=1e-12), joint.name
+
+
+# --------------------------------------------------------------------------------------
+# kinematics and dynamics
+
+
+@dataclass
+class State:
+    q_pin: np.ndarray
+    pose: np.ndarray  # SuperDex DOF order
+    v: np.ndarray  # SuperDex DOF order
+    tau: np.ndarray  # SuperDex DOF order
+
+
+def random_state(robot: Robot, rng: np.random.Generator) -> State:
+    model = robot.model
+    lower, upper = model.lowerPositionLimit, model.upperPositionLimit
+    q_pin = rng.uniform(lower, upper)  # every joint of both robots is revolute or prismatic (nq == nv)
+    return State(
+        q_pin=q_pin,
+        pose=q_pin[robot.perm],
+        v=rng.normal(0.0, 1.0, model.nv),
+        tau=rng.normal(0.0, 5.0, model.nv),
+    )
+
+
+def test_kinematics_and_dynamics_match_pinocchio(robot: Robot):
+    model, perm, art, scene = robot.model, robot.perm, robot.art, robot.scene
+    assert model.nq == model.nv
+    data = model.createData()
+    n_links = len(robot.link_names)
+    link_actors = [scene.get_actor(h) for h in art.get_nested_link_actors()]
+    assert len(link_actors) == n_links
+    transforms = sdp.DynamicArrayTransformRT(n_links)
+    rng = np.random.default_rng({"panda": 1, "ur5": 2}[robot.name])
+
+    for k in range(NUM_STATES):
+        s = random_state(robot, rng)
+        where = f"{robot.name}, state {k}"
+        art.set_articulated_pose_from_joints(s.pose)
+        art.set_articulated_joint_velocities(s.v)
+        v_pin, tau_pin = np.zeros(model.nv), np.zeros(model.nv)
+        v_pin[perm], tau_pin[perm] = s.v, s.tau
+
+        # link poses
+        pin.forwardKinematics(model, data, s.q_pin, v_pin)
+        pin.updateFramePlacements(model, data)
+        art.get_articulated_link_transforms(transforms)
+        for i, fid in enumerate(robot.frame_ids):
+            X = data.oMf[fid]
+            link = robot.link_names[i]
+            assert_close(np.asarray(transforms[i].translation), X.translation, f"position of {link}, {where}")
+            assert_close(quat_xyzw_to_matrix(np.array(transforms[i].rotation)), X.rotation, f"rotation of {link}, {where}")
+
+        # link Jacobians: world axes at the link origin, linear rows first
+        pin.computeJointJacobians(model, data, s.q_pin)
+        pin.updateFramePlacements(model, data)
+        for i, fid in enumerate(robot.frame_ids):
+            J_ref = np.array(pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED))
+            J_ref = J_ref.reshape(6, model.nv)[:, perm]
+            J = np.asarray(link_actors[i].get_articulated_jacobian()).reshape(6, model.nv)
+            assert_close(J, J_ref, f"Jacobian of {robot.link_names[i]}, {where}")
+
+        # dynamics
+        M_ref = np.array(pin.crba(model, data, s.q_pin)).reshape(model.nv, model.nv)
+        M_ref = np.triu(M_ref) + np.triu(M_ref, 1).T  # crba fills the upper triangle
+        bias_ref = np.array(pin.nonLinearEffects(model, data, s.q_pin, v_pin)).reshape(model.nv)
+        accel_ref = np.array(pin.aba(model, data, s.q_pin, v_pin, tau_pin)).reshape(model.nv)
+        assert_close(art.get_articulated_mass_matrix(), M_ref[np.ix_(perm, perm)], f"mass matrix, {where}")
+        assert_close(art.get_articulated_bias_forces(), bias_ref[perm], f"bias forces, {where}")
+        assert_close(art.compute_articulated_forward_dynamics(s.tau), accel_ref[perm], f"forward dynamics, {where}")
+
+
+def test_reference_inertias_are_negligible(robot: Robot):
+    """The inertias added to Pinocchio for massless links change its mass matrix by less
+    than 1e-7 relative: the importer's stand-in mass is physically irrelevant."""
+    plain = pin.buildModelFromUrdf(str(robot.urdf))
+    q = pin.neutral(plain)
+    M_plain = pin.crba(plain, plain.createData(), q)
+    M = pin.crba(robot.model, robot.model.createData(), q)
+    np.testing.assert_allclose(M, M_plain, rtol=0, atol=1e-7 * np.abs(M_plain).max())
+
+
+# --------------------------------------------------------------------------------------
+# bad input
+
+
+def write_urdf(tmp_path: Path, body: str) -> str:
+    path = tmp_path / "bad.urdf"
+    path.write_text(f'<?xml version="1.0"?>\n<robot name="bad">\n{body}\n</robot>\n')
+    return str(path)
+
+
+LINK = (
+    '<link name="{}"><inertial><mass value="1"/>'
+    '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>'
+)
+
+
+def test_missing_collision_mesh_is_an_error(engine, tmp_path):
+    path = write_urdf(
+        tmp_path,
+        '<link name="base"><collision><geometry><mesh filename="package://nowhere/meshes/base.stl"/>'
+        "</geometry></collision></link>",
+    )
+    with pytest.raises(sdp.Error, match=r"link 'base': collision mesh 'package://nowhere/meshes/base.stl' not found"):
+        sdr.load_bot_prefab_from_urdf_file(path)
+
+
+def test_unknown_joint_type_is_an_error(engine, tmp_path):
+    path = write_urdf(
+        tmp_path,
+        LINK.format("a") + LINK.format("b")
+        + '<joint name="twist" type="screw"><parent link="a"/><child link="b"/></joint>',
+    )
+    with pytest.raises(sdp.Error, match=r"bad\.urdf: line \d+: <joint name='twist'>: unknown joint type 'screw'"):
+        sdr.load_bot_prefab_from_urdf_file(path)
+
+
+def test_cycle_is_an_error(engine, tmp_path):
+    path = write_urdf(
+        tmp_path,
+        LINK.format("a") + LINK.format("b")
+        + '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        + '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint>',
+    )
+    with pytest.raises(sdp.Error, match=r"the joints form a cycle"):
+        sdr.load_bot_prefab_from_urdf_file(path)

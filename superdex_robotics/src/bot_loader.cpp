@@ -1,0 +1,112 @@
+// Reading `.superdex_bot` files: the articulation fields (shared with the physics JSON reader),
+// the sensors and actuators declared on links, and mesh shapes named by links.
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "superdex/physics/articulation_json.h"
+#include "superdex/physics/error.h"
+#include "superdex/physics/mesh_shape.h"
+#include "superdex/robotics/bot_prefab.h"
+
+namespace superdex::robotics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& source, const std::string& path, const std::string& what) {
+  throw Error(source + ": " + path + ": " + what);
+}
+
+std::string string_field(const json& j, const char* key, const std::string& source, const std::string& path, bool required) {
+  if (!j.contains(key) || j.at(key).is_null()) {
+    if (required) fail(source, path + "." + key, "required");
+    return "";
+  }
+  if (!j.at(key).is_string()) fail(source, path + "." + key, "expected a string");
+  return j.at(key).get<std::string>();
+}
+
+// Sensors or actuators of one link; names must be unique among the bot's components of a kind.
+std::vector<ComponentDecl> read_components(const json& link, const char* key, const std::string& source,
+                                           const std::string& link_path, std::set<std::string>& names,
+                                           std::vector<std::string>* warnings) {
+  std::vector<ComponentDecl> out;
+  if (!link.contains(key) || link.at(key).is_null()) return out;
+  const json& list = link.at(key);
+  const std::string list_path = link_path + "." + key;
+  if (!list.is_array()) fail(source, list_path, "expected an array of objects");
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string path = list_path + "[" + std::to_string(k) + "]";
+    const json& c = list[k];
+    if (!c.is_object()) fail(source, path, "expected an object with type, name and params");
+    ComponentDecl d;
+    d.type = string_field(c, "type", source, path, true);
+    if (d.type.empty()) fail(source, path + ".type", "must not be empty");
+    d.name = string_field(c, "name", source, path, true);
+    if (d.name.empty()) fail(source, path + ".name", "must not be empty");
+    if (!names.insert(d.name).second) fail(source, path + ".name", "duplicate name '" + d.name + "'");
+    if (c.contains("params") && !c.at("params").is_null()) {
+      // a string as the format says, or (for convenience) an inline object
+      if (c.at("params").is_string()) d.params = c.at("params").get<std::string>();
+      else if (c.at("params").is_object()) d.params = c.at("params").dump();
+      else fail(source, path + ".params", "expected a string (inline JSON, a JSON file path, or empty)");
+    }
+    if (c.contains("parentFromSensor")) d.parent_from_sensor = physics::transform_from_json(c.at("parentFromSensor"), source, path + ".parentFromSensor");
+    for (auto it = c.begin(); it != c.end(); ++it)
+      if (warnings && it.key() != "type" && it.key() != "name" && it.key() != "params" && it.key() != "parentFromSensor")
+        warnings->push_back(source + ": " + path + "." + it.key() + ": unknown field, ignored");
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace
+
+BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the bot file (does it exist?)");
+  json doc;
+  try {
+    doc = json::parse(in, nullptr, true, true);
+  } catch (const json::parse_error& e) {
+    throw Error(path + ": not valid JSON: " + e.what());
+  }
+  BotPrefab prefab;
+  prefab.source = path;
+  prefab.base_dir = fs::absolute(fs::path(path)).parent_path().string();
+  prefab.articulation = physics::articulation_desc_from_json(doc, path, warnings);
+  if (prefab.articulation.name.empty()) fail(path, "name", "required: the bot's name");
+  const json& links = doc.at("links");
+  std::set<std::string> sensor_names, actuator_names;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const std::string link_path = "links[" + std::to_string(i) + "]";
+    prefab.sensors.push_back(read_components(links[i], "sensors", path, link_path, sensor_names, warnings));
+    prefab.actuators.push_back(read_components(links[i], "actuators", path, link_path, actuator_names, warnings));
+    // mesh or .mochi.h5 shapes, relative to the bot file, with the link's shapeScale baked in
+    physics::LinkDesc& link = prefab.articulation.links[i];
+    if (!link.shape_file.empty()) {
+      fs::path shape_path(link.shape_file);
+      if (shape_path.is_relative()) shape_path = fs::path(prefab.base_dir) / shape_path;
+      if (!fs::is_regular_file(shape_path)) fail(path, link_path + ".shape", "shape file '" + shape_path.string() + "' does not exist");
+      physics::ShapeBake bake;
+      bake.scale = link.shape_scale;
+      try {
+        link.shape = physics::load_shape_file(shape_path.string(), bake);
+      } catch (const Error& e) {
+        fail(path, link_path + ".shape", e.what());
+      }
+      link.shape_scale = physics::Vec3::Ones();
+    }
+  }
+  return prefab;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::robotics

@@ -1,0 +1,685 @@
+// URDF import: a <robot> description (links, joints, inertials, collision and visual
+// geometry) turned into a BotPrefab whose articulation has the URDF's kinematics and dynamics.
+//
+// Mapping
+//  * Links are ordered depth-first from the root link (the one that is no joint's child),
+//    children in document order, so every parent comes before its children. Each URDF joint
+//    becomes the joint of its child link: revolute -> Revolute (limited), continuous ->
+//    Revolute (unlimited), prismatic -> Prismatic, fixed -> Hard, floating -> Free (root only),
+//    planar -> error. The root link gets a Hard joint named "<root>_root".
+//  * A root link named "world" that carries nothing (no mass, no collision) and has a single
+//    fixed or floating joint is the world itself: it is dropped, and that joint becomes the
+//    root joint of its child (Hard or Free, its <origin> as parentLinkFromJoint). Any other
+//    floating joint is an error. A "world" attached by a moving joint stays as a welded link.
+//  * Frames: the joint <origin> is X_PJ (parentLinkFromJoint), the child link frame is the
+//    joint frame (as in URDF). rpy is fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
+//    The axis (default 1 0 0) is normalised; limits become the vectors axis*lower, axis*upper.
+//    <limit effort> -> effortLimit; <dynamics damping friction> -> viscous / Coulomb friction.
+//    <mimic> is ignored with a warning (the joint is an independent DOF, as in Pinocchio's
+//    default URDF parser).
+//  * Inertials: mass, centre of mass = inertial origin xyz, rotational inertia about the COM
+//    rotated into the link frame, I_L = R I R^T (R from the inertial origin rpy).
+//
+// Massless links. URDF allows links without an <inertial> (or with mass 0): frames such as
+// "tool0", "panda_hand_tcp" or flanges. The engine needs mass > 0 and a positive-definite
+// inertia on every link. Merging such links into their parent (as Pinocchio does for every
+// fixed joint) was rejected: the link names are what sensors, actuators and controllers are
+// attached to (an end-effector frame is the usual target of an operational-space
+// controller), so the BotPrefab keeps one link per URDF link. A massless link instead gets a
+// negligible mass, kMasslessLinkMass = 1e-9 kg at its origin with an inertia of
+// kMasslessLinkInertia = 1e-12 kg m^2 about each axis. A massless link may move on a joint
+// only when the links welded to it (through fixed joints) have mass, so that the moving body
+// is not massless; otherwise the import fails naming the link and the joint. The Pinocchio
+// comparison test gives Pinocchio the same negligible inertias, so it stays exact.
+//
+// Geometry. The first <collision> becomes the link's shape with its <origin> as
+// link_from_shape (further <collision> elements are ignored with a warning): <box size>,
+// <sphere radius>, <cylinder radius length> as a closed 48-sided prism mesh (the exact
+// cylinder up to 0.2% of its radius; a capsule would change the shape: a short wheel would
+// turn into a ball), <capsule radius length> (an SDFormat extension; length is the
+// cylindrical part) and <mesh filename scale> loaded with the scale baked in (OBJ, STL, PLY,
+// .mochi.h5; other formats such as COLLADA .dae leave the link without a collider, with a
+// warning). The link's mass never comes from its shape. The first <visual> <mesh> is
+// recorded as the render model (path and scale; its <origin> is ignored with a warning).
+// Mesh filenames: "package://pkg/rest" is searched upward from the URDF's folder (a folder
+// named pkg, or containing one), then in $ROS_PACKAGE_PATH entries and $AMENT_PREFIX_PATH
+// share folders; "model://" likewise; "file://" and plain paths are absolute or relative to
+// the URDF's folder. A collision mesh that cannot be found is an error; a visual one a warning.
+//
+// Errors are superdex::Error "<file>: line N: <joint name='j'>/<limit>: what".
+
+#include <tinyxml2.h>
+
+#include <Eigen/Eigenvalues>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "superdex/physics/error.h"
+#include "superdex/physics/mesh_shape.h"
+#include "superdex/robotics/bot_prefab.h"
+
+namespace superdex::robotics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace fs = std::filesystem;
+using physics::JointDesc;
+using physics::JointType;
+using physics::LinkDesc;
+using physics::real;
+using physics::ShapeGeometry;
+using physics::Vec3;
+using tinyxml2::XMLElement;
+
+namespace {
+
+// Mass (kg) and rotational inertia (kg m^2 about each axis) of links the URDF leaves massless.
+constexpr double kMasslessLinkMass = 1e-9;
+constexpr double kMasslessLinkInertia = 1e-12;
+// Sides of the prism that stands in for a <cylinder>.
+constexpr int kCylinderSegments = 48;
+
+std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+
+std::string format_number(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+// The pieces of the URDF the importer works from, in document order.
+struct UrdfLink {
+  const XMLElement* element = nullptr;
+  std::string name;
+  bool has_mass = false;      // an <inertial> with mass > 0
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the COM, link frame
+  double mass = 0;
+  int parent_joint = -1;      // index into joints, -1 for the root
+  std::vector<int> child_joints;
+};
+
+struct UrdfJoint {
+  const XMLElement* element = nullptr;
+  std::string name, type;
+  int parent = -1, child = -1;  // indices into links
+};
+
+class UrdfImporter {
+ public:
+  UrdfImporter(const std::string& path, std::vector<std::string>* warnings)
+      : path_(path), dir_(fs::absolute(fs::path(path)).parent_path()), warnings_(warnings) {}
+
+  BotPrefab run() {
+    load_document();
+    read_links();
+    read_joints();
+    const int root = find_root();
+    return build(root);
+  }
+
+ private:
+  // ------------------------------------------------------------------ messages
+
+  // "<link name='a'>/<collision>/<geometry>/<mesh>": the element and its ancestors up to the
+  // nearest <link>, <joint> or <robot>.
+  static std::string label(const XMLElement* e) {
+    std::string out;
+    for (const XMLElement* k = e; k; k = k->Parent() ? k->Parent()->ToElement() : nullptr) {
+      std::string part = std::string("<") + k->Name();
+      if (const char* n = k->Attribute("name")) part += " name=" + in_quotes(n);
+      part += ">";
+      out = out.empty() ? part : part + "/" + out;
+      const std::string tag = k->Name();
+      if (tag == "link" || tag == "joint" || tag == "robot") break;
+    }
+    return out;
+  }
+
+  [[noreturn]] void fail(const XMLElement* e, const std::string& what) const {
+    throw Error(path_ + ": line " + std::to_string(e->GetLineNum()) + ": " + label(e) + ": " + what);
+  }
+  [[noreturn]] void fail_file(const std::string& what) const { throw Error(path_ + ": " + what); }
+
+  void warn(const XMLElement* e, const std::string& what) const {
+    if (warnings_) warnings_->push_back(path_ + ": line " + std::to_string(e->GetLineNum()) + ": " + label(e) + ": " + what);
+  }
+
+  // ------------------------------------------------------------------ attributes
+
+  std::string required_attribute(const XMLElement* e, const char* name) const {
+    const char* v = e->Attribute(name);
+    if (!v) fail(e, std::string("missing required attribute '") + name + "'");
+    return v;
+  }
+
+  const XMLElement* required_child(const XMLElement* e, const char* name) const {
+    const XMLElement* c = e->FirstChildElement(name);
+    if (!c) fail(e, std::string("missing required element <") + name + ">");
+    return c;
+  }
+
+  // Whitespace-separated numbers of an attribute; `count` of them (0: any number >= 1).
+  std::vector<double> numbers(const XMLElement* e, const char* name, size_t count) const {
+    const std::string text = required_attribute(e, name);
+    std::vector<double> out;
+    std::istringstream words(text);
+    std::string w;
+    while (words >> w) {
+      const char* first = w.data() + (w[0] == '+' ? 1 : 0);
+      const char* last = w.data() + w.size();
+      double x = 0;
+      const auto [end, ec] = std::from_chars(first, last, x);
+      if (ec != std::errc() || end != last || !std::isfinite(x))
+        fail(e, std::string("attribute '") + name + "': malformed number '" + w + "' in \"" + text + "\"");
+      out.push_back(x);
+    }
+    if (out.empty() || (count && out.size() != count))
+      fail(e, std::string("attribute '") + name + "': expected " + (count ? std::to_string(count) : "at least one") +
+                  " number" + (count == 1 ? "" : "s") + ", got \"" + text + "\"");
+    return out;
+  }
+  double number(const XMLElement* e, const char* name) const { return numbers(e, name, 1)[0]; }
+  Eigen::Vector3d vec3(const XMLElement* e, const char* name) const {
+    const auto v = numbers(e, name, 3);
+    return {v[0], v[1], v[2]};
+  }
+  Eigen::Vector3d vec3_or(const XMLElement* e, const char* name, const Eigen::Vector3d& fallback) const {
+    return e->Attribute(name) ? vec3(e, name) : fallback;
+  }
+  double positive(const XMLElement* e, const char* name) const {
+    const double x = number(e, name);
+    if (x <= 0) fail(e, std::string("attribute '") + name + "' must be positive, got " + format_number(x));
+    return x;
+  }
+
+  // ------------------------------------------------------------------ frames
+
+  // R = Rz(yaw) Ry(pitch) Rx(roll): fixed-axis roll, then pitch, then yaw.
+  static Eigen::Quaterniond rpy_to_quaternion(const Eigen::Vector3d& rpy) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                              Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                              Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()));
+  }
+
+  // The <origin> child of `e` as a transform (identity when absent), in double precision.
+  Eigen::Isometry3d origin_of(const XMLElement* e) const {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    if (const XMLElement* o = e->FirstChildElement("origin")) {
+      X.linear() = rpy_to_quaternion(vec3_or(o, "rpy", Eigen::Vector3d::Zero())).toRotationMatrix();
+      X.translation() = vec3_or(o, "xyz", Eigen::Vector3d::Zero());
+    }
+    return X;
+  }
+
+  static physics::Transform to_transform(const Eigen::Isometry3d& X) {
+    physics::Transform t;
+    t.rotation = Eigen::Quaterniond(X.linear()).normalized().cast<real>();
+    t.translation = X.translation().cast<real>();
+    return t;
+  }
+
+  // ------------------------------------------------------------------ document
+
+  void load_document() {
+    if (!fs::is_regular_file(path_)) fail_file("cannot open the URDF file (does it exist?)");
+    const tinyxml2::XMLError err = doc_.LoadFile(path_.c_str());
+    if (err != tinyxml2::XML_SUCCESS)
+      fail_file("not a valid XML file: " + std::string(doc_.ErrorStr() ? doc_.ErrorStr() : doc_.ErrorName()));
+    robot_ = doc_.RootElement();
+    if (!robot_ || std::string(robot_->Name()) != "robot")
+      fail_file(std::string("not a URDF file: the root element is <") + (robot_ ? robot_->Name() : "") +
+                ">, expected <robot>");
+    robot_name_ = required_attribute(robot_, "name");
+  }
+
+  void read_links() {
+    for (const XMLElement* e = robot_->FirstChildElement("link"); e; e = e->NextSiblingElement("link")) {
+      UrdfLink L;
+      L.element = e;
+      L.name = required_attribute(e, "name");
+      if (L.name.empty()) fail(e, "the link name must not be empty");
+      if (!link_index_.emplace(L.name, static_cast<int>(links_.size())).second)
+        fail(e, "duplicate link name " + in_quotes(L.name));
+      read_inertial(L);
+      links_.push_back(std::move(L));
+    }
+    if (links_.empty()) fail(robot_, "the robot has no <link>");
+  }
+
+  void read_inertial(UrdfLink& L) const {
+    const XMLElement* in = L.element->FirstChildElement("inertial");
+    if (!in) return;
+    const XMLElement* mass = required_child(in, "mass");
+    L.mass = number(mass, "value");
+    if (L.mass < 0) fail(mass, "the mass must not be negative, got " + format_number(L.mass));
+    const XMLElement* ie = required_child(in, "inertia");
+    const double ixx = number(ie, "ixx"), ixy = number(ie, "ixy"), ixz = number(ie, "ixz");
+    const double iyy = number(ie, "iyy"), iyz = number(ie, "iyz"), izz = number(ie, "izz");
+    if (L.mass == 0) return;  // a massless frame (see the top of the file)
+    Eigen::Matrix3d I;
+    I << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
+    const Eigen::Isometry3d X_LC = origin_of(in);  // the inertia frame in the link frame
+    L.has_mass = true;
+    L.com = X_LC.translation();
+    L.inertia = X_LC.linear() * I * X_LC.linear().transpose();
+    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+    if (moments.minCoeff() <= 0)
+      fail(ie, "a link with mass " + format_number(L.mass) + " kg needs a positive-definite inertia (principal moments " +
+                   format_number(moments[0]) + ", " + format_number(moments[1]) + ", " + format_number(moments[2]) + ")");
+  }
+
+  int link_of(const XMLElement* joint, const char* tag) const {
+    const XMLElement* e = required_child(joint, tag);
+    const std::string name = required_attribute(e, "link");
+    const auto it = link_index_.find(name);
+    if (it == link_index_.end()) fail(e, "refers to link " + in_quotes(name) + ", which is not defined");
+    return it->second;
+  }
+
+  void read_joints() {
+    std::set<std::string> names;
+    for (const XMLElement* e = robot_->FirstChildElement("joint"); e; e = e->NextSiblingElement("joint")) {
+      UrdfJoint J;
+      J.element = e;
+      J.name = required_attribute(e, "name");
+      if (J.name.empty()) fail(e, "the joint name must not be empty");
+      if (!names.insert(J.name).second) fail(e, "duplicate joint name " + in_quotes(J.name));
+      J.type = required_attribute(e, "type");
+      static const std::set<std::string> kKnown = {"revolute", "continuous", "prismatic", "fixed", "floating", "planar"};
+      if (!kKnown.count(J.type))
+        fail(e, "unknown joint type " + in_quotes(J.type) + " (expected revolute, continuous, prismatic, fixed or floating)");
+      if (J.type == "planar")
+        fail(e, "unsupported joint type 'planar' in joint " + in_quotes(J.name) +
+                    " (SuperDex has no planar joint; model it with two prismatic and one revolute joint)");
+      J.parent = link_of(e, "parent");
+      J.child = link_of(e, "child");
+      const int j = static_cast<int>(joints_.size());
+      UrdfLink& child = links_[J.child];
+      if (J.parent == J.child)
+        fail(e, "the joints form a cycle: link " + in_quotes(child.name) + " is its own parent");
+      if (child.parent_joint >= 0)
+        fail(e, "link " + in_quotes(child.name) + " has two parents: it is the child of joint " +
+                    in_quotes(joints_[child.parent_joint].name) + " and of joint " + in_quotes(J.name));
+      child.parent_joint = j;
+      links_[J.parent].child_joints.push_back(j);
+      joints_.push_back(std::move(J));
+    }
+  }
+
+  // The one link that is no joint's child; every link must be reachable from it.
+  int find_root() const {
+    std::vector<int> roots;
+    for (size_t i = 0; i < links_.size(); ++i)
+      if (links_[i].parent_joint < 0) roots.push_back(static_cast<int>(i));
+    if (roots.size() > 1) {
+      std::string names;
+      for (int r : roots) names += (names.empty() ? "" : ", ") + in_quotes(links_[r].name);
+      fail(robot_, "several root links (links that are no joint's child): " + names +
+                       "; a robot must be one tree of links connected by joints");
+    }
+    // links not reachable from the root (or all links, without a root) lie on a cycle
+    std::vector<bool> reached(links_.size(), false);
+    if (!roots.empty()) {
+      std::vector<int> stack{roots[0]};
+      while (!stack.empty()) {
+        const int l = stack.back();
+        stack.pop_back();
+        reached[l] = true;
+        for (int j : links_[l].child_joints) stack.push_back(joints_[j].child);
+      }
+    }
+    for (size_t i = 0; i < links_.size(); ++i) {
+      if (reached[i]) continue;
+      // walk up the parents until a link repeats: that loop is the cycle
+      std::vector<int> seen_at(links_.size(), -1), path;
+      int l = static_cast<int>(i);
+      while (seen_at[l] < 0) {
+        seen_at[l] = static_cast<int>(path.size());
+        path.push_back(l);
+        l = joints_[links_[l].parent_joint].parent;
+      }
+      std::string cycle;
+      for (size_t k = seen_at[l]; k < path.size(); ++k) {
+        const UrdfJoint& j = joints_[links_[path[k]].parent_joint];
+        cycle += (cycle.empty() ? "" : ", ") + in_quotes(links_[path[k]].name) + " is the child of " +
+                 in_quotes(links_[j.parent].name) + " (joint " + in_quotes(j.name) + ")";
+      }
+      fail(joints_[links_[l].parent_joint].element,
+           std::string(roots.empty() ? "no root link: " : "") + "the joints form a cycle: " + cycle);
+    }
+    return roots[0];
+  }
+
+  // ------------------------------------------------------------------ mesh files
+
+  // The file a URDF mesh filename refers to, or nullopt with the places looked at in `tried`.
+  std::optional<fs::path> resolve_mesh(const std::string& filename, std::string* tried) const {
+    std::vector<fs::path> candidates;
+    // the rest of `filename` after a URI scheme prefix, if it has that prefix
+    auto after = [&](const std::string& prefix) -> std::optional<std::string> {
+      if (filename.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+      return filename.substr(prefix.size());
+    };
+    std::optional<std::string> rest = after("package://");
+    if (!rest) rest = after("model://");
+    if (rest) {
+      const size_t slash = rest->find('/');
+      const std::string pkg = rest->substr(0, slash);
+      const std::string inside = slash == std::string::npos ? "" : rest->substr(slash + 1);
+      // upward from the URDF's folder: a folder named pkg, or one that contains pkg
+      for (fs::path d = dir_;; d = d.parent_path()) {
+        if (d.filename() == pkg) candidates.push_back(d / inside);
+        candidates.push_back(d / pkg / inside);
+        if (d == d.parent_path() || d.empty()) break;
+      }
+      auto env_paths = [&](const char* var, const char* sub) {
+        const char* v = std::getenv(var);
+        if (!v) return;
+        std::istringstream parts(v);
+        std::string entry;
+        while (std::getline(parts, entry, ':')) {
+          if (entry.empty()) continue;
+          const fs::path base = fs::path(entry) / sub;
+          if (base.filename() == pkg) candidates.push_back(base / inside);
+          candidates.push_back(base / pkg / inside);
+        }
+      };
+      env_paths("ROS_PACKAGE_PATH", "");
+      env_paths("AMENT_PREFIX_PATH", "share");
+      *tried = "package " + in_quotes(pkg) + " searched upward from " + dir_.string() +
+               " and in $ROS_PACKAGE_PATH and $AMENT_PREFIX_PATH";
+    } else {
+      fs::path p(after("file://").value_or(filename));
+      if (p.is_relative()) p = dir_ / p;
+      candidates.push_back(p);
+      *tried = p.lexically_normal().string();
+    }
+    for (const fs::path& c : candidates) {
+      std::error_code ec;
+      if (fs::is_regular_file(c, ec)) return c.lexically_normal();
+    }
+    return std::nullopt;
+  }
+
+  Eigen::Vector3d mesh_scale(const XMLElement* mesh) const {
+    if (!mesh->Attribute("scale")) return Eigen::Vector3d::Ones();
+    const auto s = numbers(mesh, "scale", 0);
+    if (s.size() != 1 && s.size() != 3)
+      fail(mesh, "attribute 'scale': expected 3 numbers (or 1 for a uniform scale), got \"" +
+                     std::string(mesh->Attribute("scale")) + "\"");
+    const Eigen::Vector3d v = s.size() == 1 ? Eigen::Vector3d::Constant(s[0]) : Eigen::Vector3d(s[0], s[1], s[2]);
+    if ((v.array() <= 0).any()) fail(mesh, "attribute 'scale' must be positive (mirrored meshes are not supported)");
+    return v;
+  }
+
+  // ------------------------------------------------------------------ geometry
+
+  static physics::TriangleMesh cylinder_mesh(double radius, double length) {
+    physics::TriangleMesh m;
+    const int n = kCylinderSegments;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * EIGEN_PI * k / n;
+      const double x = radius * std::cos(a), y = radius * std::sin(a);
+      m.vertices.push_back(Vec3(real(x), real(y), real(-length / 2)));
+      m.vertices.push_back(Vec3(real(x), real(y), real(length / 2)));
+    }
+    const int bottom = 2 * n, top = 2 * n + 1;
+    m.vertices.push_back(Vec3(0, 0, real(-length / 2)));
+    m.vertices.push_back(Vec3(0, 0, real(length / 2)));
+    for (int k = 0; k < n; ++k) {
+      const int b0 = 2 * k, t0 = 2 * k + 1, b1 = 2 * ((k + 1) % n), t1 = b1 + 1;
+      m.triangles.push_back({b0, b1, t1});  // side, counter-clockwise seen from outside
+      m.triangles.push_back({b0, t1, t0});
+      m.triangles.push_back({bottom, b1, b0});
+      m.triangles.push_back({top, t0, t1});
+    }
+    return m;
+  }
+
+  // The collision shape of a <geometry>; nullopt (with a warning) for a mesh format that
+  // cannot be a collider. Sets `shape_file` for meshes.
+  std::optional<ShapeGeometry> collision_shape(const XMLElement* geometry, const std::string& link_name,
+                                               std::string* shape_file) const {
+    const XMLElement* g = geometry->FirstChildElement();
+    if (!g) fail(geometry, "expected one of <box>, <sphere>, <cylinder> or <mesh>");
+    const std::string kind = g->Name();
+    if (kind == "box") {
+      const Eigen::Vector3d size = vec3(g, "size");
+      if ((size.array() <= 0).any()) fail(g, "attribute 'size' must be positive");
+      return physics::BoxShape{(size / 2).cast<real>()};
+    }
+    if (kind == "sphere") return physics::SphereShape{Vec3::Zero(), real(positive(g, "radius"))};
+    if (kind == "cylinder") {
+      const double radius = positive(g, "radius"), length = positive(g, "length");
+      return physics::make_mesh_shape(cylinder_mesh(radius, length),
+                                      path_ + ": link " + in_quotes(link_name) + " <cylinder>");
+    }
+    if (kind == "capsule") return physics::CapsuleShape{real(positive(g, "radius")), real(positive(g, "length") / 2)};
+    if (kind == "mesh") {
+      const std::string filename = required_attribute(g, "filename");
+      const Eigen::Vector3d scale = mesh_scale(g);
+      std::string tried;
+      const auto file = resolve_mesh(filename, &tried);
+      if (!file) fail(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(filename) + " not found (" + tried + ")");
+      physics::ShapeBake bake;
+      bake.scale = scale.cast<real>();
+      std::string ext = file->extension().string();
+      for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      try {
+        ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
+        *shape_file = file->string();
+        return shape;
+      } catch (const Error& e) {
+        if (ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".h5")
+          fail(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(file->string()) + ": " + e.what());
+        warn(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(file->string()) +
+                    " is in an unsupported format (" + e.what() + "); the link has no collider");
+        return std::nullopt;
+      }
+    }
+    fail(g, "unknown geometry <" + kind + "> (expected <box>, <sphere>, <cylinder> or <mesh>)");
+  }
+
+  void read_geometry(const UrdfLink& U, LinkDesc& L) const {
+    const XMLElement* collision = U.element->FirstChildElement("collision");
+    if (collision) {
+      L.link_from_shape = to_transform(origin_of(collision));
+      L.shape = collision_shape(required_child(collision, "geometry"), U.name, &L.shape_file);
+      int extra = 0;
+      for (const XMLElement* c = collision->NextSiblingElement("collision"); c; c = c->NextSiblingElement("collision")) ++extra;
+      if (extra)
+        warn(U.element, "link " + in_quotes(U.name) + " has " + std::to_string(extra + 1) +
+                            " <collision> elements; only the first is imported (one shape per link)");
+    }
+    for (const XMLElement* v = U.element->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual")) {
+      const XMLElement* geometry = v->FirstChildElement("geometry");
+      const XMLElement* mesh = geometry ? geometry->FirstChildElement("mesh") : nullptr;
+      if (!mesh) continue;
+      const std::string filename = required_attribute(mesh, "filename");
+      std::string tried;
+      const auto file = resolve_mesh(filename, &tried);
+      if (!file) {
+        warn(mesh, "link " + in_quotes(U.name) + ": visual mesh " + in_quotes(filename) + " not found (" + tried +
+                       "); the link has no render model");
+        break;
+      }
+      L.render_model = file->string();
+      L.render_model_scale = mesh_scale(mesh).cast<real>();
+      if (!origin_of(v).isApprox(Eigen::Isometry3d::Identity(), 1e-12))
+        warn(v, "link " + in_quotes(U.name) + ": the <origin> of the visual mesh is ignored (render models are drawn in the link frame)");
+      break;
+    }
+  }
+
+  // ------------------------------------------------------------------ joints
+
+  JointDesc joint_desc(const UrdfJoint& J) const {
+    const XMLElement* e = J.element;
+    JointDesc d;
+    d.name = J.name;
+    d.parent_link_from_joint = to_transform(origin_of(e));
+    if (J.type == "fixed") {
+      d.type = JointType::Hard;
+      return d;
+    }
+    if (J.type == "floating") {
+      d.type = JointType::Free;
+      return d;
+    }
+    d.type = J.type == "prismatic" ? JointType::Prismatic : JointType::Revolute;
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+    if (const XMLElement* a = e->FirstChildElement("axis")) {
+      axis = vec3(a, "xyz");
+      if (axis.norm() < 1e-12) fail(a, "the joint axis must not be zero");
+      axis.normalize();
+    }
+    d.axis = axis.cast<real>();
+    const XMLElement* limit = e->FirstChildElement("limit");
+    if (J.type != "continuous") {
+      if (!limit) fail(e, "a " + J.type + " joint needs a <limit> (use type=\"continuous\" for an unlimited revolute joint)");
+      const double lower = limit->Attribute("lower") ? number(limit, "lower") : 0.0;
+      const double upper = limit->Attribute("upper") ? number(limit, "upper") : 0.0;
+      if (!limit->Attribute("lower") && !limit->Attribute("upper"))
+        warn(limit, "no lower or upper limit: the joint is limited to [0, 0] (URDF defaults)");
+      if (lower > upper)
+        fail(limit, "the lower limit " + format_number(lower) + " exceeds the upper limit " + format_number(upper));
+      d.min_limit = (axis * lower).cast<real>();
+      d.max_limit = (axis * upper).cast<real>();
+    }
+    if (limit) {
+      const double effort = number(limit, "effort");
+      if (effort < 0) fail(limit, "attribute 'effort' must not be negative, got " + format_number(effort));
+      d.effort_limit = real(effort);
+      number(limit, "velocity");  // required by URDF; the engine has no velocity limit
+    }
+    if (const XMLElement* dyn = e->FirstChildElement("dynamics")) {
+      if (dyn->Attribute("damping")) d.viscous_friction = real(number(dyn, "damping"));
+      if (dyn->Attribute("friction")) d.coulomb_friction = real(number(dyn, "friction"));
+      if (d.viscous_friction < 0 || d.coulomb_friction < 0) fail(dyn, "damping and friction must not be negative");
+    }
+    if (const XMLElement* m = e->FirstChildElement("mimic"))
+      warn(m, "<mimic> is ignored: joint " + in_quotes(J.name) + " is imported as an independent DOF");
+    return d;
+  }
+
+  // Whether the rigid body a link belongs to (the link and the links welded to it by fixed
+  // joints, all the way down) has mass.
+  bool welded_body_has_mass(int l) const {
+    if (links_[l].has_mass) return true;
+    for (int j : links_[l].child_joints)
+      if (joints_[j].type == "fixed" && welded_body_has_mass(joints_[j].child)) return true;
+    return false;
+  }
+
+  // ------------------------------------------------------------------ assembly
+
+  BotPrefab build(int root) {
+    // a "world" root that is nothing but the world: its single fixed or floating joint
+    // becomes the root joint of the robot's base
+    int root_joint = -1;
+    {
+      const UrdfLink& r = links_[root];
+      if (r.name == "world" && !r.has_mass && !r.element->FirstChildElement("collision") && r.child_joints.size() == 1) {
+        const UrdfJoint& j = joints_[r.child_joints[0]];
+        if (j.type == "fixed" || j.type == "floating") {
+          root_joint = r.child_joints[0];
+          root = j.child;
+        }
+      }
+    }
+    for (const UrdfJoint& j : joints_)
+      if (j.type == "floating" && &j != (root_joint >= 0 ? &joints_[root_joint] : nullptr))
+        fail(j.element, "floating joint " + in_quotes(j.name) +
+                            " is only supported as the robot's root joint (its parent must be a root link named "
+                            "'world' that has no mass, no collision and no other joint)");
+
+    // depth-first order from the root, children in document order
+    std::vector<int> order, index_of(links_.size(), -1);
+    std::vector<int> stack{root};
+    while (!stack.empty()) {
+      const int l = stack.back();
+      stack.pop_back();
+      index_of[l] = static_cast<int>(order.size());
+      order.push_back(l);
+      const auto& cj = links_[l].child_joints;
+      for (auto it = cj.rbegin(); it != cj.rend(); ++it) stack.push_back(joints_[*it].child);
+    }
+
+    BotPrefab prefab;
+    prefab.source = path_;
+    prefab.base_dir = dir_.string();
+    physics::ArticulationDesc& art = prefab.articulation;
+    art.name = robot_name_;
+    std::set<std::string> joint_names;
+    for (const UrdfJoint& j : joints_) joint_names.insert(j.name);
+
+    for (size_t k = 0; k < order.size(); ++k) {
+      const UrdfLink& U = links_[order[k]];
+      LinkDesc L;
+      L.name = U.name;
+      JointDesc J;
+      if (k == 0) {
+        L.parent_link = -1;
+        if (root_joint >= 0) {
+          J = joint_desc(joints_[root_joint]);
+        } else {
+          J.type = JointType::Hard;
+          J.name = U.name + "_root";
+          for (int n = 1; joint_names.count(J.name); ++n) J.name = U.name + "_root_" + std::to_string(n);
+        }
+      } else {
+        const UrdfJoint& uj = joints_[U.parent_joint];
+        L.parent_link = index_of[uj.parent];
+        J = joint_desc(uj);
+      }
+      if (U.has_mass) {
+        L.mass = real(U.mass);
+        L.center_of_mass = U.com.cast<real>();
+        const Eigen::Matrix3d& I = U.inertia;
+        L.moment_of_inertia = std::array<real, 6>{real(I(0, 0)), real(I(0, 1)), real(I(0, 2)),
+                                                  real(I(1, 1)), real(I(1, 2)), real(I(2, 2))};
+      } else {
+        if (J.type != JointType::Hard && !welded_body_has_mass(order[k])) {
+          // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's)
+          const XMLElement* where = joints_[k == 0 ? root_joint : U.parent_joint].element;
+          fail(where, "link " + in_quotes(U.name) + " has no inertial but moves on joint " + in_quotes(J.name) +
+                          " (give it an <inertial> with a positive mass, or make the joint fixed)");
+        }
+        const real I0 = real(kMasslessLinkInertia);
+        L.mass = real(kMasslessLinkMass);
+        L.center_of_mass = Vec3::Zero();
+        L.moment_of_inertia = std::array<real, 6>{I0, 0, 0, I0, 0, I0};
+      }
+      read_geometry(U, L);
+      art.links.push_back(std::move(L));
+      art.joints.push_back(std::move(J));
+    }
+    prefab.sensors.resize(art.links.size());
+    prefab.actuators.resize(art.links.size());
+    return prefab;
+  }
+
+  std::string path_;
+  fs::path dir_;
+  std::vector<std::string>* warnings_;
+  tinyxml2::XMLDocument doc_;
+  const XMLElement* robot_ = nullptr;
+  std::string robot_name_;
+  std::vector<UrdfLink> links_;
+  std::vector<UrdfJoint> joints_;
+  std::map<std::string, int> link_index_;
+};
+
+}  // namespace
+
+BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings) {
+  return UrdfImporter(path, warnings).run();
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::robotics
