@@ -82,7 +82,8 @@ void export_types(nb::module_& m);
 void export_engine(nb::module_& m);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
-void export_robotics(nb::module_& m);  // superdex_robotics/python
+void export_robotics(nb::module_& m);
+void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
 void export_meshes(nb::module_& m);
 
 }  // namespace superdex::python

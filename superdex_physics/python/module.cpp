@@ -11,4 +11,5 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   superdex::python::export_actor(m);
   superdex::python::export_robotics(m);
   superdex::python::export_meshes(m);
+  superdex::python::export_prefab_loader(m);
 }

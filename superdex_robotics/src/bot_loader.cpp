@@ -9,7 +9,7 @@
 
 #include "superdex/physics/articulation_json.h"
 #include "superdex/physics/error.h"
-#include "superdex/physics/mesh_shape.h"
+#include "superdex/physics/prefab.h"
 #include "superdex/robotics/bot_prefab.h"
 
 namespace superdex::robotics {
@@ -89,22 +89,9 @@ BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* war
     const std::string link_path = "links[" + std::to_string(i) + "]";
     prefab.sensors.push_back(read_components(links[i], "sensors", path, link_path, sensor_names, warnings));
     prefab.actuators.push_back(read_components(links[i], "actuators", path, link_path, actuator_names, warnings));
-    // mesh or .mochi.h5 shapes, relative to the bot file, with the link's shapeScale baked in
-    physics::LinkDesc& link = prefab.articulation.links[i];
-    if (!link.shape_file.empty()) {
-      fs::path shape_path(link.shape_file);
-      if (shape_path.is_relative()) shape_path = fs::path(prefab.base_dir) / shape_path;
-      if (!fs::is_regular_file(shape_path)) fail(path, link_path + ".shape", "shape file '" + shape_path.string() + "' does not exist");
-      physics::ShapeBake bake;
-      bake.scale = link.shape_scale;
-      try {
-        link.shape = physics::load_shape_file(shape_path.string(), bake);
-      } catch (const Error& e) {
-        fail(path, link_path + ".shape", e.what());
-      }
-      link.shape_scale = physics::Vec3::Ones();
-    }
   }
+  // mesh or .mochi.h5 shapes, relative to the bot file, with each link's shapeScale baked in
+  physics::load_link_shape_files(prefab.articulation, prefab.base_dir, path);
   return prefab;
 }
 

@@ -38,6 +38,6 @@ release_shape = _m.release_shape
 create_tri_mesh_shape = _m.create_tri_mesh_shape
 load_shape_from_file = _m.load_shape_from_file
 
-from superdex.physics import paths  # noqa: E402  (submodule, after the native names)
+from superdex.physics import paths, prefab  # noqa: E402  (submodules, after the native names)
 
 __all__ = [name for name in dir() if not name.startswith("_")]

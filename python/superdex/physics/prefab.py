@@ -1,0 +1,37 @@
+"""Prefabs: sets of actors described in `.mochi_prefab` / `.mochi_scene` files (FORMATS.md)."""
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from superdex._native import module as _m
+
+
+@dataclass
+class PrefabParams:
+    """How to place a prefab: instance name (prefixes actor names as "name/actor"), uniform
+    scale, and the rotation (Quaternion or [x, y, z, w]) and translation (m) of its frame."""
+
+    name: str = ""
+    scale: float = 1.0
+    rotation: object = None
+    translation: object = None
+    apply_scene_settings: bool = False
+
+
+@dataclass
+class PrefabInstance:
+    """What add_to_scene created: actor handles (file order) and constraint handles."""
+
+    actors: list = field(default_factory=list)
+    constraints: list = field(default_factory=list)
+
+
+def add_to_scene(prefab_path, root_path, scene, params: PrefabParams | None = None) -> PrefabInstance:
+    """Loads a prefab into `scene`; paths starting with ./ are relative to the prefab file, other
+    relative paths to `root_path`. All or nothing: on an Error no actor of it remains."""
+    params = params or PrefabParams()
+    transform = _m.TransformRT(rotation=params.rotation, translation=params.translation)
+    actors, constraints = _m._add_prefab_to_scene(
+        str(Path(prefab_path)), str(Path(root_path)), scene, params.name, float(params.scale), transform,
+        bool(params.apply_scene_settings))
+    return PrefabInstance(actors=list(actors), constraints=list(constraints))

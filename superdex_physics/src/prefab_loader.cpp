@@ -1,0 +1,271 @@
+// Loading `.mochi_prefab` / `.mochi_scene` files into a scene (prefab.h).
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "superdex/physics/articulation_json.h"
+#include "superdex/physics/engine.h"
+#include "superdex/physics/error.h"
+#include "superdex/physics/mesh_shape.h"
+#include "superdex/physics/prefab.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& path, const std::string& what) {
+  throw Error(file + ": " + path + ": " + what);
+}
+
+// A path named in a prefab: "./x" relative to the prefab's folder, "x" relative to the root.
+fs::path resolve(const std::string& name, const fs::path& prefab_dir, const fs::path& root, const std::string& file,
+                 const std::string& path) {
+  const fs::path p(name);
+  if (name.empty()) fail(file, path, "the path is empty");
+  if (p.is_absolute()) fail(file, path, "absolute paths are not allowed ('" + name + "'): use ./ (prefab folder) or a path under the root");
+  for (const auto& part : p)
+    if (part == "..") fail(file, path, "paths containing '..' are not allowed ('" + name + "')");
+  return (name.rfind("./", 0) == 0 ? prefab_dir / p : root / p).lexically_normal();
+}
+
+// The placement of an entry: worldFromLocal, or rotation/translation fields.
+Transform local_pose(const json& e, const std::string& file, const std::string& path) {
+  if (e.contains("worldFromLocal")) return transform_from_json(e.at("worldFromLocal"), file, path + ".worldFromLocal");
+  json t = json::object();
+  if (e.contains("rotation")) t["rotation"] = e.at("rotation");
+  if (e.contains("translation")) t["translation"] = e.at("translation");
+  return transform_from_json(t, file, path);
+}
+
+ShapeGeometry scaled_primitive(ShapeGeometry g, real s) {
+  if (auto* x = std::get_if<SphereShape>(&g)) x->radius *= s, x->center *= s;
+  if (auto* x = std::get_if<BoxShape>(&g)) x->half_extents *= s;
+  if (auto* x = std::get_if<CapsuleShape>(&g)) x->radius *= s, x->half_length *= s;
+  if (auto* x = std::get_if<PlaneShape>(&g)) x->distance *= s;
+  return g;
+}
+
+struct Loader {
+  Scene scene;
+  const fs::path root;
+  std::vector<std::string>* warnings;
+  PrefabResult result;
+  std::vector<ShapeHandle> shapes;
+  int depth = 0;
+
+  std::optional<real> opt_number(const json& e, const char* key, const std::string& file, const std::string& path) {
+    if (!e.contains(key) || e.at(key).is_null()) return std::nullopt;
+    if (!e.at(key).is_number()) fail(file, path + "." + key, "expected a number");
+    return e.at(key).get<real>();
+  }
+
+  void load(const fs::path& file_path, const PrefabParams& params) {
+    const std::string file = file_path.string();
+    if (++depth > 16) fail(file, "prefabs", "prefabs nest more than 16 deep (a prefab includes itself?)");
+    std::ifstream in(file_path);
+    if (!in) throw Error(file + ": cannot open the prefab file (does it exist?)");
+    json doc;
+    try {
+      doc = json::parse(in, nullptr, true, true);
+    } catch (const json::parse_error& e) {
+      throw Error(file + ": not valid JSON: " + e.what());
+    }
+    if (!doc.is_object()) fail(file, "(top level)", "expected an object");
+    const fs::path dir = file_path.parent_path();
+    const real s = params.scale;
+    // world-from-local of an entry: the prefab's pose, then the scaled local placement
+    auto place = [&](Transform X) {
+      X.translation *= s;
+      return params.world_from_prefab * X;
+    };
+    auto prefixed = [&](const std::string& n) { return params.name.empty() ? n : params.name + "/" + n; };
+
+    if (params.apply_scene_settings && doc.contains("scene")) {
+      const json& sc = doc.at("scene");
+      if (sc.contains("gravity")) {
+        const json& g = sc.at("gravity");
+        if (!g.is_array() || g.size() != 3) fail(file, "scene.gravity", "expected 3 numbers");
+        scene.set_gravity(Vec3(g[0].get<real>(), g[1].get<real>(), g[2].get<real>()));
+      }
+      if (sc.contains("solver")) {
+        SolverParams p = scene.solver_params();
+        const json& so = sc.at("solver");
+        if (so.contains("maxNewtonIterations")) p.max_newton_iterations = so.at("maxNewtonIterations").get<int>();
+        if (so.contains("contactMargin")) p.contact_margin = so.at("contactMargin").get<real>();
+        scene.set_solver_params(p);
+      }
+    }
+
+    const json actors = doc.value("actors", json::object());
+    for (const char* kind : {"rigid", "soft", "articulated"})
+      if (actors.contains(kind) && !actors.at(kind).is_array()) fail(file, std::string("actors.") + kind, "expected an array");
+    if (actors.contains("rigid"))
+      for (size_t i = 0; i < actors.at("rigid").size(); ++i) add_rigid(actors.at("rigid")[i], file, dir, "actors.rigid[" + std::to_string(i) + "]", place, prefixed, s);
+    if (actors.contains("soft") && !actors.at("soft").empty())
+      fail(file, "actors.soft", "soft actors need the soft-body engine, which this build does not have yet");
+    if (actors.contains("articulated"))
+      for (size_t i = 0; i < actors.at("articulated").size(); ++i)
+        add_articulated(actors.at("articulated")[i], file, dir, "actors.articulated[" + std::to_string(i) + "]", place, prefixed, s);
+
+    if (doc.contains("prefabs")) {
+      const json& list = doc.at("prefabs");
+      if (!list.is_array()) fail(file, "prefabs", "expected an array");
+      for (size_t i = 0; i < list.size(); ++i) {
+        const std::string path = "prefabs[" + std::to_string(i) + "]";
+        const json& e = list[i];
+        if (!e.is_object() || !e.contains("path") || !e.at("path").is_string()) fail(file, path + ".path", "required: the nested prefab's file");
+        PrefabParams nested;
+        nested.name = prefixed(e.value("name", std::string("prefab") + std::to_string(i)));
+        const real ns = opt_number(e, "scale", file, path).value_or(1);
+        if (!(ns > 0)) fail(file, path + ".scale", "must be positive");
+        nested.scale = s * ns;
+        nested.world_from_prefab = place(local_pose(e, file, path));
+        load(resolve(e.at("path").get<std::string>(), dir, root, file, path + ".path"), nested);
+      }
+    }
+
+    if (doc.contains("contactFilter")) apply_filter(doc.at("contactFilter"), file, prefixed);
+    if (doc.contains("constraints") && !doc.at("constraints").empty())
+      fail(file, "constraints", "constraints are not supported yet");
+    --depth;
+  }
+
+  template <class Place, class Prefix>
+  void add_rigid(const json& e, const std::string& file, const fs::path& dir, const std::string& path, Place place, Prefix prefixed, real s) {
+    if (!e.is_object()) fail(file, path, "expected an object");
+    if (!e.contains("name") || !e.at("name").is_string()) fail(file, path + ".name", "required: a string");
+    if (!e.contains("shape")) fail(file, path + ".shape", "required: a shape file or an inline primitive");
+    ShapeGeometry geometry;
+    const json& sh = e.at("shape");
+    if (sh.is_string()) {
+      const fs::path p = resolve(sh.get<std::string>(), dir, root, file, path + ".shape");
+      if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+      ShapeBake bake;
+      bake.scale = Vec3::Constant(s);
+      try {
+        geometry = load_shape_file(p.string(), bake);
+      } catch (const Error& err) {
+        fail(file, path + ".shape", err.what());
+      }
+    } else {
+      geometry = scaled_primitive(shape_from_json(sh, file, path + ".shape"), s);
+    }
+    const bool is_static = e.value("isStatic", false);
+    ContactMaterial material;
+    if (e.contains("contact")) material = contact_material_from_json(e.at("contact"), file, path + ".contact");
+    ColliderType collider = ColliderType::Auto;
+    if (e.contains("colliderType") && e.at("colliderType") == "None") collider = ColliderType::None;
+    const int layer = e.value("layer", 0);
+    validate_shape(geometry, file + ": " + path + ".shape");
+    const ShapeHandle shape = create_shape(geometry);
+    shapes.push_back(shape);
+    try {
+      result.actors.push_back(scene.create_rigid_actor(prefixed(e.at("name").get<std::string>()), shape, is_static,
+                                                       place(local_pose(e, file, path)), opt_number(e, "density", file, path),
+                                                       opt_number(e, "mass", file, path), material, layer, collider));
+    } catch (const Error& err) {
+      fail(file, path, err.what());
+    }
+  }
+
+  template <class Place, class Prefix>
+  void add_articulated(const json& e, const std::string& file, const fs::path& dir, const std::string& path, Place place, Prefix prefixed, real s) {
+    if (!e.is_object()) fail(file, path, "expected an object");
+    ArticulationDesc desc;
+    std::string source = file + ": " + path;
+    fs::path base = dir;
+    if (e.contains("bot")) {
+      if (!e.at("bot").is_string()) fail(file, path + ".bot", "expected a path to a .superdex_bot file");
+      const fs::path p = resolve(e.at("bot").get<std::string>(), dir, root, file, path + ".bot");
+      std::ifstream in(p);
+      if (!in) fail(file, path + ".bot", "cannot open '" + p.string() + "'");
+      json bot;
+      try {
+        bot = json::parse(in, nullptr, true, true);
+      } catch (const json::parse_error& err) {
+        fail(file, path + ".bot", "'" + p.string() + "' is not valid JSON: " + err.what());
+      }
+      desc = articulation_desc_from_json(bot, p.string(), warnings, {"sensors", "actuators"});
+      source = p.string();
+      base = p.parent_path();
+    } else {
+      json inline_desc = e;
+      desc = articulation_desc_from_json(inline_desc, source, warnings, {"bot", "worldFromLocal", "rotation", "translation", "isStatic"});
+    }
+    if (e.contains("name") && e.at("name").is_string()) desc.name = e.at("name").get<std::string>();
+    desc.name = prefixed(desc.name.empty() ? "articulation" : desc.name);
+    load_link_shape_files(desc, base.string(), source, s);
+    if (s != 1)
+      for (auto& j : desc.joints) j.parent_link_from_joint.translation *= s;
+    desc.world_from_root = place(local_pose(e, file, path)) * desc.world_from_root;
+    result.actors.push_back(scene.create_articulated_actor(desc, source));
+  }
+
+  template <class Prefix>
+  void apply_filter(const json& f, const std::string& file, Prefix prefixed) {
+    auto handle_of = [&](const std::string& name, const std::string& path) {
+      for (ActorHandle h : result.actors)
+        if (scene.actor_name(h) == prefixed(name)) return h;
+      fail(file, path, "no actor named '" + name + "' in this prefab");
+    };
+    if (f.contains("disabledPairs"))
+      for (size_t i = 0; i < f.at("disabledPairs").size(); ++i) {
+        const json& p = f.at("disabledPairs")[i];
+        const std::string path = "contactFilter.disabledPairs[" + std::to_string(i) + "]";
+        if (!p.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string()) fail(file, path, "expected two actor names");
+        scene.enable_actor_contact(handle_of(p[0], path), handle_of(p[1], path), false);
+      }
+    if (f.contains("disabledLayers"))
+      for (size_t i = 0; i < f.at("disabledLayers").size(); ++i) {
+        const json& p = f.at("disabledLayers")[i];
+        if (!p.is_array() || p.size() != 2) fail(file, "contactFilter.disabledLayers[" + std::to_string(i) + "]", "expected two layers");
+        scene.enable_layer_contact(p[0].get<int>(), p[1].get<int>(), false);
+      }
+  }
+};
+
+}  // namespace
+
+void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, const std::string& source, real scale) {
+  for (size_t i = 0; i < desc.links.size(); ++i) {
+    LinkDesc& link = desc.links[i];
+    const std::string path = "links[" + std::to_string(i) + "].shape";
+    if (link.shape && scale != 1) link.shape = scaled_primitive(*link.shape, scale), link.link_from_shape.translation *= scale;
+    if (link.center_of_mass && scale != 1) *link.center_of_mass *= scale;
+    if (link.shape_file.empty()) continue;
+    fs::path shape_path(link.shape_file);
+    if (shape_path.is_relative()) shape_path = fs::path(base_dir) / shape_path;
+    if (!fs::is_regular_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
+    ShapeBake bake;
+    bake.scale = link.shape_scale * scale;
+    try {
+      link.shape = load_shape_file(shape_path.string(), bake);
+    } catch (const Error& e) {
+      fail(source, path, e.what());
+    }
+    link.shape_scale = Vec3::Ones();
+  }
+}
+
+PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::string& root_path, Scene scene,
+                                 const PrefabParams& params, std::vector<std::string>* warnings) {
+  if (!(params.scale > 0) || !std::isfinite(params.scale)) throw Error("add_to_scene: scale must be a positive number");
+  Loader loader{scene, fs::path(root_path), warnings, {}, {}};
+  try {
+    loader.load(fs::path(prefab_path), params);
+  } catch (...) {
+    // all or nothing
+    for (ActorHandle h : loader.result.actors)
+      if (scene.has_actor(h)) scene.destroy_actor(h);
+    throw;
+  }
+  return loader.result;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
