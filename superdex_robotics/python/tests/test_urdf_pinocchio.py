@@ -1,8 +1,10 @@
 """SuperDex's URDF import checked against Pinocchio's URDF parser on real robots.
 
-The Franka Panda and the UR5 of the `example-robot-data` package (a dev dependency) are
-imported with `sdr.load_bot_prefab_from_urdf_file` and built with `sdr.create_bot`, and
-loaded independently with `pinocchio.buildModelFromUrdf`. At random configurations within
+The Franka Panda and the UR5 of the `example-robot-data` package (a dev dependency), and a
+seeded synthetic URDF that exercises what those two leave out (joint and inertial origins
+with arbitrary rpy, full inertia tensors, non-unit and unaligned axes, continuous and
+prismatic joints, a branching tree), are imported with `sdr.load_bot_prefab_from_urdf_file`
+and built with `sdr.create_bot`, and loaded independently with `pinocchio.buildModelFromUrdf`. At random configurations within
 the joint limits, random velocities and torques, the test compares to 1e-9 relative:
 
 * the world pose of every link against Pinocchio's BODY frame of the same name;
@@ -32,6 +34,7 @@ Runs only in double precision (SUPERDEX_PRECISION=double); skipped in float buil
 from __future__ import annotations
 
 import importlib.metadata
+import warnings
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -68,6 +71,17 @@ ROBOTS = {
     "panda": "panda_description/urdf/panda.urdf",
     "ur5": "ur_description/urdf/ur5_robot.urdf",
 }
+# import warnings each robot must give (substrings); any other warning fails the test
+EXPECTED_WARNINGS = {
+    "panda": [
+        "link 'panda_leftfinger' has 4 <collision> elements; only the first is imported",
+        "link 'panda_rightfinger' has 4 <collision> elements; only the first is imported",
+        "link 'panda_rightfinger': the <origin> of the visual mesh is ignored",
+        "<mimic> is ignored: joint 'panda_finger_joint2' is imported as an independent DOF",
+    ],
+    "ur5": [],
+    "synthetic": [],
+}
 
 
 def example_robot_data_file(relative: str) -> Path:
@@ -84,6 +98,67 @@ def example_robot_data_file(relative: str) -> Path:
         if str(f).replace("\\", "/").endswith(suffix):
             return Path(dist.locate_file(f)).resolve()
     raise FileNotFoundError(f"{suffix} is not part of example-robot-data {dist.version}")
+
+
+def synthetic_urdf(path: Path, seed: int = 7) -> Path:
+    """A branching fixed-base robot with every kind of URDF joint the importer maps, random
+    joint origins (xyz and rpy), non-unit unaligned axes, inertials with random origins and
+    full inertia tensors, one massless welded frame and one massless link whose welded child
+    carries its mass. Numbers are written with repr(), so both parsers read the same values."""
+    rng = np.random.default_rng(seed)
+
+    def num(x) -> str:
+        return repr(float(x))  # shortest round-trip form
+
+    def vec(x) -> str:
+        return " ".join(num(c) for c in x)
+
+    def inertial() -> str:
+        a, b, c = rng.uniform(0.01, 0.1, 3)
+        Q = pin.exp3(rng.normal(size=3))
+        I = Q @ np.diag([b + c, a + c, a + b]) @ Q.T  # principal moments of a physical body
+        return (
+            f'<inertial><origin xyz="{vec(rng.uniform(-0.2, 0.2, 3))}" rpy="{vec(rng.uniform(-np.pi, np.pi, 3))}"/>'
+            f'<mass value="{num(rng.uniform(0.5, 3.0))}"/>'
+            f'<inertia ixx="{num(I[0, 0])}" ixy="{num(I[0, 1])}" ixz="{num(I[0, 2])}" iyy="{num(I[1, 1])}" iyz="{num(I[1, 2])}" '
+            f'izz="{num(I[2, 2])}"/></inertial>'
+        )
+
+    types = ["revolute", "prismatic", "continuous", "fixed", "revolute", "continuous", "prismatic", "revolute"]
+    links = ['<link name="base">' + inertial() + "</link>"]
+    joints = []
+    for i, jtype in enumerate(types, start=1):
+        parent = "base" if i == 1 else f"l{rng.integers(1, i)}"
+        links.append(f'<link name="l{i}">{inertial()}<collision><geometry><box size="0.1 0.2 0.3"/></geometry></collision></link>')
+        body = f'<origin xyz="{vec(rng.uniform(-0.5, 0.5, 3))}" rpy="{vec(rng.uniform(-np.pi, np.pi, 3))}"/>'
+        if jtype != "fixed":
+            body += f'<axis xyz="{vec(rng.normal(size=3) * rng.uniform(0.5, 2.0))}"/>'
+            span = 0.3 if jtype == "prismatic" else 2.0
+            body += (
+                f'<limit lower="{num(-rng.uniform(0.1, span))}" upper="{num(rng.uniform(0.1, span))}" '
+                f'effort="{num(rng.uniform(1, 100))}" velocity="1"/>'
+                f'<dynamics damping="{num(rng.uniform(0, 1))}" friction="{num(rng.uniform(0, 1))}"/>'
+            )
+        joints.append(
+            f'<joint name="j{i}" type="{jtype}"><parent link="{parent}"/><child link="l{i}"/>{body}</joint>'
+        )
+    # a massless tool frame, and a massless moving link that carries a welded massive one
+    links.append('<link name="tool"/>')
+    joints.append(f'<joint name="j_tool" type="fixed"><parent link="l{len(types)}"/><child link="tool"/>'
+                  f'<origin xyz="0 0 0.1" rpy="0.1 0.2 0.3"/></joint>')
+    links.append('<link name="carrier"/>')
+    joints.append('<joint name="j_carrier" type="continuous"><parent link="l2"/><child link="carrier"/>'
+                  f'<origin xyz="0.1 0 0"/><axis xyz="0 0 1"/><limit effort="5" velocity="1"/></joint>')
+    links.append(f'<link name="payload">{inertial()}</link>')
+    joints.append('<joint name="j_payload" type="fixed"><parent link="carrier"/><child link="payload"/>'
+                  f'<origin xyz="0.2 0 0" rpy="0 0.5 0"/></joint>')
+    path.write_text('<?xml version="1.0"?>\n<robot name="synthetic">\n' + "\n".join(links + joints) + "\n</robot>\n")
+    return path
+
+
+def urdf_types(urdf: Path) -> dict[str, str]:
+    """Joint name -> URDF joint type."""
+    return {j.get("name"): j.get("type") for j in ET.parse(urdf).getroot().iter("joint")}
 
 
 def massless_links(urdf: Path) -> set[str]:
@@ -144,11 +219,20 @@ def pinocchio_model(urdf: Path, massless: set[str], link_names: list[str]) -> pi
     return model
 
 
-@pytest.fixture(scope="module", params=sorted(ROBOTS))
-def robot(request, engine) -> Robot:
+@pytest.fixture(scope="module", params=[*sorted(ROBOTS), "synthetic"])
+def robot(request, engine, tmp_path_factory) -> Robot:
     name = request.param
-    urdf = example_robot_data_file(ROBOTS[name])
-    prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf))
+    if name == "synthetic":
+        urdf = synthetic_urdf(tmp_path_factory.mktemp("urdf") / "synthetic.urdf")
+    else:
+        urdf = example_robot_data_file(ROBOTS[name])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf))
+    messages = [str(w.message) for w in caught]
+    for expected in EXPECTED_WARNINGS[name]:
+        assert any(expected in m for m in messages), f"{name}: no warning {expected!r} in {messages}"
+    assert len(messages) == len(EXPECTED_WARNINGS[name]), f"{name}: unexpected warnings {messages}"
     scene = sdp.create_scene(f"urdf_{name}")
     scene.set_gravity(GRAVITY.tolist())
     bot = sdr.create_bot(scene, prefab, sdr.create_context())
@@ -187,7 +271,7 @@ def test_links_and_joints_match_the_urdf(robot: Robot):
     """Every URDF link is a SuperDex link (the UR5's bare `world` link is the world itself),
     parents come before children, and the joint data is what Pinocchio read."""
     urdf_links = [link.get("name") for link in ET.parse(robot.urdf).getroot().iter("link")]
-    expected = [n for n in urdf_links if not (n == "world" and robot.name == "ur5")]
+    expected = [n for n in urdf_links if n != "world"]
     assert sorted(robot.link_names) == sorted(expected)
     parents = [link.parent_link for link in robot.prefab.links]
     assert parents[0] == -1 and all(0 <= p < i for i, p in enumerate(parents) if i > 0), parents
@@ -199,6 +283,7 @@ def test_links_and_joints_match_the_urdf(robot: Robot):
             np.testing.assert_array_equal(link.moment_of_inertia, MASSLESS_LINK_INERTIA * np.array([1, 0, 0, 1, 0, 1]))
 
     model = robot.model
+    types = urdf_types(robot.urdf)
     for joint in robot.prefab.joints:
         if not model.existJointName(joint.name):  # fixed joints are frames in Pinocchio
             assert joint.type == sdp.JointType.HARD, joint.name
@@ -206,10 +291,16 @@ def test_links_and_joints_match_the_urdf(robot: Robot):
         jid = model.getJointId(joint.name)
         k = model.idx_vs[jid]
         axis = np.asarray(joint.axis, dtype=float)
+        assert np.linalg.norm(axis) == pytest.approx(1.0, abs=1e-15), joint.name
         assert joint.armature == 0.0
         assert joint.effort_limit == pytest.approx(model.effortLimit[k], rel=1e-12), joint.name
         assert joint.viscous_friction == pytest.approx(model.damping[k], rel=1e-12), joint.name
         assert joint.coulomb_friction == pytest.approx(model.friction[k], rel=1e-12), joint.name
+        if types[joint.name] == "continuous":
+            assert joint.type == sdp.JointType.REVOLUTE and joint.min_limit is None and joint.max_limit is None
+            continue
+        expected_type = sdp.JointType.PRISMATIC if types[joint.name] == "prismatic" else sdp.JointType.REVOLUTE
+        assert joint.type == expected_type, joint.name
         lower = float(axis @ np.asarray(joint.min_limit, dtype=float))
         upper = float(axis @ np.asarray(joint.max_limit, dtype=float))
         iq = model.idx_qs[jid]
@@ -230,12 +321,21 @@ class State:
 
 
 def random_state(robot: Robot, rng: np.random.Generator) -> State:
+    """Joint values within the limits (continuous joints: any angle), random v and tau."""
     model = robot.model
-    lower, upper = model.lowerPositionLimit, model.upperPositionLimit
-    q_pin = rng.uniform(lower, upper)  # every joint of both robots is revolute or prismatic (nq == nv)
+    q_pin = pin.neutral(model)
+    values = np.zeros(model.nv)  # Pinocchio velocity order
+    for jid in range(1, model.njoints):
+        iq, iv = model.idx_qs[jid], model.idx_vs[jid]
+        assert model.nvs[jid] == 1, model.names[jid]
+        if model.nqs[jid] == 1:  # revolute, prismatic
+            values[iv] = q_pin[iq] = rng.uniform(model.lowerPositionLimit[iq], model.upperPositionLimit[iq])
+        else:  # continuous: (cos, sin) in Pinocchio
+            values[iv] = rng.uniform(-np.pi, np.pi)
+            q_pin[iq : iq + 2] = np.cos(values[iv]), np.sin(values[iv])
     return State(
         q_pin=q_pin,
-        pose=q_pin[robot.perm],
+        pose=values[robot.perm],
         v=rng.normal(0.0, 1.0, model.nv),
         tau=rng.normal(0.0, 5.0, model.nv),
     )
@@ -243,13 +343,12 @@ def random_state(robot: Robot, rng: np.random.Generator) -> State:
 
 def test_kinematics_and_dynamics_match_pinocchio(robot: Robot):
     model, perm, art, scene = robot.model, robot.perm, robot.art, robot.scene
-    assert model.nq == model.nv
     data = model.createData()
     n_links = len(robot.link_names)
     link_actors = [scene.get_actor(h) for h in art.get_nested_link_actors()]
     assert len(link_actors) == n_links
     transforms = sdp.DynamicArrayTransformRT(n_links)
-    rng = np.random.default_rng({"panda": 1, "ur5": 2}[robot.name])
+    rng = np.random.default_rng({"panda": 1, "ur5": 2, "synthetic": 3}[robot.name])
 
     for k in range(NUM_STATES):
         s = random_state(robot, rng)
@@ -289,13 +388,15 @@ def test_kinematics_and_dynamics_match_pinocchio(robot: Robot):
 
 
 def test_reference_inertias_are_negligible(robot: Robot):
-    """The inertias added to Pinocchio for massless links change its mass matrix by less
-    than 1e-7 relative: the importer's stand-in mass is physically irrelevant."""
+    """The inertias added to Pinocchio for massless links change its mass matrix by about
+    1e-9 of its largest entry: the importer's stand-in mass is physically irrelevant."""
     plain = pin.buildModelFromUrdf(str(robot.urdf))
-    q = pin.neutral(plain)
-    M_plain = pin.crba(plain, plain.createData(), q)
-    M = pin.crba(robot.model, robot.model.createData(), q)
-    np.testing.assert_allclose(M, M_plain, rtol=0, atol=1e-7 * np.abs(M_plain).max())
+    rng = np.random.default_rng(4)
+    for _ in range(NUM_STATES):
+        q = random_state(robot, rng).q_pin
+        M_plain = pin.crba(plain, plain.createData(), q)
+        M = pin.crba(robot.model, robot.model.createData(), q)
+        np.testing.assert_allclose(M, M_plain, rtol=0, atol=1e-8 * np.abs(M_plain).max())
 
 
 # --------------------------------------------------------------------------------------
