@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "superdex/physics/error.h"
@@ -183,6 +184,16 @@ auto with_source(const std::string& source, F&& f) {
 }
 
 }  // namespace
+
+json read_json_file(const std::string& path, const std::string& kind) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open the " + kind + " file (does it exist?)");
+  try {
+    return json::parse(in, nullptr, true, true);
+  } catch (const json::parse_error& e) {
+    throw Error(path + ": not valid JSON: " + e.what());
+  }
+}
 
 Transform transform_from_json(const json& j, const std::string& source, const std::string& path) {
   return with_source(source, [&] {

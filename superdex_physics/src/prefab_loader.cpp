@@ -1,7 +1,6 @@
 // Loading `.mochi_prefab` / `.mochi_scene` files into a scene (prefab.h).
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "superdex/physics/articulation_json.h"
@@ -67,14 +66,7 @@ struct Loader {
   void load(const fs::path& file_path, const PrefabParams& params) {
     const std::string file = file_path.string();
     if (++depth > 16) fail(file, "prefabs", "prefabs nest more than 16 deep (a prefab includes itself?)");
-    std::ifstream in(file_path);
-    if (!in) throw Error(file + ": cannot open the prefab file (does it exist?)");
-    json doc;
-    try {
-      doc = json::parse(in, nullptr, true, true);
-    } catch (const json::parse_error& e) {
-      throw Error(file + ": not valid JSON: " + e.what());
-    }
+    const json doc = read_json_file(file, "prefab");
     if (!doc.is_object()) fail(file, "(top level)", "expected an object");
     const fs::path dir = file_path.parent_path();
     const real s = params.scale;
@@ -182,13 +174,11 @@ struct Loader {
     if (e.contains("bot")) {
       if (!e.at("bot").is_string()) fail(file, path + ".bot", "expected a path to a .superdex_bot file");
       const fs::path p = resolve(e.at("bot").get<std::string>(), dir, root, file, path + ".bot");
-      std::ifstream in(p);
-      if (!in) fail(file, path + ".bot", "cannot open '" + p.string() + "'");
       json bot;
       try {
-        bot = json::parse(in, nullptr, true, true);
-      } catch (const json::parse_error& err) {
-        fail(file, path + ".bot", "'" + p.string() + "' is not valid JSON: " + err.what());
+        bot = read_json_file(p.string(), "bot");
+      } catch (const Error& err) {
+        fail(file, path + ".bot", err.what());
       }
       desc = articulation_desc_from_json(bot, p.string(), warnings, {"sensors", "actuators"});
       source = p.string();

@@ -2,7 +2,6 @@
 // the sensors and actuators declared on links, and mesh shapes named by links.
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -70,14 +69,7 @@ std::vector<ComponentDecl> read_components(const json& link, const char* key, co
 }  // namespace
 
 BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the bot file (does it exist?)");
-  json doc;
-  try {
-    doc = json::parse(in, nullptr, true, true);
-  } catch (const json::parse_error& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
+  const json doc = physics::read_json_file(path, "bot");
   BotPrefab prefab;
   prefab.source = path;
   prefab.base_dir = fs::absolute(fs::path(path)).parent_path().string();

@@ -4,7 +4,7 @@
 /// Errors name the source, the JSON path (`links[3].mass`) and what was expected; unknown
 /// fields are reported as warnings.
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -12,6 +12,10 @@
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+
+/// Reads and parses a JSON file (comments allowed). Throws superdex::Error "<path>: cannot open
+/// the <kind> file (does it exist?)" or "<path>: not valid JSON: ...".
+nlohmann::json read_json_file(const std::string& path, const std::string& kind);
 
 /// Parses a whole articulation (top-level `name`, `links`, `joints`, `defaultPose`,
 /// `worldFromRoot`). `extra_known_fields` lists top-level, link and joint fields that
