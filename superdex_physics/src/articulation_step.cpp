@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "dynamics.h"
+#include "spatial.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -61,6 +62,27 @@ std::vector<JointRow> joint_rows(const ArticulationModel& model, const Articulat
   return rows;
 }
 
+// A single free body's gyroscopic torque w x (I w), explicit in the bias forces, lets a tumbling
+// body gain energy. Replace it by backward Euler on Euler's equations in the body frame,
+// I (w2 - w1) + dt w2 x (I w2) = 0 (Newton), whose solution never gains kinetic energy
+// (w2^T I w2 = w2^T I w1): the free motion's angular momentum becomes I w2 - dt (w1 x I w1)
+// is removed from r. Exact for bodies whose centre of mass is the link origin; with an offset
+// centre of mass only the term about the centre of mass is treated implicitly.
+void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState& state, real dt, VecX& r) {
+  if (model.num_links != 1 || model.joints[0].type != JointType::Free) return;
+  const Mat3& I = model.inertia[0].inertia_com;
+  const Vec3 w1 = state.v.segment<3>(3);
+  Vec3 w2 = w1;
+  for (int it = 0; it < 4; ++it) {
+    const Vec3 f = I * (w2 - w1) + dt * w2.cross(I * w2);
+    const Mat3 df = I + dt * (skew(w2) * I - skew(I * w2));
+    const Vec3 step = df.partialPivLu().solve(f);
+    w2 -= step;
+    if (step.norm() <= std::numeric_limits<real>::epsilon() * (1 + w2.norm())) break;
+  }
+  r.segment<3>(3) += I * (w2 - w1) + dt * w1.cross(I * w1);
+}
+
 }  // namespace
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
@@ -75,6 +97,7 @@ ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, rea
   for (const JointModel& j : model.joints)
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   t.r = M * a.state.v + dt * (a.state.tau_external - c);
+  implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
   t.joint_rows = joint_rows(model, a.state, t.A_llt, dt, params);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
