@@ -1,10 +1,11 @@
-// superdex.robotics: the context and its registries, Python components held by a C++ adapter,
-// typed component handles, bots, and the bot loaders.
+// superdex.robotics: the context and its registries, Python components held by a C++ adapter
+// (python_component.h), typed component handles, bots and their pipelines, the bot loaders.
 
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
+#include "python_component.h"
 #include "superdex/robotics/context.h"
 
 namespace superdex::python {
@@ -20,24 +21,6 @@ using robotics::Context;
 void export_prefab(nb::module_& m);
 
 namespace {
-
-// A Python component owned by C++: the adapter holds the object and forwards reset().
-class PythonComponent : public Component {
- public:
-  explicit PythonComponent(nb::object obj) : obj_(std::move(obj)) {}
-  ~PythonComponent() override {
-    nb::gil_scoped_acquire gil;
-    obj_.reset();
-  }
-  void reset() override {
-    nb::gil_scoped_acquire gil;
-    obj_.attr("reset")();
-  }
-  const nb::object& object() const { return obj_; }
-
- private:
-  nb::object obj_;
-};
 
 // A component handle tagged with its kind, so that a sensor handle cannot be used as an actuator's.
 template <ComponentKind K>
@@ -67,41 +50,6 @@ const char* kind_title(ComponentKind k) {
     case ComponentKind::Actuator: return "actuator";
   }
   return "?";
-}
-
-std::string python_error_text(const nb::python_error& e) { return e.what(); }
-
-nb::object actor_object(const ComponentArgs& args) {
-  if (args.actor == 0) return nb::none();
-  return nb::cast(Actor{args.scene, args.actor});
-}
-
-// Wraps a Python class or callable as a factory of the given kind (signatures of API.md).
-robotics::ComponentFactory python_factory(ComponentKind kind, const std::string& type_name, nb::object factory) {
-  return [kind, type_name, factory](const ComponentArgs& args) -> std::unique_ptr<Component> {
-    nb::gil_scoped_acquire gil;
-    nb::object obj;
-    try {
-      if (kind == ComponentKind::Controller) obj = factory(actor_object(args));
-      else obj = factory(actor_object(args), args.params);
-    } catch (nb::python_error& e) {
-      throw Error("the factory of " + std::string(kind_title(kind)) + " type '" + type_name + "' raised " +
-                  python_error_text(e));
-    }
-    nb::object reset = nb::getattr(obj, "reset", nb::none());
-    if (reset.is_none() || !PyCallable_Check(reset.ptr())) {
-      const std::string cls = nb::cast<std::string>(nb::handle(reinterpret_cast<PyObject*>(Py_TYPE(obj.ptr()))).attr("__name__"));
-      throw Error("class '" + cls + "' (" + kind_title(kind) + " type '" + type_name +
-                  "') has no reset() method: every component must define reset()");
-    }
-    return std::make_unique<PythonComponent>(std::move(obj));
-  };
-}
-
-nb::object python_object(Context& ctx, ComponentKind kind, ComponentHandle h) {
-  const auto& rec = ctx.component(kind, h);
-  if (auto* p = dynamic_cast<PythonComponent*>(rec.impl.get())) return p->object();
-  return nb::none();
 }
 
 template <ComponentKind K>
@@ -154,17 +102,79 @@ std::vector<TypedHandle<K>> bot_find(const PyBot& b, const std::string& value, b
   return out;
 }
 
+// Run-time parameters: a Python component's configure(dict), or a C++ component's JSON.
+void configure_component(Context& ctx, ComponentKind kind, ComponentHandle h, nb::handle params) {
+  nb::object obj = python_object(ctx, kind, h);
+  const std::string where = std::string("configure_") + kind_title(kind) + ": params";
+  if (obj.is_none()) {
+    ctx.configure(kind, h, params_text(params, where));
+    return;
+  }
+  nb::object fn = nb::getattr(obj, "configure", nb::none());
+  if (fn.is_none()) {
+    const std::string cls = nb::cast<std::string>(nb::handle(reinterpret_cast<PyObject*>(Py_TYPE(obj.ptr()))).attr("__name__"));
+    throw Error(std::string("configure_") + kind_title(kind) + ": class '" + cls + "' has no configure(params) method");
+  }
+  fn(nb::isinstance<nb::str>(params) ? nb::module_::import_("json").attr("loads")(params) : nb::borrow(params));
+}
+
+// Params given to create_*: a dict (written as JSON) or a string (inline JSON or a file path,
+// relative to `base_dir`).
+std::string creation_params(nb::handle params, const std::string& base_dir, const std::string& where) {
+  if (params.is_none()) return "";
+  if (nb::isinstance<nb::str>(params)) return robotics::resolve_params(nb::cast<std::string>(params), base_dir, where);
+  return params_text(params, where);
+}
+
+// None: automatic (the default), True: always on, False: off.
+robotics::PipelineMode pipeline_mode(nb::handle enabled) {
+  if (enabled.is_none()) return robotics::PipelineMode::Automatic;
+  return nb::cast<bool>(enabled) ? robotics::PipelineMode::Enabled : robotics::PipelineMode::Disabled;
+}
+
+const char* pipeline_doc =
+    "Runs the bot's pipeline inside scene.step (True), never (False), or when one of its\n"
+    "components takes part (None, the default). While active with a controller or an actuator,\n"
+    "the pipeline owns the articulation's external forces: it replaces them every step and\n"
+    "clears them when it stops.";
+
+// The factory contract and the pipeline protocol of each kind (python_component.h).
+const char* register_doc(ComponentKind kind) {
+  switch (kind) {
+    case ComponentKind::Controller:
+      return "Registers a Python controller type: factory(actor) -> object with reset().\n"
+             "Pipeline (optional): compute(t, dt) -> {'position'|'velocity'|'effort': one value per DOF,\n"
+             "NaN: not commanded} or None, called before each step (t: scene time at its start, dt: time\n"
+             "since its last run); 'rate' attribute (Hz, 0: every step); configure(params: dict).";
+    case ComponentKind::Sensor:
+      return "Registers a Python sensor type: factory(actor_or_None, param_args: str) -> object with reset().\n"
+             "Pipeline (optional): update(t, dt) after each step; signal() or compute_signal() is what\n"
+             "Context.get_sensor_signal returns; 'rate' attribute (Hz); configure(params: dict).";
+    case ComponentKind::Actuator:
+      return "Registers a Python actuator type: factory(actor, param_args: str) -> object with reset().\n"
+             "Pipeline (optional): compute_pipeline_effort(commands, dt) -> float, before each step, with\n"
+             "commands {'position', 'velocity', 'effort'} of its link's joint DOF (floats or None); the\n"
+             "result is that DOF's force; 'rate' attribute (Hz); configure(params: dict).";
+  }
+  return "";
+}
+
 template <ComponentKind K>
 void def_kind(nb::module_& m, nb::class_<PyContext>& ctx_cls, nb::class_<PyBot>& bot_cls, const std::string& k) {
   m.def(("register_python_" + k).c_str(), [](PyContext& c, const std::string& type_name, nb::object factory) {
         if (!PyCallable_Check(factory.ptr()))
           throw Error("register_python_" + std::string(kind_title(K)) + ": the factory for '" + type_name + "' is not callable");
         c.ctx.register_type(K, type_name, python_factory(K, type_name, factory));
-      }, "ctx"_a, "type_name"_a, "factory"_a);
+      }, "ctx"_a, "type_name"_a, "factory"_a, register_doc(K));
   m.def(("get_python_" + k).c_str(), [](PyContext& c, nb::handle h) {
         return python_object(c.ctx, K, handle_of<K>(h, ("get_python_" + std::string(kind_title(K))).c_str()));
       }, "ctx"_a, "handle"_a, "The live Python object of a Python component, or None for a C++ one.");
   ctx_cls.def(("destroy_" + k).c_str(), [](PyContext& c, nb::handle h) { c.ctx.destroy(K, handle_of<K>(h, "destroy")); }, "handle"_a)
+      .def(("configure_" + k).c_str(), [](PyContext& c, nb::handle h, nb::handle params) {
+             configure_component(c.ctx, K, handle_of<K>(h, ("configure_" + std::string(kind_title(K))).c_str()), params);
+           }, "handle"_a, "params"_a,
+           "Changes the component's parameters at run time: a dict or a JSON object string. A Python\n"
+           "component receives the dict in its configure(params) method.")
       .def(("is_" + k + "_type_registered").c_str(), [](const PyContext& c, const std::string& t) { return c.ctx.is_type_registered(K, t); })
       .def(("find_" + k + "s_by_name").c_str(), [](const PyContext& c, const std::string& n) { return typed<K>(c.ctx.find_by_name(K, n)); })
       .def(("find_" + k + "s_by_type").c_str(), [](const PyContext& c, const std::string& t) { return typed<K>(c.ctx.find_by_type(K, t)); });
@@ -188,29 +198,42 @@ void export_robotics(nb::module_& parent) {
 
   nb::class_<PyContext> ctx_cls(m, "Context", "Registries of component types, and every bot and component.");
   ctx_cls
-      .def("create_controller", [](PyContext& c, const std::string& type_name, nb::handle prefab, nb::handle actor, const std::string& name) {
+      .def("create_controller", [](PyContext& c, const std::string& type_name, nb::handle prefab, nb::handle actor, const std::string& name,
+                                   nb::handle params) {
              ComponentArgs args;
              args.actor = actor_or_zero(actor, "create_controller: actor");
              if (!actor.is_none()) args.scene = nb::cast<Actor&>(actor).scene;
              if (!prefab.is_none()) args.prefab = &nb::cast<BotPrefab&>(prefab);
+             args.params = creation_params(params, "", "create_controller('" + name + "'): params");
              return ControllerHandle{c.ctx.create(ComponentKind::Controller, type_name, args, name)};
-           }, "type_name"_a, "prefab"_a.none(), "actor"_a.none(), "name"_a = "")
-      .def("create_sensor", [](PyContext& c, const std::string& type_name, nb::handle actor, const std::string& name, const std::string& params) {
+           }, "type_name"_a, "prefab"_a.none(), "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
+           "Creates a controller; params (C++ built-ins): a dict, inline JSON or a JSON file path.")
+      .def("create_sensor", [](PyContext& c, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              ComponentArgs args;
              args.actor = actor_or_zero(actor, "create_sensor: actor");
              if (!actor.is_none()) args.scene = nb::cast<Actor&>(actor).scene;
-             args.params = robotics::resolve_params(params, "", "create_sensor('" + name + "'): params");
+             args.params = creation_params(params, "", "create_sensor('" + name + "'): params");
              return SensorHandle{c.ctx.create(ComponentKind::Sensor, type_name, args, name)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a = "")
-      .def("create_actuator", [](PyContext& c, const std::string& type_name, nb::handle actor, const std::string& name, const std::string& params) {
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+      .def("create_actuator", [](PyContext& c, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              if (actor.is_none()) throw Error("create_actuator('" + name + "'): an actuator needs an actor (a link)");
              ComponentArgs args;
              args.actor = actor_handle_of(actor, "create_actuator: actor");
              args.scene = nb::cast<Actor&>(actor).scene;
-             args.params = robotics::resolve_params(params, "", "create_actuator('" + name + "'): params");
+             args.params = creation_params(params, "", "create_actuator('" + name + "'): params");
              return ActuatorHandle{c.ctx.create(ComponentKind::Actuator, type_name, args, name)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a = "")
-      .def("reset_components", [](PyContext& c) { c.ctx.reset_components(); }, "Calls reset() on every component.");
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+      .def("reset_components", [](PyContext& c) { c.ctx.reset_components(); },
+           "Calls reset() on every component and restarts the pipelines' timing.")
+      .def("get_sensor_signal", [](const PyContext& c, nb::handle h) {
+             return numpy_copy(c.ctx.sensor_signal(handle_of<ComponentKind::Sensor>(h, "get_sensor_signal")));
+           }, "handle"_a,
+           "The sensor's latest reading as a numpy array of the build's dtype (layout: the sensor type's\n"
+           "documentation). A Python sensor's signal() or compute_signal() is called.")
+      .def("set_pipeline_enabled", [](PyContext& c, const PyBot& b, nb::handle enabled) {
+             c.ctx.set_pipeline_mode(b.handle, pipeline_mode(enabled));
+           }, "bot"_a, "enabled"_a.none(), pipeline_doc)
+      .def("is_pipeline_active", [](const PyContext& c, const PyBot& b) { return c.ctx.is_pipeline_active(b.handle); }, "bot"_a);
 
   nb::class_<PyBot> bot_cls(m, "Bot", "A robot built by create_bot: its articulation and components.");
   bot_cls
@@ -221,33 +244,39 @@ void export_robotics(nb::module_& parent) {
       .def("get_name", [](const PyBot& b) { return b.ctx().bot(b.handle).prefab.name(); })
       .def("get_handle", [](const PyBot& b) { return b.handle; })
       .def("get_bot_prefab", [](const PyBot& b) { return b.ctx().bot(b.handle).prefab; }, "A copy of the prefab it was built from.")
-      .def("create_controller", [](PyBot& b, const std::string& type_name, const std::string& name) {
+      .def("create_controller", [](PyBot& b, const std::string& type_name, const std::string& name, nb::handle params) {
              Context& ctx = b.ctx();
              auto& rec = ctx.bot(b.handle);
-             ComponentArgs args{rec.scene, rec.articulation, "", &rec.prefab};
+             ComponentArgs args{rec.scene, rec.articulation,
+                                creation_params(params, rec.prefab.base_dir, "create_controller('" + name + "'): params"), &rec.prefab};
              const ComponentHandle h = ctx.create(ComponentKind::Controller, type_name, args, name, b.handle);
              ctx.bot(b.handle).controllers.push_back(h);
              return ControllerHandle{h};
-           }, "type_name"_a, "name"_a = "")
-      .def("create_sensor", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, const std::string& params) {
+           }, "type_name"_a, "name"_a = "", "params"_a.none() = "")
+      .def("create_sensor", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              Context& ctx = b.ctx();
              auto& rec = ctx.bot(b.handle);
              ComponentArgs args{rec.scene, actor_or_zero(actor, "create_sensor: actor"),
-                                robotics::resolve_params(params, rec.prefab.base_dir, "create_sensor('" + name + "'): params"), &rec.prefab};
+                                creation_params(params, rec.prefab.base_dir, "create_sensor('" + name + "'): params"), &rec.prefab};
              const ComponentHandle h = ctx.create(ComponentKind::Sensor, type_name, args, name, b.handle);
              ctx.bot(b.handle).sensors.push_back(h);
              return SensorHandle{h};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a = "")
-      .def("create_actuator", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, const std::string& params) {
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+      .def("create_actuator", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              Context& ctx = b.ctx();
              auto& rec = ctx.bot(b.handle);
              ComponentArgs args{rec.scene, actor_or_zero(actor, "create_actuator: actor"),
-                                robotics::resolve_params(params, rec.prefab.base_dir, "create_actuator('" + name + "'): params"), &rec.prefab};
+                                creation_params(params, rec.prefab.base_dir, "create_actuator('" + name + "'): params"), &rec.prefab};
              const ComponentHandle h = ctx.create(ComponentKind::Actuator, type_name, args, name, b.handle);
              ctx.bot(b.handle).actuators.push_back(h);
              return ActuatorHandle{h};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a = "")
-      .def("reset", [](PyBot& b) { b.ctx().reset_components(b.handle); }, "Calls reset() on the bot's components.")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+      .def("reset", [](PyBot& b) { b.ctx().reset_components(b.handle); },
+           "Calls reset() on the bot's components and restarts its pipeline's timing.")
+      .def("set_pipeline_enabled", [](PyBot& b, nb::handle enabled) { b.ctx().set_pipeline_mode(b.handle, pipeline_mode(enabled)); },
+           "enabled"_a.none(), pipeline_doc)
+      .def("is_pipeline_active", [](const PyBot& b) { return b.ctx().is_pipeline_active(b.handle); },
+           "True while the bot's pipeline runs inside its scene's steps.")
       .def("__repr__", [](const PyBot& b) { return "Bot(" + std::to_string(b.handle) + ")"; });
 
   def_kind<ComponentKind::Controller>(m, ctx_cls, bot_cls, "controller");

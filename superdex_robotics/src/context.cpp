@@ -4,6 +4,10 @@
 
 #include <filesystem>
 
+#include "bot_pipeline.h"
+#include "builtin_support.h"
+#include "superdex/robotics/builtin_components.h"
+
 #include "superdex/physics/error.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/handles.h"
@@ -35,19 +39,29 @@ std::string resolve_params(const std::string& params, const std::string& base_di
   return fs::absolute(p).lexically_normal().string();
 }
 
-void Context::register_type(ComponentKind kind, const std::string& type_name, ComponentFactory factory) {
+Context::Context(bool register_builtins) {
+  if (register_builtins) register_builtin_components(*this);
+}
+
+Context::~Context() {
+  // the scene may outlive the context: no callback may point into it afterwards
+  for (auto& [h, b] : bots_)
+    if (b.pipeline) stop_pipeline(b, true);
+}
+
+void Context::register_type(ComponentKind kind, const std::string& type_name, ComponentFactory factory,
+                            ArmatureContribution armature) {
   if (type_name.empty()) throw Error(std::string("register_") + component_kind_name(kind) + ": the type name must not be empty");
   if (!factory) throw Error(std::string("register_") + component_kind_name(kind) + ": no factory given for '" + type_name + "'");
-  factories_[index(kind)][type_name] = std::move(factory);
+  factories_[index(kind)][type_name] = ComponentType{std::move(factory), std::move(armature)};
 }
 
 bool Context::is_type_registered(ComponentKind kind, const std::string& type_name) const {
   return factories_[index(kind)].count(type_name) > 0;
 }
 
-ComponentHandle Context::create(ComponentKind kind, const std::string& type_name, const ComponentArgs& args,
-                                const std::string& name, BotHandle bot) {
-  const std::string what = std::string("create_") + component_kind_name(kind) + "('" + type_name + "', name '" + name + "')";
+std::unique_ptr<Component> Context::construct(ComponentKind kind, const std::string& type_name, const ComponentArgs& args,
+                                              const std::string& what) const {
   auto it = factories_[index(kind)].find(type_name);
   if (it == factories_[index(kind)].end())
     throw Error(what + ": no " + component_kind_name(kind) + " type '" + type_name + "' is registered");
@@ -56,15 +70,30 @@ ComponentHandle Context::create(ComponentKind kind, const std::string& type_name
     throw Error(what + ": actor " + std::to_string(args.actor) + " does not exist");
   std::unique_ptr<Component> impl;
   try {
-    impl = it->second(args);
+    impl = it->second.factory(args);
   } catch (const Error& e) {
     throw Error(what + ": " + e.what());
   } catch (const std::exception& e) {
     throw Error(what + ": the factory failed: " + e.what());
   }
   if (!impl) throw Error(what + ": the factory returned nothing");
+  return impl;
+}
+
+ComponentHandle Context::create(ComponentKind kind, const std::string& type_name, const ComponentArgs& args,
+                                const std::string& name, BotHandle bot) {
+  const std::string what = std::string("create_") + component_kind_name(kind) + "('" + type_name + "', name '" + name + "')";
+  // the bot whose pipeline will run it: its owner, or the bot its actor belongs to
+  const BotHandle attached = bot != 0 ? bot : bot_of_actor(args.scene, args.actor);
+  ComponentArgs with_prefab = args;
+  if (!with_prefab.prefab && attached != 0) with_prefab.prefab = &bots_.at(attached).prefab;
+  std::unique_ptr<Component> impl = construct(kind, type_name, with_prefab, what);
+  int dof = -1;
+  if (kind == ComponentKind::Actuator && impl->takes_part_in_pipeline()) dof = single_dof_of_link(args.scene, args.actor, what);
   const ComponentHandle h = physics::next_handle();
-  components_[index(kind)].emplace(h, ComponentRecord{kind, type_name, name, args.scene, args.actor, bot, std::move(impl)});
+  components_[index(kind)].emplace(
+      h, ComponentRecord{kind, type_name, name, args.scene, args.actor, bot, std::move(impl), attached, dof});
+  if (attached != 0) sync_pipeline(attached);
   return h;
 }
 
@@ -74,11 +103,16 @@ void Context::destroy(ComponentKind kind, ComponentHandle handle) {
   if (it == map.end())
     throw Error(std::string("destroy_") + component_kind_name(kind) + ": " + component_kind_name(kind) + " " +
                 std::to_string(handle) + " does not exist (destroyed, or not a " + component_kind_name(kind) + ")");
+  const BotHandle attached = it->second.attached_bot;
+  if (attached != 0 && bots_.count(attached) && bots_.at(attached).pipeline && bots_.at(attached).pipeline->running())
+    throw Error(std::string("destroy_") + component_kind_name(kind) + ": '" + it->second.name +
+                "' cannot be destroyed while its bot's pipeline is running (from inside scene.step)");
   if (it->second.bot != 0 && bots_.count(it->second.bot)) {
     BotRecord& b = bots_.at(it->second.bot);
     for (auto* list : {&b.controllers, &b.sensors, &b.actuators}) std::erase(*list, handle);
   }
   map.erase(it);
+  if (attached != 0 && bots_.count(attached)) sync_pipeline(attached);
 }
 
 const ComponentRecord& Context::component(ComponentKind kind, ComponentHandle handle) const {
@@ -104,10 +138,35 @@ std::vector<ComponentHandle> Context::find_by_type(ComponentKind kind, const std
   return out;
 }
 
+std::vector<ComponentHandle> Context::attached_components(ComponentKind kind, BotHandle bot) const {
+  std::vector<ComponentHandle> out;
+  for (const auto& [h, c] : components_[index(kind)])
+    if (c.attached_bot == bot) out.push_back(h);
+  return out;
+}
+
 void Context::reset_components(BotHandle bot) {
   for (auto& map : components_)
     for (auto& [h, c] : map)
-      if (bot == 0 || c.bot == bot) c.impl->reset();
+      if (bot == 0 || c.bot == bot || c.attached_bot == bot) c.impl->reset();
+  for (auto& [h, b] : bots_)
+    if ((bot == 0 || h == bot) && b.pipeline) b.pipeline->reset_timing();
+}
+
+void Context::configure(ComponentKind kind, ComponentHandle handle, const std::string& json_params) {
+  const ComponentRecord& rec = component(kind, handle);
+  try {
+    rec.impl->configure(json_params);
+  } catch (const Error& e) {
+    throw Error(std::string("configure_") + component_kind_name(kind) + "('" + rec.name + "', type " + rec.type + "): " + e.what());
+  }
+}
+
+VecX Context::sensor_signal(ComponentHandle sensor) const {
+  const ComponentRecord& rec = component(ComponentKind::Sensor, sensor);
+  const auto* s = dynamic_cast<const SensorComponent*>(rec.impl.get());
+  if (!s) throw Error("get_sensor_signal: sensor '" + rec.name + "' (type " + rec.type + ") provides no signal");
+  return s->signal();
 }
 
 BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<std::string>* warnings) {
@@ -118,7 +177,21 @@ BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<
   rec.handle = physics::next_handle();
   rec.scene = scene;
   rec.prefab = prefab;
-  rec.articulation = scene.create_articulated_actor(prefab.articulation, source);
+  // actuator types that model a rotor add its reflected inertia to their joint's armature
+  physics::ArticulationDesc desc = prefab.articulation;
+  for (size_t i = 0; i < prefab.actuators.size(); ++i)
+    for (size_t k = 0; k < prefab.actuators[i].size(); ++k) {
+      const ComponentDecl& d = prefab.actuators[i][k];
+      auto it = factories_[index(ComponentKind::Actuator)].find(d.type);
+      if (it == factories_[index(ComponentKind::Actuator)].end() || !it->second.armature) continue;
+      const std::string where = source + ": links[" + std::to_string(i) + "].actuators[" + std::to_string(k) + "]";
+      try {
+        desc.joints[i].armature += it->second.armature(resolve_params(d.params, prefab.base_dir, where + ".params"));
+      } catch (const Error& e) {
+        throw Error(where + " ('" + d.name + "', type " + d.type + "): " + e.what());
+      }
+    }
+  rec.articulation = scene.create_articulated_actor(desc, source);
   const std::vector<ActorHandle> links = scene.nested_link_actors(rec.articulation);
   const BotHandle handle = rec.handle;
   BotRecord& b = bots_.emplace(handle, std::move(rec)).first->second;
@@ -151,9 +224,17 @@ BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<
 void Context::destroy_bot(BotHandle handle) {
   auto it = bots_.find(handle);
   if (it == bots_.end()) throw Error("destroy_bot: bot " + std::to_string(handle) + " does not exist (already destroyed?)");
-  // components first (they may hold the actor), then the articulation
-  for (auto& map : components_) std::erase_if(map, [&](const auto& kv) { return kv.second.bot == handle; });
   BotRecord& b = it->second;
+  if (b.pipeline && b.pipeline->running())
+    throw Error("destroy_bot: bot " + std::to_string(handle) + " cannot be destroyed while its pipeline is running (from inside scene.step)");
+  // the pipeline first (its callbacks point at the components), then the components (they
+  // may hold the actor), then the articulation
+  if (b.pipeline) stop_pipeline(b, false);
+  for (auto& map : components_) {
+    std::erase_if(map, [&](const auto& kv) { return kv.second.bot == handle; });
+    for (auto& [h, c] : map)
+      if (c.attached_bot == handle) c.attached_bot = 0;
+  }
   if (physics::scene_exists(b.scene.handle()) && b.scene.has_actor(b.articulation)) b.scene.destroy_actor(b.articulation);
   bots_.erase(it);
 }
@@ -174,6 +255,57 @@ std::vector<BotHandle> Context::bots() const {
   std::vector<BotHandle> out;
   for (const auto& [h, b] : bots_) out.push_back(h);
   return out;
+}
+
+void Context::set_pipeline_mode(BotHandle handle, PipelineMode mode) {
+  BotRecord& b = bot(handle);
+  b.pipeline_mode = mode;
+  sync_pipeline(handle);
+}
+
+BotHandle Context::bot_of_actor(const Scene& scene, ActorHandle actor) const {
+  if (actor == 0 || !physics::scene_exists(scene.handle()) || !scene.has_actor(actor)) return 0;
+  const ActorHandle articulation =
+      scene.actor_type(actor) == physics::ActorType::Link ? scene.articulated_actor_of_link(actor) : actor;
+  for (const auto& [h, b] : bots_)
+    if (b.scene.handle() == scene.handle() && b.articulation == articulation) return h;
+  return 0;
+}
+
+void Context::sync_pipeline(BotHandle handle) {
+  BotRecord& b = bot(handle);
+  bool takes_part = false;
+  for (const auto& map : components_)
+    for (const auto& [h, c] : map) takes_part = takes_part || (c.attached_bot == handle && c.impl->takes_part_in_pipeline());
+  const bool want = b.pipeline_mode == PipelineMode::Enabled || (b.pipeline_mode == PipelineMode::Automatic && takes_part);
+  if (want && !b.pipeline) {
+    if (!physics::scene_exists(b.scene.handle())) return;
+    // the callbacks share the pipeline, so that one being run never outlives it
+    auto p = std::make_shared<BotPipeline>(*this, handle, b.scene, b.articulation);
+    b.scene.register_pre_step_callback(p->pre_name(), [p](Scene&, real dt) { p->pre_step(dt); }, 1000);
+    b.scene.register_post_step_callback(p->post_name(), [p](Scene&, real dt) { p->post_step(dt); }, -1000);
+    b.pipeline = std::move(p);
+  } else if (!want && b.pipeline) {
+    stop_pipeline(b, true);
+  } else if (b.pipeline) {
+    b.pipeline->invalidate();
+  }
+}
+
+void Context::stop_pipeline(BotRecord& b, bool clear_forces) {
+  std::shared_ptr<BotPipeline> p = std::move(b.pipeline);
+  b.pipeline = nullptr;
+  p->detach();
+  if (!physics::scene_exists(b.scene.handle())) return;
+  for (const std::string& name : {p->pre_name(), p->post_name()}) {
+    try {
+      b.scene.cancel_callback(name);
+    } catch (const Error&) {
+      // already cancelled by name from outside
+    }
+  }
+  // the forces it applied stop with it
+  if (clear_forces && p->wrote_forces() && b.scene.has_actor(b.articulation)) b.scene.clear_external_forces(b.articulation);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -95,7 +95,7 @@ def test_components_declared_in_the_bot_file(scene):
     assert sensor.resets == 2
 
     # the default pose was applied
-    np.testing.assert_allclose(arm.get_articulated_pose(), [-1.608, 2.018], atol=1e-5)
+    np.testing.assert_allclose(arm.get_articulated_pose(), [0.411, -2.018], atol=1e-5)
 
 
 def test_params_from_a_file_relative_to_the_bot(scene, tmp_path):
@@ -193,12 +193,33 @@ def test_prefab_is_editable_before_create_bot(scene):
     assert [j.name for j in prefab.joints] == ["base_weld", "shoulder", "elbow", "ball_weld"]
     prefab.links[3].mass = 0.5
     prefab.joints[1].viscous_friction = 0.2
-    prefab.default_pose = [-1.2, 1.5]
+    prefab.default_pose = [0.3, -1.5]
     prefab.world_from_root = sdp.TransformRT(translation=[1.0, 0.0, 0.0])
     prefab.name = "edited"
     bot = sdr.create_bot(scene, prefab, ctx)
     arm = bot.get_articulated_actor()
     assert bot.get_name() == "edited"
     assert scene.get_actor(arm.get_nested_link_actors()[3]).get_mass() == pytest.approx(0.5)
-    np.testing.assert_allclose(arm.get_articulated_pose(), [-1.2, 1.5], atol=1e-5)
+    np.testing.assert_allclose(arm.get_articulated_pose(), [0.3, -1.5], atol=1e-5)
     np.testing.assert_allclose(np.array(arm.get_root_transform().translation), [1, 0, 0], atol=1e-6)
+
+
+@pytest.mark.parametrize("pose", [[0.411, -2.018], [0.678, -1.814], [0.239, -1.229], [0.059, -1.427]])
+def test_example_bot_has_no_self_contact_on_its_path(scene, pose):
+    """At its default pose and at poses along the seed's circle (elbow up, computed by inverse
+    kinematics in the asset's README), no link of the example bot touches another: with gravity
+    off and no actuation it stays still."""
+    scene.set_gravity([0, 0, 0])
+    ctx = sdr.create_context()
+    prefab = sdr.load_bot_prefab_from_file(str(resolve_asset(EXAMPLE_BOT)))
+    prefab.default_pose = pose
+    with pytest.warns(UserWarning):  # its custom component types are not registered here
+        bot = sdr.create_bot(scene, prefab, ctx)
+    arm = bot.get_articulated_actor()
+    links = [scene.get_actor(h) for h in arm.get_nested_link_actors()]
+    for link in links:
+        link.register_query(sdp.QueryType.CONTACT_POINTS)
+    for _ in range(10):
+        scene.step(0.004)
+    assert all(link.get_contact_points_world() == [] for link in links)
+    np.testing.assert_allclose(arm.get_articulated_joint_velocities(), 0, atol=1e-9)

@@ -1,0 +1,89 @@
+// BASIC_JSC_PD: joint-space PD control writing per-DOF efforts.
+//
+//   e_i   = q*_i - q_i, set to 0 where |e_i| < deadband_i
+//   tau_i = kp_i e_i + kd_i (v*_i - v_i) [+ c_i(q, v) with gravity_compensation]
+//   |tau_i| <= saturation_i when saturation_i >= 0
+//
+// Params (joint DOFs: bot DOF order without the root joint's DOFs; a number is broadcast)
+//   "kp"                    N m/rad (N/m)        default 100
+//   "kd"                    N m s/rad (N s/m)    default 10
+//   "saturation"            N m (N), < 0: none   default -1
+//   "deadband"              rad (m)              default 0
+//   "target_pose"           rad (m)              default: the pose at creation
+//   "target_velocity"       rad/s (m/s)          default 0
+//   "gravity_compensation"  bool                 default false; adds the bias forces c(q, v)
+//                                                (gravity, Coriolis, centrifugal)
+// The efforts are applied explicitly (computed before the step): choose gains for the robot,
+// stable while kd dt / I_min < 2 and kp dt^2 / I_min << 1, with I_min the smallest eigenvalue
+// of the mass matrix (armature included). For stiffer tracking use ARTICULATED_POSE.
+
+#include <algorithm>
+#include <cmath>
+
+#include "builtin_support.h"
+#include "builtins.h"
+
+namespace superdex::robotics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+class JointPdController final : public ControllerComponent {
+ public:
+  explicit JointPdController(const ComponentArgs& args)
+      : scene_(args.scene), articulation_(articulation_of(args.scene, args.actor, "BASIC_JSC_PD")) {
+    root_ = root_dofs(scene_, articulation_);
+    const int n = scene_.num_dofs(articulation_) - root_;
+    kp_ = VecX::Constant(n, 100);
+    kd_ = VecX::Constant(n, 10);
+    saturation_ = VecX::Constant(n, -1);
+    deadband_ = VecX::Zero(n);
+    target_pose_ = scene_.pose(articulation_).tail(n);
+    target_velocity_ = VecX::Zero(n);
+    configure(args.params);
+  }
+
+  void reset() override {}
+
+  void configure(const std::string& json) override {
+    ComponentParams p(json, "BASIC_JSC_PD");
+    p.allow_only({"kp", "kd", "saturation", "deadband", "target_pose", "target_velocity", "gravity_compensation"});
+    p.apply_rate(*this);
+    const int n = static_cast<int>(kp_.size());
+    kp_ = p.vector("kp", n, kp_);
+    kd_ = p.vector("kd", n, kd_);
+    saturation_ = p.vector("saturation", n, saturation_);
+    deadband_ = p.vector("deadband", n, deadband_);
+    target_pose_ = p.vector("target_pose", n, target_pose_);
+    target_velocity_ = p.vector("target_velocity", n, target_velocity_);
+    gravity_compensation_ = p.flag("gravity_compensation", gravity_compensation_);
+  }
+
+  void compute(const Tick&, DofCommands& out) override {
+    const VecX q = scene_.pose(articulation_);
+    const VecX v = scene_.joint_velocities(articulation_);
+    const VecX c = gravity_compensation_ ? scene_.bias_forces(articulation_) : VecX::Zero(q.size());
+    for (int i = 0; i < kp_.size(); ++i) {
+      const int d = root_ + i;
+      real e = target_pose_[i] - q[d];
+      if (std::abs(e) < deadband_[i]) e = 0;
+      real tau = kp_[i] * e + kd_[i] * (target_velocity_[i] - v[d]) + c[d];
+      if (saturation_[i] >= 0) tau = std::clamp(tau, -saturation_[i], saturation_[i]);
+      out.set_effort(d, tau);
+    }
+  }
+
+ private:
+  Scene scene_;
+  ActorHandle articulation_;
+  int root_ = 0;
+  VecX kp_, kd_, saturation_, deadband_, target_pose_, target_velocity_;
+  bool gravity_compensation_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_joint_pd_controller(const ComponentArgs& args) { return std::make_unique<JointPdController>(args); }
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::robotics
