@@ -145,6 +145,16 @@ void export_actor(nb::module_& m) {
       .def("compute_articulated_forward_dynamics", [](const Actor& a, nb::handle tau) {
              return numpy_copy(a.scene.forward_dynamics(a.handle, read_vector(tau, "compute_articulated_forward_dynamics: tau")));
            }, "tau"_a, "Joint accelerations M^-1 (tau - c) of the unconstrained articulation.")
+      .def("set_joint_drive", [](Actor& a, int dof, real stiffness, real damping, real target_position, real target_velocity,
+                                 real max_effort) {
+             a.scene.set_joint_drive(a.handle, dof, JointDrive{stiffness, damping, target_position, target_velocity, max_effort});
+           }, "dof"_a, "stiffness"_a = 0, "damping"_a = 0, "target_position"_a = 0, "target_velocity"_a = 0, "max_effort"_a = -1,
+           "An implicit spring-damper on a revolute or prismatic DOF, solved inside the step (stable for any\n"
+           "stiffness): effort = stiffness (target_position - q) + damping (target_velocity - v) at the end of the\n"
+           "step, clamped to max_effort when >= 0. Stiffness and damping 0 turn it off.")
+      .def("clear_joint_drives", [](Actor& a) { a.scene.clear_joint_drives(a.handle); })
+      .def("get_joint_drive_efforts", [](const Actor& a) { return numpy_copy(a.scene.joint_drive_efforts(a.handle)); },
+           "Efforts (N m or N) the joint drives applied in the last step, per DOF.")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)

@@ -359,6 +359,7 @@ ArticulationState initial_state(const ArticulationModel& model) {
   s.q = VecX::Zero(model.nq);
   s.v = VecX::Zero(model.nv);
   s.tau_external = VecX::Zero(model.nv);
+  s.drives.assign(model.nv, JointDrive{});
   Transform X_WR = model.desc.world_from_root;
   X_WR.rotation.normalize();
   s.X_W_base = SpatialTransform::from(X_WR);

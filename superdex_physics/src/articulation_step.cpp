@@ -26,7 +26,7 @@ std::vector<JointRow> joint_rows(const ArticulationModel& model, const Articulat
   for (const JointModel& j : model.joints) {
     if (j.nv != 1) continue;
     const bool limited = j.has_lower || j.has_upper;
-    if (!limited && j.coulomb <= 0) continue;
+    if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
     const int k = j.v_offset;
     VecX e = VecX::Zero(model.nv);
     e[k] = 1;
@@ -51,9 +51,21 @@ std::vector<JointRow> joint_rows(const ArticulationModel& model, const Articulat
         rows.push_back({k, -1, b});
       }
     }
+    // joint drive: impulse dt (K (q* - q - dt vc) + D (v* - vc)) = (vhat - vc) / R, clamped to dt max_effort
+    const JointDrive& d = state.drives[k];
+    if (d.active()) {
+      ConstraintBlock b;
+      b.kind = BlockKind::Bounded;
+      const real per_velocity = dt * d.stiffness + d.damping;  // effort per unit of next velocity
+      // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
+      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w);
+      b.vhat = (d.stiffness * (d.target_position - q) + d.damping * d.target_velocity) / per_velocity;
+      b.bound = d.max_effort >= 0 ? dt * d.max_effort : std::numeric_limits<real>::infinity();
+      rows.push_back({k, 1, b, true});
+    }
     if (j.coulomb > 0) {
       ConstraintBlock b;
-      b.kind = BlockKind::BoundedFriction;
+      b.kind = BlockKind::Bounded;
       b.R = params.friction_sigma * w;
       b.bound = dt * j.coulomb;
       rows.push_back({k, 1, b});

@@ -14,6 +14,7 @@ struct JointRow {
   int dof = 0;
   real sign = 1;
   ConstraintBlock block;
+  bool drive = false;  // a joint drive: its impulse is reported as the drive's effort
 };
 
 struct ArticulationTerms {

@@ -147,6 +147,16 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   out.converged = sol.converged;
   for (int i = 0; i < joint_rows; ++i) out.active_rows += sol.gamma[i] != 0;
   for (int b : island.bodies) out.v.push_back(sol.v.segment(offset[b], s.articulations[b]->model.nv));
+  // joint drive impulses back to efforts, per body
+  int jr = 0;
+  for (int b : island.bodies) {
+    VecX efforts = VecX::Zero(s.articulations[b]->model.nv);
+    for (const JointRow& row : terms[b].joint_rows) {
+      if (row.drive) efforts[row.dof] += row.sign * sol.gamma[jr] / dt;
+      ++jr;
+    }
+    out.drive_efforts.push_back(std::move(efforts));
+  }
   for (size_t k = 0; k < island.contacts.size(); ++k)
     out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -11,6 +11,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 struct IslandSolution {
   std::vector<VecX> v;              // next velocities, per island body
+  std::vector<VecX> drive_efforts;  // joint drive efforts (N m or N), per island body
   std::vector<Vec3> contact_force;  // per island contact: force on body a (N), world
   int iterations = 0;
   real residual = 0;

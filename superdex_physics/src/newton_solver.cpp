@@ -17,8 +17,8 @@ void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real*
       G[0] = y > 0 ? 1 / b.R : 0;
       return;
     }
-    case BlockKind::BoundedFriction: {
-      const real y = -vc[0] / b.R;
+    case BlockKind::Bounded: {
+      const real y = (b.vhat - vc[0]) / b.R;
       gamma[0] = std::clamp(y, -b.bound, b.bound);
       G[0] = std::abs(y) < b.bound ? 1 / b.R : 0;
       return;

@@ -22,8 +22,9 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 enum class BlockKind : unsigned char {
   // 1 row: gamma = max(0, (vhat - vc) / R); a compliant one-sided constraint (joint limits)
   Unilateral,
-  // 1 row: gamma = -clamp(vc / R, -bound, bound); regularised Coulomb friction (joint friction)
-  BoundedFriction,
+  // 1 row: gamma = clamp((vhat - vc) / R, -bound, bound): regularised Coulomb joint friction
+  // (vhat = 0) and saturating joint drives (an implicit spring-damper towards vhat)
+  Bounded,
   // 3 rows (t1, t2, n): gamma = projection of y = -R^-1 (vc - vhat) onto the friction cone
   // |gamma_t| <= mu gamma_n in the R-norm, R = diag(Rt, Rt, Rn), vhat = (0, 0, vhat_n)
   FrictionalContact,
@@ -38,8 +39,8 @@ struct ConstraintBlock {
   int row = 0;      // first row in J
   real R = 0;       // regularisation (velocity per impulse); tangential for contacts
   real Rn = 0;      // normal regularisation of contacts
-  real vhat = 0;    // target velocity: unilateral rows, contact normals
-  real bound = 0;   // impulse bound of friction rows and fixed-friction contacts; mu of cone contacts
+  real vhat = 0;    // target velocity: unilateral and bounded rows, contact normals
+  real bound = 0;   // impulse bound of bounded rows and fixed-friction contacts; mu of cone contacts
 
   int size() const { return kind == BlockKind::FrictionalContact || kind == BlockKind::ContactFixedFriction ? 3 : 1; }
 };

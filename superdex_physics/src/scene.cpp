@@ -200,6 +200,7 @@ void Scene::step_dynamics(real dt) {
     for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
       const int b = islands[k].bodies[j];
       v_next[b] = solutions[k].v[j];
+      s.articulations[b]->drive_efforts = solutions[k].drive_efforts[j];
       q_next[b] = s.articulations[b]->state.q;
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
     }

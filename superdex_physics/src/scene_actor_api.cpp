@@ -225,6 +225,33 @@ void Scene::set_joint_velocities(ActorHandle h, const VecX& v) {
   refresh_kinematics(a);
 }
 
+void Scene::set_joint_drive(ActorHandle h, int dof, const JointDrive& d) {
+  const char* what = "set_joint_drive";
+  Articulation& a = whole(scene_data(handle_), h, what);
+  if (dof < 0 || dof >= a.model.nv)
+    throw Error(std::string(what) + ": dof " + std::to_string(dof) + " is out of range: the actor has " + std::to_string(a.model.nv) + " DOFs");
+  const JointModel* joint = nullptr;
+  for (const JointModel& j : a.model.joints)
+    if (dof >= j.v_offset && dof < j.v_offset + j.nv) joint = &j;
+  if (joint->type != JointType::Revolute && joint->type != JointType::Prismatic)
+    throw Error(std::string(what) + ": dof " + std::to_string(dof) + " belongs to a " + joint_type_name(joint->type) +
+                " joint; drives act on revolute and prismatic joints");
+  for (real x : {d.stiffness, d.damping, d.target_position, d.target_velocity, d.max_effort})
+    if (!std::isfinite(x)) throw Error(std::string(what) + ": the drive's values must be finite");
+  if (d.stiffness < 0 || d.damping < 0) throw Error(std::string(what) + ": stiffness and damping must be >= 0");
+  a.state.drives[dof] = d;
+}
+
+void Scene::clear_joint_drives(ActorHandle h) {
+  Articulation& a = whole(scene_data(handle_), h, "clear_joint_drives");
+  a.state.drives.assign(a.model.nv, JointDrive{});
+}
+
+VecX Scene::joint_drive_efforts(ActorHandle h) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_joint_drive_efforts");
+  return a.drive_efforts.size() == a.model.nv ? a.drive_efforts : VecX::Zero(a.model.nv);
+}
+
 MatXR Scene::link_jacobian(ActorHandle h) const {
   auto [a, link] = link_of(scene_data(handle_), h, "get_articulated_jacobian");
   MatXR J;

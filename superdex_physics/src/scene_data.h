@@ -27,6 +27,7 @@ struct Articulation {
   ArticulationModel model;
   ArticulationState state;
   ArticulationKinematics kin;  // always current with `state`
+  VecX drive_efforts;          // results of the last step: joint drive efforts per DOF
   std::vector<ActorHandle> link_handles;
 };
 

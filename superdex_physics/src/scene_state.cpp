@@ -2,7 +2,8 @@
 //
 // Layout (little-endian, this machine's representation): "SDXS", u32 version, u8 sizeof(real),
 // i64 step count, f64 time, u32 body count; per body: i64 handle, u32 nq, u32 nv, then nq + 2 nv
-// + 12 reals (q, v, external forces, base rotation row-major and translation).
+// + 12 reals (q, v, external forces, base rotation row-major and translation), then 5 nv reals of
+// joint drives (stiffness, damping, target position, target velocity, max effort per DOF).
 
 #include <cstring>
 
@@ -17,7 +18,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 class Writer {
  public:
@@ -76,6 +77,10 @@ std::vector<std::uint8_t> Scene::capture_state() const {
     const Eigen::Matrix<real, 3, 3, Eigen::RowMajor> R = a->state.X_W_base.R;
     w.put_reals(R.data(), 9);
     w.put_reals(a->state.X_W_base.p.data(), 3);
+    for (const JointDrive& d : a->state.drives) {
+      const real x[5] = {d.stiffness, d.damping, d.target_position, d.target_velocity, d.max_effort};
+      w.put_reals(x, 5);
+    }
   }
   return std::move(w.bytes);
 }
@@ -118,6 +123,12 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
     r.get_reals(R.data(), 9, "base pose");
     st.X_W_base.R = R;
     r.get_reals(st.X_W_base.p.data(), 3, "base pose");
+    st.drives.resize(nv);
+    for (JointDrive& d : st.drives) {
+      real x[5];
+      r.get_reals(x, 5, "joint drives");
+      d = {x[0], x[1], x[2], x[3], x[4]};
+    }
     if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");
   }

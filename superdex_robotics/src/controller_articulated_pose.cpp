@@ -1,32 +1,26 @@
-// ARTICULATED_POSE: stiff joint pose tracking, implicit in the step's dt.
+// ARTICULATED_POSE: stiff joint pose tracking solved inside the physics step.
 //
-// An explicit PD with a large stiffness K is unstable once dt sqrt(K / M) is of order one.
-// This controller instead picks the effort that makes the next step's velocity v+ satisfy
-// the PD law evaluated at the END of the step (backward Euler), given the engine's
-// semi-implicit integration v+ = v + dt M^-1 (tau - c), q+ = q + dt v+:
-//   M (v+ - v) / dt = K (q* - q - dt v+) + D (v* - v+)
-//   =>  (M + dt D + dt^2 K) a = K (q* - q - dt v) + D (v* - v),   a = (v+ - v) / dt
-//       tau = M a [+ c(q, v) with compensate_bias]
-// It is computed before each step from the mass matrix M (with armature) and the bias forces
-// c, so the unconstrained articulation follows the implicit PD exactly and stays stable for any
-// stiffness; joint damping, limits and contacts act on top (they are not in this estimate).
-// The fully implicit version, with the PD rows inside the physics solve (so that contacts see
-// them too), and link (Cartesian) pose targets are left for later.
-// Run it every step (rate 0): a held effort is no longer implicit.
-// For a floating base the root DOFs get no effort (K = D = 0 there); the estimate then ignores
-// the base reaction and is approximate.
+// Each controlled joint DOF gets an engine joint drive (Scene::set_joint_drive): the effort
+// K (q* - q+) + D (v* - v+) evaluated at the END of the step, inside the step's implicit solve,
+// so any stiffness is stable and contacts, limits and damping are solved together with it
+// (an explicit PD with a large K is unstable once dt sqrt(K / M) is of order one). The
+// controller sets the drives' targets each time it runs and removes them when it is destroyed.
+// With compensate_bias, the bias forces c(q, v) (gravity, Coriolis) are added as an effort
+// command (explicit feed-forward), so the drive only corrects the pose error.
+// Link (Cartesian) pose targets are left for later.
+// Drives act on revolute and prismatic joints; a floating base's DOFs are not driven.
 //
 // Params (joint DOFs: bot DOF order without the root joint's DOFs; a number is broadcast)
 //   "stiffness"        N m/rad (N/m)       default 1000
 //   "damping"          N m s/rad (N s/m)   default 50
-//   "saturation"       N m (N), < 0: none  default -1
+//   "saturation"       N m (N), < 0: none  default -1 (clamps the drive's effort)
 //   "target_pose"      rad (m)             default: the pose at creation
 //   "target_velocity"  rad/s (m/s)         default 0
 //   "compensate_bias"  bool                default true (gravity, Coriolis, centrifugal)
 
 #include <algorithm>
 
-#include <Eigen/Cholesky>
+#include "superdex/physics/engine.h"
 
 #include "builtin_support.h"
 #include "builtins.h"
@@ -34,7 +28,6 @@
 namespace superdex::robotics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-using physics::MatX;
 
 namespace {
 
@@ -50,6 +43,12 @@ class ArticulatedPoseController final : public ControllerComponent {
     target_pose_ = scene_.pose(articulation_).tail(n);
     target_velocity_ = VecX::Zero(n);
     configure(args.params);
+    // refuse joints a drive cannot act on now, not in the middle of a step
+    try {
+      for (int i = 0; i < n; ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
+    } catch (const Error& e) {
+      throw Error(std::string("ARTICULATED_POSE: ") + e.what());
+    }
   }
 
   void reset() override {}
@@ -69,29 +68,25 @@ class ArticulatedPoseController final : public ControllerComponent {
       throw Error("ARTICULATED_POSE: stiffness and damping must be >= 0");
   }
 
-  void compute(const Tick& tick, DofCommands& out) override {
-    const real h = tick.step_dt;
-    const VecX q = scene_.pose(articulation_);
-    const VecX v = scene_.joint_velocities(articulation_);
-    const int nv = static_cast<int>(v.size());
-    const MatX M = scene_.mass_matrix(articulation_);
-    // (M + h D + h^2 K) a = K (q* - q - h v) + D (v* - v) on the joint DOFs
-    MatX A = M;
-    VecX rhs = VecX::Zero(nv);
-    for (int i = 0; i < stiffness_.size(); ++i) {
-      const int d = root_ + i;
-      const real K = stiffness_[i], D = damping_[i];
-      A(d, d) += h * D + h * h * K;
-      rhs[d] = K * (target_pose_[i] - q[d] - h * v[d]) + D * (target_velocity_[i] - v[d]);
+  ~ArticulatedPoseController() override {
+    // the drives belong to this controller: remove them if the articulation is still there
+    try {
+      if (physics::scene_exists(scene_.handle()) && scene_.has_actor(articulation_)) {
+        for (int i = 0; i < stiffness_.size(); ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
+      }
+    } catch (const Error&) {
     }
-    const VecX a = A.ldlt().solve(rhs);
-    VecX tau = M * a;
-    if (compensate_bias_) tau += scene_.bias_forces(articulation_);
+  }
+
+  void compute(const Tick& tick, DofCommands& out) override {
     for (int i = 0; i < stiffness_.size(); ++i) {
       const int d = root_ + i;
-      real t = tau[d];
-      if (saturation_[i] >= 0) t = std::clamp(t, -saturation_[i], saturation_[i]);
-      out.set_effort(d, t);
+      scene_.set_joint_drive(articulation_, d,
+                             physics::JointDrive{stiffness_[i], damping_[i], target_pose_[i], target_velocity_[i], saturation_[i]});
+    }
+    if (compensate_bias_) {
+      const VecX c = scene_.bias_forces(articulation_);
+      for (int i = 0; i < stiffness_.size(); ++i) out.set_effort(root_ + i, c[root_ + i]);
     }
   }
 

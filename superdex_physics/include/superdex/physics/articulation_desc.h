@@ -31,6 +31,18 @@ const char* joint_type_name(JointType type);
 /// Generalized velocity size of a joint type.
 int joint_num_dofs(JointType type);
 
+/// An implicit spring-damper on one DOF, solved inside the step: effort
+/// tau = stiffness (target_position - q+) + damping (target_velocity - v+) at the END of the step
+/// (so any stiffness is stable), clamped to |tau| <= max_effort when max_effort >= 0.
+struct JointDrive {
+  real stiffness = 0;        ///< N m/rad (N/m)
+  real damping = 0;          ///< N m s/rad (N s/m)
+  real target_position = 0;  ///< rad (m)
+  real target_velocity = 0;  ///< rad/s (m/s)
+  real max_effort = -1;      ///< N m (N); < 0: unbounded
+  bool active() const { return stiffness > 0 || damping > 0; }
+};
+
 /// One joint: connects link i to its parent link (or the world for the root).
 struct JointDesc {
   std::string name;

@@ -174,6 +174,12 @@ class Scene {
   /// vdot = M^-1 (tau - c): forward dynamics of the unconstrained articulation.
   VecX forward_dynamics(ActorHandle articulation, const VecX& tau) const;
 
+  /// Sets the drive of one DOF of a revolute or prismatic joint (stiffness and damping 0 turn it off).
+  void set_joint_drive(ActorHandle articulation, int dof, const JointDrive& drive);
+  void clear_joint_drives(ActorHandle articulation);
+  /// The drive efforts (N m or N) the last step applied, per DOF (zero where no drive).
+  VecX joint_drive_efforts(ActorHandle articulation) const;
+
   /// Registers a query on an actor; returns its handle. Results are valid after the next step.
   std::int64_t register_query(ActorHandle actor, QueryType type);
   void cancel_query(ActorHandle actor, std::int64_t query);
