@@ -152,7 +152,24 @@ void export_actor(nb::module_& m) {
            "An implicit spring-damper on a revolute or prismatic DOF, solved inside the step (stable for any\n"
            "stiffness): effort = stiffness (target_position - q) + damping (target_velocity - v) at the end of the\n"
            "step, clamped to max_effort when >= 0. Stiffness and damping 0 turn it off.")
-      .def("clear_joint_drives", [](Actor& a) { a.scene.clear_joint_drives(a.handle); })
+      .def("clear_joint_drives", [](Actor& a) { a.scene.clear_joint_drives(a.handle); },
+           "Removes every joint and link drive of the articulation.")
+      .def("set_link_drive", [](Actor& a, nb::handle target, real linear_stiffness, real linear_damping, real angular_stiffness,
+                                real angular_damping, nb::handle target_linear_velocity, nb::handle target_angular_velocity,
+                                real max_force, real max_torque) {
+             LinkDrive d;
+             d.target = read_transform(target, "set_link_drive: target");
+             d.linear_stiffness = linear_stiffness, d.linear_damping = linear_damping;
+             d.angular_stiffness = angular_stiffness, d.angular_damping = angular_damping;
+             if (!target_linear_velocity.is_none()) d.target_linear_velocity = read_vec3(target_linear_velocity, "set_link_drive: target_linear_velocity");
+             if (!target_angular_velocity.is_none()) d.target_angular_velocity = read_vec3(target_angular_velocity, "set_link_drive: target_angular_velocity");
+             d.max_force = max_force, d.max_torque = max_torque;
+             a.scene.set_link_drive(a.handle, d);
+           }, "target"_a, "linear_stiffness"_a = 0, "linear_damping"_a = 0, "angular_stiffness"_a = 0, "angular_damping"_a = 0,
+           "target_linear_velocity"_a.none() = nb::none(), "target_angular_velocity"_a.none() = nb::none(), "max_force"_a = -1,
+           "max_torque"_a = -1,
+           "Called on a LINK actor: an implicit spring-damper towards a world pose (TransformRT), solved inside\n"
+           "the step; per-axis limits when >= 0; all gains 0 remove it.")
       .def("get_joint_drive_efforts", [](const Actor& a) { return numpy_copy(a.scene.joint_drive_efforts(a.handle)); },
            "Efforts (N m or N) the joint drives applied in the last step, per DOF.")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,

@@ -360,6 +360,7 @@ ArticulationState initial_state(const ArticulationModel& model) {
   s.v = VecX::Zero(model.nv);
   s.tau_external = VecX::Zero(model.nv);
   s.drives.assign(model.nv, JointDrive{});
+  s.link_drives.assign(model.num_links, LinkDrive{});
   Transform X_WR = model.desc.world_from_root;
   X_WR.rotation.normalize();
   s.X_W_base = SpatialTransform::from(X_WR);

@@ -59,7 +59,8 @@ struct ArticulationModel {
 
 // Evolving state: what capture_state copies.
 struct ArticulationState {
-  std::vector<JointDrive> drives;  // per DOF (nv); inactive when stiffness and damping are 0
+  std::vector<JointDrive> drives;      // per DOF (nv); inactive when stiffness and damping are 0
+  std::vector<LinkDrive> link_drives;  // per link; inactive when all gains are 0
   VecX q;                          // generalized positions (nq)
   VecX v;                          // generalized velocities (nv)
   VecX tau_external;               // user generalized forces held until replaced (nv)

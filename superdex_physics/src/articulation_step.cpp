@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "dynamics.h"
+#include "kinematics.h"
 #include "spatial.h"
 
 namespace superdex::physics {
@@ -95,6 +96,42 @@ void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState
   r.segment<3>(3) += I * (w2 - w1) + dt * w1.cross(I * w1);
 }
 
+// Link drive rows: per world axis, a bounded implicit spring-damper on the link origin's velocity
+// (linear) or the link's angular velocity (angular), with the link Jacobian's rows.
+void link_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
+                     const Eigen::LLT<MatX>& A_llt, real dt, const SolverParams& params, std::vector<JointRow>& rows) {
+  const real near_rigid = near_rigid_factor(params);
+  for (int link = 0; link < model.num_links; ++link) {
+    const LinkDrive& d = state.link_drives[link];
+    if (!d.active()) continue;
+    MatXR J;
+    link_jacobian_world(model, kin, link, J);
+    const SpatialTransform& X = kin.X_WL[link];
+    const Vec3 position_error = d.target.translation - X.p;
+    const Vec3 rotation_error = quat_log(d.target.rotation * Quat(X.R).conjugate());
+    for (int part = 0; part < 2; ++part) {
+      const real K = part == 0 ? d.linear_stiffness : d.angular_stiffness;
+      const real D = part == 0 ? d.linear_damping : d.angular_damping;
+      if (K <= 0 && D <= 0) continue;
+      const Vec3& error = part == 0 ? position_error : rotation_error;
+      const Vec3& target_velocity = part == 0 ? d.target_linear_velocity : d.target_angular_velocity;
+      const real limit = part == 0 ? d.max_force : d.max_torque;
+      for (int axis = 0; axis < 3; ++axis) {
+        JointRow row;
+        row.J = J.row(3 * part + axis).transpose();
+        if (row.J.squaredNorm() < real(1e-20)) continue;  // the articulation cannot move along it
+        const real w = row.J.dot(A_llt.solve(row.J));
+        const real per_velocity = dt * K + D;
+        row.block.kind = BlockKind::Bounded;
+        row.block.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w);
+        row.block.vhat = (K * error[axis] + D * target_velocity[axis]) / per_velocity;
+        row.block.bound = limit >= 0 ? dt * limit : std::numeric_limits<real>::infinity();
+        rows.push_back(std::move(row));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
@@ -112,6 +149,7 @@ ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, rea
   implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
   t.joint_rows = joint_rows(model, a.state, t.A_llt, dt, params);
+  link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return t;
 }

@@ -10,11 +10,14 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 // A one-row block acting on a single DOF with Jacobian entry `sign`.
+// A one-row block of an articulation: on a single DOF with Jacobian entry `sign`, or with a full
+// Jacobian row `J` (nv) when J is not empty (link drives).
 struct JointRow {
   int dof = 0;
   real sign = 1;
   ConstraintBlock block;
   bool drive = false;  // a joint drive: its impulse is reported as the drive's effort
+  VecX J;              // full row, for rows that involve several DOFs
 };
 
 struct ArticulationTerms {

@@ -52,7 +52,8 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   int row = 0;
   for (int b : island.bodies)
     for (const JointRow& jr : terms[b].joint_rows) {
-      rows.J(row, offset[b] + jr.dof) = jr.sign;
+      if (jr.J.size() > 0) rows.J.row(row).segment(offset[b], jr.J.size()) = jr.J.transpose();
+      else rows.J(row, offset[b] + jr.dof) = jr.sign;
       ConstraintBlock blk = jr.block;
       blk.row = row++;
       rows.blocks.push_back(blk);

@@ -245,6 +245,22 @@ void Scene::set_joint_drive(ActorHandle h, int dof, const JointDrive& d) {
 void Scene::clear_joint_drives(ActorHandle h) {
   Articulation& a = whole(scene_data(handle_), h, "clear_joint_drives");
   a.state.drives.assign(a.model.nv, JointDrive{});
+  a.state.link_drives.assign(a.model.num_links, LinkDrive{});
+}
+
+void Scene::set_link_drive(ActorHandle h, const LinkDrive& d) {
+  const char* what = "set_link_drive";
+  auto [a, link] = link_of(scene_data(handle_), h, what);
+  if (a->model.nv == 0) throw Error(std::string(what) + ": " + describe(h) + " cannot move (it has no DOFs)");
+  for (real x : {d.linear_stiffness, d.linear_damping, d.angular_stiffness, d.angular_damping})
+    if (!std::isfinite(x) || x < 0) throw Error(std::string(what) + ": stiffness and damping must be finite and >= 0");
+  if (!std::isfinite(d.max_force) || !std::isfinite(d.max_torque)) throw Error(std::string(what) + ": limits must be finite");
+  if (!d.target.translation.allFinite() || !d.target.rotation.coeffs().allFinite() || d.target.rotation.norm() < real(1e-6) ||
+      !d.target_linear_velocity.allFinite() || !d.target_angular_velocity.allFinite())
+    throw Error(std::string(what) + ": the target must be finite with a non-zero quaternion");
+  LinkDrive drive = d;
+  drive.target.rotation.normalize();
+  a->state.link_drives[link] = drive;
 }
 
 VecX Scene::joint_drive_efforts(ActorHandle h) const {

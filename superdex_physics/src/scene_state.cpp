@@ -3,7 +3,9 @@
 // Layout (little-endian, this machine's representation): "SDXS", u32 version, u8 sizeof(real),
 // i64 step count, f64 time, u32 body count; per body: i64 handle, u32 nq, u32 nv, then nq + 2 nv
 // + 12 reals (q, v, external forces, base rotation row-major and translation), then 5 nv reals of
-// joint drives (stiffness, damping, target position, target velocity, max effort per DOF).
+// joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
+// 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
+// velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
 
 #include <cstring>
 
@@ -81,6 +83,14 @@ std::vector<std::uint8_t> Scene::capture_state() const {
       const real x[5] = {d.stiffness, d.damping, d.target_position, d.target_velocity, d.max_effort};
       w.put_reals(x, 5);
     }
+    for (const LinkDrive& d : a->state.link_drives) {
+      const real x[19] = {d.target.rotation.x(), d.target.rotation.y(), d.target.rotation.z(), d.target.rotation.w(),
+                          d.target.translation.x(), d.target.translation.y(), d.target.translation.z(),
+                          d.target_linear_velocity.x(), d.target_linear_velocity.y(), d.target_linear_velocity.z(),
+                          d.target_angular_velocity.x(), d.target_angular_velocity.y(), d.target_angular_velocity.z(),
+                          d.linear_stiffness, d.linear_damping, d.angular_stiffness, d.angular_damping, d.max_force, d.max_torque};
+      w.put_reals(x, 19);
+    }
   }
   return std::move(w.bytes);
 }
@@ -128,6 +138,17 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
       real x[5];
       r.get_reals(x, 5, "joint drives");
       d = {x[0], x[1], x[2], x[3], x[4]};
+    }
+    st.link_drives.resize(a.model.num_links);
+    for (LinkDrive& d : st.link_drives) {
+      real x[19];
+      r.get_reals(x, 19, "link drives");
+      d.target.rotation = Quat(x[3], x[0], x[1], x[2]);
+      d.target.translation = Vec3(x[4], x[5], x[6]);
+      d.target_linear_velocity = Vec3(x[7], x[8], x[9]);
+      d.target_angular_velocity = Vec3(x[10], x[11], x[12]);
+      d.linear_stiffness = x[13], d.linear_damping = x[14], d.angular_stiffness = x[15], d.angular_damping = x[16];
+      d.max_force = x[17], d.max_torque = x[18];
     }
     if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");

@@ -7,10 +7,16 @@
 // controller sets the drives' targets each time it runs and removes them when it is destroyed.
 // With compensate_bias, the bias forces c(q, v) (gravity, Coriolis) are added as an effort
 // command (explicit feed-forward), so the drive only corrects the pose error.
-// Link (Cartesian) pose targets are left for later.
 // Drives act on revolute and prismatic joints; a floating base's DOFs are not driven.
 //
-// Params (joint DOFs: bot DOF order without the root joint's DOFs; a number is broadcast)
+// With "link", the controller instead drives that link towards a world pose with an engine link
+// drive (Scene::set_link_drive), also inside the solve: params "link" (name), "target_position"
+// (m, world; default: the link's position at creation), "target_orientation" ([x, y, z, w];
+// default: at creation), "linear_stiffness" (N/m, 1000), "linear_damping" (N s/m, 50),
+// "angular_stiffness" (N m/rad, 100), "angular_damping" (N m s/rad, 5), "max_force" (N) and
+// "max_torque" (N m) per axis (< 0: none), "compensate_bias".
+//
+// Joint mode params (joint DOFs: bot DOF order without the root joint's DOFs; a number is broadcast)
 //   "stiffness"        N m/rad (N/m)       default 1000
 //   "damping"          N m s/rad (N s/m)   default 50
 //   "saturation"       N m (N), < 0: none  default -1 (clamps the drive's effort)
@@ -42,10 +48,24 @@ class ArticulatedPoseController final : public ControllerComponent {
     saturation_ = VecX::Constant(n, -1);
     target_pose_ = scene_.pose(articulation_).tail(n);
     target_velocity_ = VecX::Zero(n);
+    // link mode: the named link, with its pose at creation as the default target
+    const ComponentParams p(args.params, "ARTICULATED_POSE");
+    if (p.has("link")) {
+      const std::string name = p.text("link", "");
+      const auto info = scene_.articulated_shape_info(articulation_);
+      const auto links = scene_.nested_link_actors(articulation_);
+      for (size_t i = 0; i < info.link_names.size(); ++i)
+        if (info.link_names[i] == name) link_actor_ = links[i];
+      if (link_actor_ == 0) throw Error(p.at("link") + ": the articulation has no link named '" + name + "'");
+      link_drive_.target = scene_.root_transform(link_actor_);
+      link_drive_.linear_stiffness = 1000, link_drive_.linear_damping = 50;
+      link_drive_.angular_stiffness = 100, link_drive_.angular_damping = 5;
+    }
     configure(args.params);
     // refuse joints a drive cannot act on now, not in the middle of a step
     try {
-      for (int i = 0; i < n; ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
+      if (link_actor_ == 0)
+        for (int i = 0; i < n; ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
     } catch (const Error& e) {
       throw Error(std::string("ARTICULATED_POSE: ") + e.what());
     }
@@ -55,6 +75,22 @@ class ArticulatedPoseController final : public ControllerComponent {
 
   void configure(const std::string& json) override {
     ComponentParams p(json, "ARTICULATED_POSE");
+    if (link_actor_ != 0) {
+      p.allow_only({"link", "target_position", "target_orientation", "linear_stiffness", "linear_damping",
+                    "angular_stiffness", "angular_damping", "max_force", "max_torque", "compensate_bias"});
+      p.apply_rate(*this);
+      physics::LinkDrive& d = link_drive_;
+      d.target.translation = p.vec3("target_position", d.target.translation);
+      d.target.rotation = p.quaternion("target_orientation", d.target.rotation);
+      d.linear_stiffness = p.number("linear_stiffness", d.linear_stiffness);
+      d.linear_damping = p.number("linear_damping", d.linear_damping);
+      d.angular_stiffness = p.number("angular_stiffness", d.angular_stiffness);
+      d.angular_damping = p.number("angular_damping", d.angular_damping);
+      d.max_force = p.number("max_force", d.max_force);
+      d.max_torque = p.number("max_torque", d.max_torque);
+      compensate_bias_ = p.flag("compensate_bias", compensate_bias_);
+      return;
+    }
     p.allow_only({"stiffness", "damping", "saturation", "target_pose", "target_velocity", "compensate_bias"});
     p.apply_rate(*this);
     const int n = static_cast<int>(stiffness_.size());
@@ -72,14 +108,17 @@ class ArticulatedPoseController final : public ControllerComponent {
     // the drives belong to this controller: remove them if the articulation is still there
     try {
       if (physics::scene_exists(scene_.handle()) && scene_.has_actor(articulation_)) {
-        for (int i = 0; i < stiffness_.size(); ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
+        if (link_actor_ != 0) scene_.set_link_drive(link_actor_, physics::LinkDrive{});
+        else
+          for (int i = 0; i < stiffness_.size(); ++i) scene_.set_joint_drive(articulation_, root_ + i, physics::JointDrive{});
       }
     } catch (const Error&) {
     }
   }
 
   void compute(const Tick& tick, DofCommands& out) override {
-    for (int i = 0; i < stiffness_.size(); ++i) {
+    if (link_actor_ != 0) scene_.set_link_drive(link_actor_, link_drive_);
+    for (int i = 0; i < stiffness_.size() && link_actor_ == 0; ++i) {
       const int d = root_ + i;
       scene_.set_joint_drive(articulation_, d,
                              physics::JointDrive{stiffness_[i], damping_[i], target_pose_[i], target_velocity_[i], saturation_[i]});
@@ -96,6 +135,8 @@ class ArticulatedPoseController final : public ControllerComponent {
   int root_ = 0;
   VecX stiffness_, damping_, saturation_, target_pose_, target_velocity_;
   bool compensate_bias_ = true;
+  ActorHandle link_actor_ = 0;  // link mode: the driven link
+  physics::LinkDrive link_drive_;
 };
 
 }  // namespace

@@ -129,3 +129,23 @@ def test_basic_osc_pd_position_only_on_a_planar_arm(scene, tmp_path):
                                                   "target_position": target.tolist()})
     step(scene, 0.002, 1000)
     assert np.linalg.norm(link_pose(arm, 3)[0] - target) < 1e-3
+
+
+def test_articulated_pose_link_mode_reaches_a_point(scene, tmp_path):
+    """ARTICULATED_POSE with "link": the planar arm's tip is driven (inside the solve) to a
+    reachable point in its x-z plane within 1 mm, with gravity compensated."""
+    import json
+
+    path = tmp_path / "planar.superdex_bot"
+    path.write_text(json.dumps(planar_arm_json()))
+    ctx = sdr.create_context()
+    bot = sdr.create_bot(scene, sdr.load_bot_prefab_from_file(str(path)), ctx)
+    target = [0.35, 0.0, 0.6]
+    bot.create_controller("ARTICULATED_POSE", "reach", {"link": "tip", "target_position": target,
+                                                        "linear_stiffness": 2e3, "linear_damping": 150,
+                                                        "angular_stiffness": 0, "angular_damping": 0})
+    step(scene, 0.01, 300)
+    tip = scene.get_actor(bot.get_articulated_actor().get_nested_link_actors()[-1])
+    np.testing.assert_allclose(np.array(tip.get_root_transform().translation), target, atol=1e-3)
+    with pytest.raises(sdp.Error, match="no link named 'hand'"):
+        bot.create_controller("ARTICULATED_POSE", "bad", {"link": "hand"})

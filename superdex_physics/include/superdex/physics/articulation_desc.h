@@ -43,6 +43,20 @@ struct JointDrive {
   bool active() const { return stiffness > 0 || damping > 0; }
 };
 
+/// An implicit spring-damper pulling a link towards a world pose, solved inside the step: force
+/// K_lin (p* - p+) + D_lin (v* - v+) on the link origin and torque K_ang r(R* R+^T) + D_ang
+/// (w* - w+) (r: rotation vector), world frame, each axis clamped to max_force / max_torque
+/// when those are >= 0. A zero stiffness and damping leaves that part out.
+struct LinkDrive {
+  Transform target;                          ///< world-from-link target pose
+  Vec3 target_linear_velocity = Vec3::Zero();   ///< m/s, world
+  Vec3 target_angular_velocity = Vec3::Zero();  ///< rad/s, world
+  real linear_stiffness = 0, linear_damping = 0;    ///< N/m, N s/m
+  real angular_stiffness = 0, angular_damping = 0;  ///< N m/rad, N m s/rad
+  real max_force = -1, max_torque = -1;             ///< per axis; < 0: unbounded
+  bool active() const { return linear_stiffness > 0 || linear_damping > 0 || angular_stiffness > 0 || angular_damping > 0; }
+};
+
 /// One joint: connects link i to its parent link (or the world for the root).
 struct JointDesc {
   std::string name;

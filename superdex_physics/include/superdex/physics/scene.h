@@ -176,7 +176,10 @@ class Scene {
 
   /// Sets the drive of one DOF of a revolute or prismatic joint (stiffness and damping 0 turn it off).
   void set_joint_drive(ActorHandle articulation, int dof, const JointDrive& drive);
+  /// Removes every joint and link drive of the articulation.
   void clear_joint_drives(ActorHandle articulation);
+  /// Sets (or, with all gains 0, removes) the drive pulling a link towards a world pose.
+  void set_link_drive(ActorHandle link, const LinkDrive& drive);
   /// The drive efforts (N m or N) the last step applied, per DOF (zero where no drive).
   VecX joint_drive_efforts(ActorHandle articulation) const;
 
