@@ -8,6 +8,8 @@ cd "$(dirname "$0")/.."
 
 bash tools/bootstrap.sh
 export PATH="$HOME/.local/bin:$PATH"
+# let ccache reuse objects across checkouts (paths are made relative to the repository)
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 
 # Python environment and the editable native modules (scikit-build-core, build/<wheel tag>/).
 uv sync --quiet
