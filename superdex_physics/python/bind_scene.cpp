@@ -97,7 +97,8 @@ void export_scene(nb::module_& m) {
       .def_rw("friction_sigma", &SolverParams::friction_sigma)
       .def_rw("contact_margin", &SolverParams::contact_margin)
       .def_rw("max_friction_passes", &SolverParams::max_friction_passes)
-      .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance);
+      .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance)
+      .def_rw("dense_island_max_dofs", &SolverParams::dense_island_max_dofs);
 
   nb::class_<SolverStats>(m, "SolverStats", "What the last step did.")
       .def_ro("newton_iterations", &SolverStats::newton_iterations)

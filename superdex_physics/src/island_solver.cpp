@@ -47,13 +47,17 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     r.segment(o, nb) = terms[b].r;
   }
   ConstraintRows rows;
-  rows.J.setZero(m, n);
+  std::vector<Eigen::Triplet<real>> J_entries;
   rows.blocks.reserve(joint_rows + island.contacts.size());
   int row = 0;
   for (int b : island.bodies)
     for (const JointRow& jr : terms[b].joint_rows) {
-      if (jr.J.size() > 0) rows.J.row(row).segment(offset[b], jr.J.size()) = jr.J.transpose();
-      else rows.J(row, offset[b] + jr.dof) = jr.sign;
+      if (jr.J.size() > 0) {
+        for (Eigen::Index c = 0; c < jr.J.size(); ++c)
+          if (jr.J[c] != 0) J_entries.emplace_back(row, offset[b] + static_cast<int>(c), jr.J[c]);
+      } else {
+        J_entries.emplace_back(row, offset[b] + jr.dof, jr.sign);
+      }
       ConstraintBlock blk = jr.block;
       blk.row = row++;
       rows.blocks.push_back(blk);
@@ -83,14 +87,19 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     const Mat3 R_C = contact_frame(c.n_W);
     frames.push_back(R_C);
     Mat3 W = Mat3::Zero();
+    real vn_free = 0;
     for (int side = 0; side < 2; ++side) {
       const int body = side == 0 ? c.body_a : c.body_b;
       const int link = side == 0 ? c.link_a : c.link_b;
       const int nb = s.articulations[body]->model.nv;
       if (nb == 0) continue;
       const MatX Jc = (side == 0 ? real(1) : real(-1)) * R_C.transpose() * point_jacobian(body, link, c.p_W);
-      rows.J.block(row, offset.at(body), 3, nb) += Jc;
+      const int o = offset.at(body);
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < nb; ++k)
+          if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
       W += Jc * terms[body].A_llt.solve(Jc.transpose());
+      vn_free += Jc.row(2).dot(v_free.segment(o, nb));
     }
     const real w = W.trace() / 3;
     ConstraintBlock blk;
@@ -107,7 +116,6 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
       // an impact does not overshoot into the surface and resting bodies do not sag
       blk.Rn = near_rigid * w;
       const real vhat = -c.phi / dt;
-      const real vn_free = rows.J.row(row + 2).dot(v_free);
       blk.vhat = vhat + (blk.Rn / W(2, 2)) * (vhat - vn_free);
     }
     blk.R = params.friction_sigma * w;
@@ -117,13 +125,23 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     row += 3;
   }
 
+  // same-row entries of a contact with both bodies on one articulation add up
+  rows.J.resize(m, n);
+  rows.J.setFromTriplets(J_entries.begin(), J_entries.end());
+
+  // small islands: dense algebra (A's factor reused for one body); large ones: sparse
   Eigen::LLT<MatX> A_llt;
   const Eigen::LLT<MatX>* llt = &terms[island.bodies[0]].A_llt;
-  if (island.bodies.size() > 1) {
+  SparseMat A_sparse;
+  const bool sparse = n > params.dense_island_max_dofs;
+  if (sparse) {
+    A_sparse = A.sparseView();
+  } else if (island.bodies.size() > 1) {
     A_llt.compute(A);
     llt = &A_llt;
   }
-  ConvexResult sol = solve_convex(A, *llt, r, rows, params);
+  auto solve = [&] { return sparse ? solve_convex(A_sparse, r, rows, params) : solve_convex(A, *llt, r, rows, params); };
+  ConvexResult sol = solve();
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
   // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
   const int first_contact = static_cast<int>(rows.blocks.size() - island.contacts.size());
@@ -140,7 +158,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     }
     if (pass > 0 && change <= params.friction_pass_tolerance * scale) break;
     const int previous = sol.iterations;
-    sol = solve_convex(A, *llt, r, rows, params);
+    sol = solve();
     sol.iterations += previous;
   }
   out.iterations = sol.iterations;

@@ -81,20 +81,85 @@ void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real*
   }
 }
 
-ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
-                          const SolverParams& params) {
-  const int n = static_cast<int>(A.rows());
+namespace {
+
+// Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
+class DenseAlgebra {
+ public:
+  DenseAlgebra(const MatX& A, const SparseRowMat& J) : A_(A), J_(J) {}
+  int n() const { return static_cast<int>(A_.rows()); }
+  VecX diagonal() const { return A_.diagonal(); }
+  VecX A_mul(const VecX& x) const { return A_ * x; }
+  VecX J_mul(const VecX& x) const { return J_ * x; }
+  VecX Jt_mul(const VecX& y) const { return J_.transpose() * y; }
+  // factors H = A + J^T G J (G block diagonal, blocks of `rows`)
+  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
+    H_ = A_;
+    if (J_.rows() > 0) {
+      MatX GJ(J_.rows(), J_.cols());
+      for (size_t k = 0; k < rows.blocks.size(); ++k) {
+        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+        GJ.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+      }
+      H_.noalias() += J_.transpose() * GJ;
+    }
+    llt_.compute(H_);
+  }
+  VecX solve(const VecX& b) const { return llt_.solve(b); }
+
+ private:
+  const MatX& A_;
+  MatX J_;
+  MatX H_;
+  Eigen::LLT<MatX> llt_;
+};
+
+// Sparse linear algebra for the Newton loop: sparse A and J, sparse LDL^T of H.
+class SparseAlgebra {
+ public:
+  SparseAlgebra(const SparseMat& A, const SparseRowMat& J) : A_(A), J_(J), Jt_(J.transpose()) {}
+  int n() const { return static_cast<int>(A_.rows()); }
+  VecX diagonal() const { return A_.diagonal(); }
+  VecX A_mul(const VecX& x) const { return A_ * x; }
+  VecX J_mul(const VecX& x) const { return J_ * x; }
+  VecX Jt_mul(const VecX& y) const { return Jt_ * y; }
+  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
+    // G as a sparse block-diagonal matrix
+    std::vector<Eigen::Triplet<real>> entries;
+    for (size_t k = 0; k < rows.blocks.size(); ++k) {
+      const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+      for (int i = 0; i < s; ++i)
+        for (int j = 0; j < s; ++j)
+          if (G[k](i, j) != 0) entries.emplace_back(r0 + i, r0 + j, G[k](i, j));
+    }
+    SparseMat Gs(J_.rows(), J_.rows());
+    Gs.setFromTriplets(entries.begin(), entries.end());
+    const SparseMat H = A_ + SparseMat(Jt_ * Gs * J_);
+    ldlt_.compute(H);
+  }
+  VecX solve(const VecX& b) const { return ldlt_.solve(b); }
+
+ private:
+  const SparseMat& A_;
+  const SparseRowMat& J_;
+  SparseMat Jt_;
+  Eigen::SimplicialLDLT<SparseMat> ldlt_;
+};
+
+// Newton's method with exact line search from v (the unconstrained optimum), on either algebra.
+template <class Algebra>
+ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, VecX v) {
+  const int n = alg.n();
   const int m = rows.size();
   ConvexResult out;
-  out.v = A_llt.solve(r);
+  out.v = std::move(v);
   out.gamma.setZero(m);
   // diagonal scaling so that the stopping test is independent of units and masses
-  const VecX D = A.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
+  const VecX D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
   const real r_norm = (D.asDiagonal() * r).norm();
 
   VecX vc(m), grad(n), dv(n), dvc(m), jc(n);
   std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
-  MatX H(n, n), GJ(m, n);
 
   // impulses and Hessian blocks at the current constraint velocities
   auto respond = [&](const VecX& velocities, VecX& gamma) {
@@ -104,13 +169,14 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
-      vc.noalias() = rows.J * out.v;
+      vc = alg.J_mul(out.v);
       respond(vc, out.gamma);
-      jc.noalias() = rows.J.transpose() * out.gamma;
+      jc = alg.Jt_mul(out.gamma);
     } else {
-      jc.setZero();
+      jc.setZero(n);
     }
-    grad.noalias() = A * out.v - r - jc;
+    const VecX Av_r = alg.A_mul(out.v) - r;
+    grad = Av_r - jc;
     out.residual = (D.asDiagonal() * grad).norm();
     out.iterations = it;
     const real scale = std::max(r_norm, (D.asDiagonal() * jc).norm());
@@ -119,21 +185,13 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
       break;
     }
     if (it == params.max_newton_iterations) break;
-    // Newton direction from the Hessian A + J^T G J (G block diagonal)
-    H = A;
-    if (m > 0) {
-      for (size_t k = 0; k < rows.blocks.size(); ++k) {
-        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-        GJ.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * rows.J.middleRows(r0, s);
-      }
-      H.noalias() += rows.J.transpose() * GJ;
-    }
-    Eigen::LLT<MatX> llt(H);
-    dv = -llt.solve(grad);
-    if (m > 0) dvc.noalias() = rows.J * dv;
+    // Newton direction from the Hessian A + J^T G J
+    alg.factor(rows, G);
+    dv = -alg.solve(grad);
+    if (m > 0) dvc = alg.J_mul(dv);
     // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
-    const real a0 = dv.dot(A * out.v - r);
-    const real a1 = dv.dot(A * dv);
+    const real a0 = dv.dot(Av_r);
+    const real a1 = dv.dot(alg.A_mul(dv));
     VecX vc_alpha(m), gamma_alpha(m);
     auto dphi = [&](real alpha, real* ddphi) {
       real d = a0 + alpha * a1, dd = a1;
@@ -168,7 +226,7 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
     if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
       // no further progress is possible at this precision
       if (m > 0) {
-        vc.noalias() = rows.J * out.v;
+        vc = alg.J_mul(out.v);
         respond(vc, out.gamma);
       }
       out.iterations = it + 1;
@@ -177,6 +235,20 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
     }
   }
   return out;
+}
+
+}  // namespace
+
+ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
+                          const SolverParams& params) {
+  DenseAlgebra alg(A, rows.J);
+  return newton(alg, r, rows, params, A_llt.solve(r));
+}
+
+ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
+  Eigen::SimplicialLDLT<SparseMat> ldlt(A);
+  SparseAlgebra alg(A, rows.J);
+  return newton(alg, r, rows, params, ldlt.solve(r));
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

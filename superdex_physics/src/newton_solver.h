@@ -11,6 +11,7 @@
 // line search converges in a few iterations, and the reported impulses are exactly those
 // applied.
 
+#include <Eigen/Sparse>
 #include <vector>
 
 #include "superdex/physics/real.h"
@@ -45,8 +46,11 @@ struct ConstraintBlock {
   int size() const { return kind == BlockKind::FrictionalContact || kind == BlockKind::ContactFixedFriction ? 3 : 1; }
 };
 
+using SparseMat = Eigen::SparseMatrix<real>;                     // column-major
+using SparseRowMat = Eigen::SparseMatrix<real, Eigen::RowMajor>;
+
 struct ConstraintRows {
-  MatX J;                              // constraint Jacobian (m x n)
+  SparseRowMat J;                      // constraint Jacobian (m x n), a few non-zeros per row
   std::vector<ConstraintBlock> blocks; // in row order, covering all m rows
 
   int size() const { return static_cast<int>(J.rows()); }
@@ -60,9 +64,13 @@ struct ConvexResult {
   bool converged = false;
 };
 
-// Solves the problem from the unconstrained optimum A^-1 r. `A_llt` is A's Cholesky factor.
+// Solves the problem from the unconstrained optimum A^-1 r with dense linear algebra (small
+// problems). `A_llt` is A's Cholesky factor.
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params);
+// The same with sparse linear algebra (large islands): Newton steps use a sparse LDL^T of
+// A + J^T G J.
+ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
 
 // Impulse and Hessian block d(-gamma)/d(vc) of one block at constraint velocity vc (the
 // block's segment). Exposed for tests.

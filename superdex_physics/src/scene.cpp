@@ -31,6 +31,10 @@ void Scene::set_solver_params(const SolverParams& p) {
   if (!(p.absolute_tolerance >= 0) || !(p.relative_tolerance >= 0)) throw Error("set_solver_params: tolerances must be >= 0");
   if (!(p.near_rigid_beta > 0)) throw Error("set_solver_params: near_rigid_beta must be > 0");
   if (!(p.friction_sigma > 0)) throw Error("set_solver_params: friction_sigma must be > 0");
+  if (!(p.contact_margin >= 0) || !std::isfinite(p.contact_margin)) throw Error("set_solver_params: contact_margin must be >= 0");
+  if (p.max_friction_passes < 0) throw Error("set_solver_params: max_friction_passes must be >= 0");
+  if (!(p.friction_pass_tolerance >= 0)) throw Error("set_solver_params: friction_pass_tolerance must be >= 0");
+  if (p.dense_island_max_dofs < 0) throw Error("set_solver_params: dense_island_max_dofs must be >= 0");
   scene_data(handle_).params = p;
 }
 SolverParams Scene::solver_params() const { return scene_data(handle_).params; }

@@ -88,7 +88,7 @@ TEST(ConvexSolve, SatisfiesMomentumBalanceWithContactsAndLimits) {
   VecX r(n);
   for (int i = 0; i < n; ++i) r[i] = nd(rng);
   ConstraintRows rows;
-  rows.J = MatX::Random(7, n);
+  rows.J = MatX(MatX::Random(7, n)).sparseView();
   rows.blocks.push_back(contact_block(0.01, 0.1, 0.4, 0.2));
   rows.blocks.back().row = 0;
   rows.blocks.push_back(contact_block(0.02, 0.05, 1.0, -0.1));
@@ -114,6 +114,12 @@ TEST(ConvexSolve, SatisfiesMomentumBalanceWithContactsAndLimits) {
   }
   EXPECT_LT((A * res.v - r - rows.J.transpose() * gamma).norm(), 1e-9 * (1 + r.norm()));
   EXPECT_LT((gamma - res.gamma).norm(), 1e-12 * (1 + gamma.norm()));
+
+  // the sparse path solves the same problem
+  const ConvexResult sparse = solve_convex(SparseMat(A.sparseView()), r, rows, params);
+  ASSERT_TRUE(sparse.converged);
+  EXPECT_LT((sparse.v - res.v).norm(), 1e-9 * (1 + res.v.norm()));
+  EXPECT_LT((sparse.gamma - res.gamma).norm(), 1e-9 * (1 + res.gamma.norm()));
 }
 
 }  // namespace

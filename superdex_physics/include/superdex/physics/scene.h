@@ -58,6 +58,8 @@ struct SolverParams {
   /// friction bound fixed at mu times the previous normal impulse (removes the cone model's
   /// separation of sliding contacts); 0 keeps the pure cone model.
   int max_friction_passes = 4;
+  /// Islands with more DOFs than this are solved with sparse linear algebra.
+  int dense_island_max_dofs = 96;
   /// Stop refining when the friction bounds change by less than this fraction.
   real friction_pass_tolerance = real(1e-3);
 };
