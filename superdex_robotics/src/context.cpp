@@ -209,7 +209,8 @@ BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<
                                   "' is not registered; the component is skipped");
             continue;
           }
-          ComponentArgs args{scene, links[i], resolve_params(d.params, prefab.base_dir, where + ".params"), &b.prefab};
+          ComponentArgs args{scene, links[i], resolve_params(d.params, prefab.base_dir, where + ".params"), &b.prefab,
+                             d.parent_from_sensor};
           const ComponentHandle h = create(kind, d.type, args, d.name, b.handle);
           (kind == ComponentKind::Sensor ? b.sensors : b.actuators).push_back(h);
         }

@@ -1,8 +1,9 @@
 // CONTACT_FORCE: the total contact force applied TO a link by everything touching it.
 //
-// Signal: [fx, fy, fz] (N), in the world frame (pressing down on a surface reads +z) or in
-// the link frame. It registers the link's TOTAL_CONTACT_FORCE query itself (cancelled when the
-// sensor is destroyed) and reads it after each step.
+// Signal: [fx, fy, fz] (N), in the world frame (pressing down on a surface reads +z) or, with
+// "frame": "link", in the sensor frame (the link frame turned by parentFromSensor). It registers
+// the link's TOTAL_CONTACT_FORCE query itself (cancelled when the sensor is destroyed) and reads
+// it after each step.
 //
 // Params
 //   "frame"  "world" | "link"   default "world"
@@ -18,7 +19,7 @@ namespace {
 
 class ContactForceSensor final : public SensorComponent {
  public:
-  explicit ContactForceSensor(const ComponentArgs& args) : scene_(args.scene), link_(args.actor) {
+  explicit ContactForceSensor(const ComponentArgs& args) : scene_(args.scene), link_(args.actor), R_LS_(args.parent_from_sensor.rotation) {
     require_link(scene_, link_, "CONTACT_FORCE");
     configure(args.params);
     query_ = scene_.register_query(link_, physics::QueryType::TotalContactForce);
@@ -41,7 +42,8 @@ class ContactForceSensor final : public SensorComponent {
 
   void update(const Tick&) override {
     const Vec3 f_W = scene_.contact_force(link_);
-    signal_ = in_link_frame_ ? Vec3(scene_.root_transform(link_).rotation.conjugate() * f_W) : f_W;
+    // "link": the sensor frame's axes (the link frame turned by parentFromSensor)
+    signal_ = in_link_frame_ ? Vec3((scene_.root_transform(link_).rotation * R_LS_).conjugate() * f_W) : f_W;
   }
 
   VecX signal() const override { return signal_; }
@@ -52,6 +54,7 @@ class ContactForceSensor final : public SensorComponent {
   std::int64_t query_ = 0;
   bool in_link_frame_ = false;
   Vec3 signal_ = Vec3::Zero();
+  Quat R_LS_;  // sensor frame orientation in the link frame
 };
 
 }  // namespace

@@ -20,8 +20,9 @@
 // links whose inertia would come from a scaled shape must give mass and momentOfInertia.
 //
 // Signal: [Fx, Fy, Fz (N), Tx, Ty, Tz (N m)], applied BY the parent ON the link, about the
-// link origin, in the link frame (default) or world axes. A link hanging at rest reads its
-// subtree's weight upward: F_W = -m_S g.
+// sensor origin in the sensor frame S (the link frame moved by parentFromSensor; by default the
+// link frame at the link origin), or in world axes (still about the sensor origin). A link
+// hanging at rest reads its subtree's weight upward: F_W = -m_S g.
 //
 // Params
 //   "frame"  "link" | "world"   default "link"
@@ -73,7 +74,7 @@ LinkMass link_mass(const physics::LinkDesc& L, real engine_mass, const std::stri
 
 class ForceTorqueSensor final : public SensorComponent {
  public:
-  explicit ForceTorqueSensor(const ComponentArgs& args) : scene_(args.scene), link_(args.actor) {
+  explicit ForceTorqueSensor(const ComponentArgs& args) : scene_(args.scene), link_(args.actor), X_LS_(args.parent_from_sensor) {
     require_link(scene_, link_, "FORCE_TORQUE");
     if (!args.prefab) throw Error("FORCE_TORQUE: needs the bot's prefab (create it on a link of a bot)");
     articulation_ = scene_.articulated_actor_of_link(link_);
@@ -139,13 +140,14 @@ class ForceTorqueSensor final : public SensorComponent {
     const real inv_dt = static_cast<real>(1.0 / elapsed);
     const Vec3 F_W = (mom.P - P_prev_) * inv_dt - F_ext;
     const Vec3 T_O = (mom.H - H_prev_) * inv_dt - T_ext;
-    const Transform X_WJ = X_prev_[subtree_.front().index];
-    const Vec3 T_W = T_O - X_WJ.translation.cross(F_W);
+    // about the sensor origin, in the sensor frame (the link frame at the start of the step, moved by X_LS)
+    const Transform X_WS = X_prev_[subtree_.front().index] * X_LS_;
+    const Vec3 T_W = T_O - X_WS.translation.cross(F_W);
     if (in_world_) {
       signal_ << F_W, T_W;
     } else {
-      const Quat R_JW = X_WJ.rotation.conjugate();
-      signal_ << R_JW * F_W, R_JW * T_W;
+      const Quat R_SW = X_WS.rotation.conjugate();
+      signal_ << R_SW * F_W, R_SW * T_W;
     }
     P_prev_ = mom.P, H_prev_ = mom.H;
     X_prev_ = X;
@@ -190,6 +192,7 @@ class ForceTorqueSensor final : public SensorComponent {
   std::vector<Transform> X_prev_;
   double t_prev_ = 0;
   Vec6 signal_ = Vec6::Zero();
+  Transform X_LS_;  // sensor frame in the link frame
 };
 
 }  // namespace

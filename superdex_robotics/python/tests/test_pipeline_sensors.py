@@ -185,3 +185,51 @@ def test_force_torque_about_a_driven_joint_axis_is_the_joint_torque(scene, tmp_p
     # the impulse balance of the step is exact; float32 momenta differenced over 1 ms leave
     # rounding of about eps |H| / dt ~ 1e-4 N m
     np.testing.assert_allclose(readings, 3.0, atol=tolerance(1e-9, 1e-3))
+
+
+def test_sensors_measure_at_their_parent_from_sensor_frame(scene, tmp_path):
+    """Sensors mounted away from the link origin (parentFromSensor) measure there, in their own
+    axes. An IMU 0.2 m out along a link spinning at w about z reads the centripetal specific
+    force w^2 r towards the axis; a FORCE_TORQUE sensor at the centre of mass of a welded arm reads
+    its weight and no torque, and turned 90 degrees about x it sees the weight along its y axis."""
+    scene.set_gravity([0, 0, 0])
+    w, r = 5.0, 0.2
+    doc = {
+        "name": "spinner",
+        "links": [{"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
+                  {"name": "disc", "parentLink": 0, "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.02],
+                   "sensors": [{"type": "IMU", "name": "imu", "params": "",
+                                "parentFromSensor": {"rotation": IDENTITY, "translation": [r, 0, 0]}}]}],
+        "joints": [{"name": "weld", "type": "Hard"}, {"name": "spin", "type": "Revolute", "axis": [0, 0, 1]}],
+        "defaultPose": [0.0],
+    }
+    ctx = sdr.create_context()
+    bot = sdr.create_bot(scene, load_bot(tmp_path, doc), ctx)
+    bot.get_articulated_actor().set_articulated_joint_velocities([w])
+    step(scene, 0.001, 200)
+    f = signal(ctx, bot, "imu")
+    np.testing.assert_allclose(f[:3], [-w * w * r, 0, 0], atol=0.01 * w * w * r)
+    np.testing.assert_allclose(f[3:], [0, 0, w], atol=1e-3 * w)
+
+    scene.set_gravity([0, 0, -G])
+    m, cx = 2.0, 0.3
+    arm = {
+        "name": "cantilever",
+        "links": [{"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
+                  {"name": "arm", "parentLink": 0, "mass": m, "centerOfMass": [cx, 0, 0],
+                   "momentOfInertia": [0.001, 0, 0, 0.01, 0, 0.01],
+                   "sensors": [{"type": "FORCE_TORQUE", "name": "ft_com", "params": "",
+                                "parentFromSensor": {"rotation": IDENTITY, "translation": [cx, 0, 0]}},
+                               {"type": "FORCE_TORQUE", "name": "ft_turned", "params": "",
+                                "parentFromSensor": {"rotation": ROT_X_90, "translation": [cx, 0, 0]}}]}],
+        "joints": [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"rotation": IDENTITY, "translation": [5, 0, 1]}},
+                   {"name": "fixed", "type": "Hard"}],
+        "defaultPose": [],
+    }
+    bot2 = sdr.create_bot(scene, load_bot(tmp_path, arm, "cantilever.superdex_bot"), ctx)
+    step(scene, 0.001, 5)
+    ft = signal(ctx, bot2, "ft_com")
+    np.testing.assert_allclose(ft[:3], [0, 0, m * G], atol=1e-3 * m * G)
+    np.testing.assert_allclose(ft[3:], 0, atol=1e-3 * m * G * cx)
+    # sensor y is link z after turning +90 degrees about x
+    np.testing.assert_allclose(signal(ctx, bot2, "ft_turned")[:3], [0, m * G, 0], atol=1e-3 * m * G)

@@ -64,6 +64,8 @@ struct ComponentArgs {
   /// The prefab of the bot the component belongs to, when known (create_bot, the bot's
   /// create_* methods, or a context-level component whose actor belongs to a bot).
   const BotPrefab* prefab = nullptr;
+  /// Sensors: the sensor frame S in the link frame (parentFromSensor of the bot file).
+  Transform parent_from_sensor;
 };
 
 using ComponentFactory = std::function<std::unique_ptr<Component>(const ComponentArgs&)>;
