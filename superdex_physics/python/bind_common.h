@@ -4,6 +4,7 @@
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -61,6 +62,11 @@ struct Actor {
   Scene scene;
   ActorHandle handle;
 };
+
+// A Python object made of dicts, lists, strings, numbers, booleans and None as JSON (numpy
+// arrays through tolist()); non-finite floats are kept so that readers name the field. Errors
+// name `path` (bind_scene.cpp).
+nlohmann::json to_json(nb::handle obj, const std::string& path);
 
 // A captured scene state.
 struct SceneState {

@@ -123,36 +123,6 @@ nb::object actor_object(const ComponentArgs& args) {
   return nb::cast(Actor{args.scene, args.actor});
 }
 
-// A Python object made of dicts, lists, numbers, strings, booleans and None, as JSON.
-nlohmann::json to_json(nb::handle obj, const std::string& path) {
-  if (obj.is_none()) return nullptr;
-  if (nb::isinstance<nb::bool_>(obj)) return nb::cast<bool>(obj);
-  if (nb::isinstance<nb::int_>(obj)) return nb::cast<long long>(obj);
-  if (nb::isinstance<nb::str>(obj)) return nb::cast<std::string>(obj);
-  if (nb::isinstance<nb::dict>(obj)) {
-    nlohmann::json out = nlohmann::json::object();
-    for (auto [k, v] : nb::cast<nb::dict>(obj)) {
-      if (!nb::isinstance<nb::str>(k)) throw Error(path + ": dict keys must be strings");
-      const std::string key = nb::cast<std::string>(k);
-      out[key] = to_json(v, path + "." + key);
-    }
-    return out;
-  }
-  if (nb::hasattr(obj, "tolist")) {
-    nb::object list = obj.attr("tolist")();
-    if (nb::isinstance<nb::list>(list)) return to_json(list, path);
-    return to_json(list, path);
-  }
-  if (nb::isinstance<nb::list>(obj) || nb::isinstance<nb::tuple>(obj)) {
-    nlohmann::json out = nlohmann::json::array();
-    size_t i = 0;
-    for (nb::handle item : obj) out.push_back(to_json(item, path + "[" + std::to_string(i++) + "]"));
-    return out;
-  }
-  double x;
-  if (nb::try_cast(obj, x)) return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-  throw Error(path + ": cannot be written as JSON (got " + std::string(nb::inst_name(obj).c_str()) + ")");
-}
 
 }  // namespace
 
