@@ -186,6 +186,21 @@ void def_kind(nb::module_& m, nb::class_<PyContext>& ctx_cls, nb::class_<PyBot>&
       .def(("find_" + k + "s_by_type").c_str(), [](const PyBot& b, const std::string& t) { return bot_find<K>(b, t, true); });
 }
 
+// A component created through a bot: attached to `actor` (the bot's articulation for a
+// controller), params resolved against the bot file's folder, listed among the bot's components.
+ComponentHandle bot_create(PyBot& b, ComponentKind kind, const std::string& type_name, nb::handle actor,
+                           const std::string& name, nb::handle params) {
+  Context& ctx = b.ctx();
+  auto& rec = ctx.bot(b.handle);
+  const std::string what = std::string("create_") + kind_title(kind) + "('" + name + "')";
+  const ActorHandle target = kind == ComponentKind::Controller ? rec.articulation : actor_or_zero(actor, (what + ": actor").c_str());
+  ComponentArgs args{rec.scene, target, creation_params(params, rec.prefab.base_dir, what + ": params"), &rec.prefab};
+  const ComponentHandle h = ctx.create(kind, type_name, args, name, b.handle);
+  auto& bot = ctx.bot(b.handle);
+  (kind == ComponentKind::Controller ? bot.controllers : kind == ComponentKind::Sensor ? bot.sensors : bot.actuators).push_back(h);
+  return h;
+}
+
 }  // namespace
 
 void export_robotics(nb::module_& parent) {
@@ -245,31 +260,13 @@ void export_robotics(nb::module_& parent) {
       .def("get_handle", [](const PyBot& b) { return b.handle; })
       .def("get_bot_prefab", [](const PyBot& b) { return b.ctx().bot(b.handle).prefab; }, "A copy of the prefab it was built from.")
       .def("create_controller", [](PyBot& b, const std::string& type_name, const std::string& name, nb::handle params) {
-             Context& ctx = b.ctx();
-             auto& rec = ctx.bot(b.handle);
-             ComponentArgs args{rec.scene, rec.articulation,
-                                creation_params(params, rec.prefab.base_dir, "create_controller('" + name + "'): params"), &rec.prefab};
-             const ComponentHandle h = ctx.create(ComponentKind::Controller, type_name, args, name, b.handle);
-             ctx.bot(b.handle).controllers.push_back(h);
-             return ControllerHandle{h};
+             return ControllerHandle{bot_create(b, ComponentKind::Controller, type_name, nb::none(), name, params)};
            }, "type_name"_a, "name"_a = "", "params"_a.none() = "")
       .def("create_sensor", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
-             Context& ctx = b.ctx();
-             auto& rec = ctx.bot(b.handle);
-             ComponentArgs args{rec.scene, actor_or_zero(actor, "create_sensor: actor"),
-                                creation_params(params, rec.prefab.base_dir, "create_sensor('" + name + "'): params"), &rec.prefab};
-             const ComponentHandle h = ctx.create(ComponentKind::Sensor, type_name, args, name, b.handle);
-             ctx.bot(b.handle).sensors.push_back(h);
-             return SensorHandle{h};
+             return SensorHandle{bot_create(b, ComponentKind::Sensor, type_name, actor, name, params)};
            }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
       .def("create_actuator", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
-             Context& ctx = b.ctx();
-             auto& rec = ctx.bot(b.handle);
-             ComponentArgs args{rec.scene, actor_or_zero(actor, "create_actuator: actor"),
-                                creation_params(params, rec.prefab.base_dir, "create_actuator('" + name + "'): params"), &rec.prefab};
-             const ComponentHandle h = ctx.create(ComponentKind::Actuator, type_name, args, name, b.handle);
-             ctx.bot(b.handle).actuators.push_back(h);
-             return ActuatorHandle{h};
+             return ActuatorHandle{bot_create(b, ComponentKind::Actuator, type_name, actor, name, params)};
            }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
       .def("reset", [](PyBot& b) { b.ctx().reset_components(b.handle); },
            "Calls reset() on the bot's components and restarts its pipeline's timing.")
