@@ -172,6 +172,14 @@ void export_actor(nb::module_& m) {
            "the step; per-axis limits when >= 0; all gains 0 remove it.")
       .def("get_joint_drive_efforts", [](const Actor& a) { return numpy_copy(a.scene.joint_drive_efforts(a.handle)); },
            "Efforts (N m or N) the joint drives applied in the last step, per DOF.")
+      .def("get_node_positions_world", [](const Actor& a) {
+             const std::vector<Vec3> x = a.scene.node_positions(a.handle);
+             std::vector<real> flat;
+             for (const Vec3& p : x) flat.insert(flat.end(), p.data(), p.data() + 3);
+             return numpy_copy(flat.data(), {x.size(), 3});
+           }, "Soft actors: node positions (m), world frame, N x 3.")
+      .def("get_elastic_energy", [](const Actor& a) { return a.scene.elastic_energy(a.handle); },
+           "Soft actors: elastic energy at the current positions (J).")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)

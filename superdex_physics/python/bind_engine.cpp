@@ -1,6 +1,7 @@
 // Module functions: engine lifecycle, scenes and primitive shapes.
 
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "superdex/physics/engine.h"
@@ -48,6 +49,29 @@ void export_engine(nb::module_& m) {
   m.def("create_capsule_shape", [](nb::handle radius, nb::handle half_length) {
           return Shape{create_shape(CapsuleShape{read_real(radius, "create_capsule_shape: radius"), read_real(half_length, "create_capsule_shape: half_length")})};
         }, "radius"_a, "half_length"_a, "Solid capsule along the body z axis: segment from -half_length to +half_length (m), radius (m).");
+  m.def("create_tet_mesh_shape", [](nb::handle coordinates, nb::handle connectivity) {
+          nb::object np = nb::module_::import_("numpy");
+          nb::object X, T;
+          try {
+            X = np.attr("asarray")(coordinates, "dtype"_a = np.attr("float64"));
+            T = np.attr("asarray")(connectivity);
+          } catch (nb::python_error&) {
+            throw Error("create_tet_mesh_shape: coordinates (N x 3) and connectivity (M x 4) must be arrays of numbers");
+          }
+          const auto xs = nb::cast<std::vector<size_t>>(X.attr("shape")), ts = nb::cast<std::vector<size_t>>(T.attr("shape"));
+          if (xs.size() != 2 || xs[1] != 3) throw Error("create_tet_mesh_shape: coordinates must have shape (N, 3)");
+          if (ts.size() != 2 || ts[1] != 4) throw Error("create_tet_mesh_shape: connectivity must have shape (M, 4)");
+          if (!nb::cast<bool>(np.attr("issubdtype")(T.attr("dtype"), np.attr("integer"))))
+            throw Error("create_tet_mesh_shape: connectivity must hold integers");
+          const VecX flat_x = read_vector(X.attr("ravel")(), "create_tet_mesh_shape: coordinates");
+          const VecX flat_t = read_vector(T.attr("ravel")(), "create_tet_mesh_shape: connectivity");
+          TetMesh mesh;
+          for (size_t i = 0; i < xs[0]; ++i) mesh.nodes.emplace_back(flat_x[3 * i], flat_x[3 * i + 1], flat_x[3 * i + 2]);
+          for (size_t t = 0; t < ts[0]; ++t)
+            mesh.tets.push_back({static_cast<int>(flat_t[4 * t]), static_cast<int>(flat_t[4 * t + 1]),
+                                 static_cast<int>(flat_t[4 * t + 2]), static_cast<int>(flat_t[4 * t + 3])});
+          return Shape{physics::create_tet_mesh_shape(std::move(mesh), "create_tet_mesh_shape")};
+        }, "coordinates"_a, "connectivity"_a, "A tetrahedral mesh for soft actors: N x 3 node coordinates (m), M x 4 node indices.");
   m.def("release_shape", [](const Shape& s) { physics::release_shape(s.handle); }, "shape"_a);
 
   nb::enum_<ColliderType>(m, "ColliderType")

@@ -48,6 +48,31 @@ void emit_warnings(const std::vector<std::string>& warnings) {
 
 }  // namespace
 
+// A soft material from the JSON fields of FORMATS.md (all optional).
+SoftMaterial soft_material_from_json(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) throw Error(where + ": material: expected a dict");
+  SoftMaterial m;
+  auto number = [&](const char* key, real& out) {
+    if (!j.contains(key)) return;
+    if (!j.at(key).is_number()) throw Error(where + ": material." + key + ": expected a number");
+    out = j.at(key).get<real>();
+  };
+  if (j.contains("type")) {
+    if (!j.at("type").is_string()) throw Error(where + ": material.type: expected a string");
+    m.type = j.at("type").get<std::string>();
+  }
+  number("youngsModulus", m.youngs_modulus);
+  number("poissonRatio", m.poisson_ratio);
+  number("density", m.density);
+  number("damping", m.damping_beta);
+  number("dampingAlpha", m.damping_alpha);
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (it.key() != "type" && it.key() != "youngsModulus" && it.key() != "poissonRatio" && it.key() != "density" &&
+        it.key() != "damping" && it.key() != "dampingAlpha")
+      PyErr_WarnEx(PyExc_UserWarning, (where + ": material." + it.key() + ": unknown field, ignored").c_str(), 1);
+  return m;
+}
+
 ActorHandle actor_handle_of(nb::handle obj, const std::string& arg) {
   if (nb::isinstance<Actor>(obj)) return nb::cast<Actor&>(obj).handle;
   ActorHandle h;
@@ -163,6 +188,25 @@ void export_scene(nb::module_& m) {
            "contact_overrides"_a.none() = nb::none(),
            "An articulation from lists of link and joint dicts with the .superdex_bot fields (FORMATS.md);\n"
            "contact_overrides: [{linkA, linkB, enable}] as in bot files.")
+      .def("create_soft_actor",
+           [](Scene& s, const std::string& name, nb::handle shape, nb::handle material, nb::handle world_from_local,
+              nb::handle density, nb::handle fixed_nodes) {
+             const std::string where = "create_soft_actor('" + name + "')";
+             SoftMaterial mat;
+             if (!material.is_none()) mat = soft_material_from_json(to_json(material, "material"), where);
+             if (!density.is_none()) mat.density = *optional_positive(density, where + ": density");
+             std::vector<int> fixed;
+             if (!fixed_nodes.is_none()) {
+               const VecX f = read_vector(fixed_nodes, where + ": fixed_nodes");
+               for (Eigen::Index i = 0; i < f.size(); ++i) fixed.push_back(static_cast<int>(f[i]));
+             }
+             return Actor{s, s.create_soft_actor(name, shape_handle_of(shape, where + ": shape"), mat,
+                                                 read_transform(world_from_local, where + ": world_from_local"), fixed)};
+           },
+           "name"_a, "shape"_a, "material"_a.none() = nb::none(), "world_from_local"_a.none() = nb::none(),
+           "density"_a.none() = nb::none(), "fixed_nodes"_a.none() = nb::none(),
+           "A soft body from a tet-mesh shape; material {type, youngsModulus, poissonRatio, density, damping\n"
+           "(stiffness-proportional Rayleigh, s), dampingAlpha (mass-proportional, 1/s)}; fixed_nodes are pinned.")
       .def("get_actor", [](Scene& s, ActorHandle h) {
              if (!s.has_actor(h)) throw Error("get_actor: actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
              return Actor{s, h};

@@ -39,6 +39,7 @@ void shutdown() {
   std::unique_lock lock(e.mutex);
   e.scenes.clear();
   e.shapes.clear();
+  e.tet_meshes.clear();
   e.arena.reset();
   e.initialized = false;
 }
@@ -107,7 +108,7 @@ ShapeHandle create_shape(const ShapeGeometry& geometry) {
 void release_shape(ShapeHandle shape) {
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
-  if (e.shapes.erase(shape) == 0) throw Error("release_shape: shape " + std::to_string(shape) + " does not exist (already released?)");
+  if (e.shapes.erase(shape) == 0 && e.tet_meshes.erase(shape) == 0) throw Error("release_shape: shape " + std::to_string(shape) + " does not exist (already released?)");
 }
 
 ShapeGeometry shape_geometry(ShapeHandle shape) {
@@ -115,6 +116,40 @@ ShapeGeometry shape_geometry(ShapeHandle shape) {
   std::shared_lock lock(e.mutex);
   auto it = e.shapes.find(shape);
   if (it == e.shapes.end()) throw Error("shape " + std::to_string(shape) + " does not exist (released, or the engine was shut down)");
+  return it->second;
+}
+
+ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where) {
+  const int n = static_cast<int>(mesh.nodes.size());
+  if (mesh.tets.empty()) throw Error(where + ": the tet mesh has no tetrahedra");
+  for (int i = 0; i < n; ++i)
+    if (!mesh.nodes[i].allFinite()) throw Error(where + ": node " + std::to_string(i) + " has non-finite coordinates");
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& tet = mesh.tets[t];
+    for (int k = 0; k < 4; ++k)
+      if (tet[k] < 0 || tet[k] >= n)
+        throw Error(where + ": tetrahedron " + std::to_string(t) + " refers to node " + std::to_string(tet[k]) + ", out of range (" +
+                    std::to_string(n) + " nodes)");
+    Mat3 D;
+    D << mesh.nodes[tet[1]] - mesh.nodes[tet[0]], mesh.nodes[tet[2]] - mesh.nodes[tet[0]], mesh.nodes[tet[3]] - mesh.nodes[tet[0]];
+    const real volume = D.determinant() / 6;
+    const real scale = std::max({D.col(0).norm(), D.col(1).norm(), D.col(2).norm()});
+    if (volume < 0) throw Error(where + ": tetrahedron " + std::to_string(t) + " is inverted (negative volume)");
+    if (!(volume > real(1e-9) * scale * scale * scale)) throw Error(where + ": tetrahedron " + std::to_string(t) + " is degenerate (volume ~ 0)");
+  }
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  require_initialized(e, "create_tet_mesh_shape");
+  const ShapeHandle h = next_handle();
+  e.tet_meshes.emplace(h, std::make_shared<const TetMesh>(std::move(mesh)));
+  return h;
+}
+
+std::shared_ptr<const TetMesh> tet_mesh_shape(ShapeHandle shape) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  auto it = e.tet_meshes.find(shape);
+  if (it == e.tet_meshes.end()) throw Error("shape " + std::to_string(shape) + " is not a tet mesh (create it with create_tet_mesh_shape)");
   return it->second;
 }
 

@@ -105,10 +105,49 @@ ActorHandle Scene::create_articulated_actor(const ArticulationDesc& desc, const 
   return add_articulation(s, std::move(a));
 }
 
+ActorHandle Scene::create_soft_actor(const std::string& name, ShapeHandle tet_mesh, const SoftMaterial& material,
+                                     const Transform& X_WL, const std::vector<int>& fixed_nodes) {
+  SceneData& s = scene_data(handle_);
+  if (!X_WL.translation.allFinite() || !X_WL.rotation.coeffs().allFinite() || X_WL.rotation.norm() < real(1e-6))
+    throw Error("create_soft_actor('" + name + "'): world_from_local must be finite with a non-zero quaternion");
+  Transform X = X_WL;
+  X.rotation.normalize();
+  auto body = build_soft_body(name, tet_mesh_shape(tet_mesh), material, X, fixed_nodes, "create_soft_actor('" + name + "')");
+  body->handle = next_handle();
+  const ActorHandle h = body->handle;
+  s.actors[h] = ActorRef{nullptr, -1, body.get()};
+  s.soft_bodies.push_back(std::move(body));
+  return h;
+}
+
+std::vector<Vec3> Scene::node_positions(ActorHandle h) const {
+  const SceneData& s = scene_data(handle_);
+  auto it = s.actors.find(h);
+  if (it == s.actors.end() || !it->second.soft)
+    throw Error("get_node_positions_world: actor " + std::to_string(h) + " is not a soft actor of scene '" + s.name + "'");
+  const VecX& x = it->second.soft->state.x;
+  std::vector<Vec3> out(x.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = x.segment<3>(3 * i);
+  return out;
+}
+
+real Scene::elastic_energy(ActorHandle h) const {
+  const SceneData& s = scene_data(handle_);
+  auto it = s.actors.find(h);
+  if (it == s.actors.end() || !it->second.soft) throw Error("get_elastic_energy: actor " + std::to_string(h) + " is not a soft actor");
+  return soft_elastic_energy(*it->second.soft, it->second.soft->state.x);
+}
+
 void Scene::destroy_actor(ActorHandle actor) {
   SceneData& s = scene_data(handle_);
   auto it = s.actors.find(actor);
   if (it == s.actors.end()) throw Error("destroy_actor: actor " + std::to_string(actor) + " does not exist in scene '" + s.name + "'");
+  if (SoftBody* soft = it->second.soft) {
+    s.actors.erase(it);
+    std::erase_if(s.queries, [&](const auto& q) { return q.second.actor == actor; });
+    std::erase_if(s.soft_bodies, [&](const auto& p) { return p.get() == soft; });
+    return;
+  }
   if (it->second.link >= 0 && !it->second.articulation->is_rigid)
     throw Error("destroy_actor: actor " + std::to_string(actor) + " is a link of articulation " +
                 std::to_string(it->second.articulation->handle) + "; destroy the articulation instead");
@@ -134,6 +173,7 @@ bool Scene::has_actor(ActorHandle actor) const { return scene_data(handle_).acto
 std::vector<ActorHandle> Scene::actors() const {
   std::vector<ActorHandle> out;
   for (const auto& a : scene_data(handle_).articulations) out.push_back(a->handle);
+  for (const auto& b : scene_data(handle_).soft_bodies) out.push_back(b->handle);
   return out;
 }
 
@@ -198,6 +238,11 @@ void Scene::step_dynamics(real dt) {
   std::vector<IslandSolution> solutions(islands.size());
   parallel(islands.size(), [&](size_t k) { solutions[k] = solve_island(s, islands[k], terms, contacts, dt, s.params); });
 
+  // soft bodies: their own islands for now (contact coupling is issue 5's next part); a
+  // non-finite result throws here, before anything is committed
+  std::vector<SoftState> soft_next(s.soft_bodies.size());
+  parallel(s.soft_bodies.size(), [&](size_t i) { soft_next[i] = step_soft_body(*s.soft_bodies[i], s.gravity, dt, s.params); });
+
   // 4. next states; a non-finite result leaves every actor in its last good state
   std::vector<VecX> q_next(n), v_next(n);
   for (size_t k = 0; k < islands.size(); ++k)
@@ -223,6 +268,8 @@ void Scene::step_dynamics(real dt) {
     a.state.v = std::move(v_next[b]);
     refresh_kinematics(a);
   }
+
+  for (size_t i = 0; i < s.soft_bodies.size(); ++i) s.soft_bodies[i]->state = std::move(soft_next[i]);
 
   // 5. contact results for queries
   s.contacts.clear();

@@ -25,9 +25,14 @@ ActorRef lookup(SceneData& s, ActorHandle h, const char* what) {
 
 bool is_link_actor(const ActorRef& r) { return r.link >= 0 && !r.articulation->is_rigid; }
 
-// The articulation behind a rigid or articulated actor; link actors are refused.
+void refuse_soft(const ActorRef& r, ActorHandle h, const char* what) {
+  if (r.soft) throw Error(std::string(what) + ": " + describe(h) + " is a soft actor ('" + r.soft->model.name + "')");
+}
+
+// The articulation behind a rigid or articulated actor; link and soft actors are refused.
 Articulation& whole(SceneData& s, ActorHandle h, const char* what) {
   ActorRef r = lookup(s, h, what);
+  refuse_soft(r, h, what);
   if (is_link_actor(r))
     throw Error(std::string(what) + ": " + describe(h) + " is a link actor; call it on its articulation (" +
                 describe(r.articulation->handle) + ")");
@@ -37,6 +42,7 @@ Articulation& whole(SceneData& s, ActorHandle h, const char* what) {
 // The articulation and link index of a link actor, or link 0 of a rigid or articulated actor.
 std::pair<Articulation*, int> link_of(SceneData& s, ActorHandle h, const char* what) {
   ActorRef r = lookup(s, h, what);
+  refuse_soft(r, h, what);
   return {r.articulation, r.link < 0 ? 0 : r.link};
 }
 
@@ -56,12 +62,14 @@ void check_finite(const char* what, const char* arg, const VecX& x) {
 
 ActorType Scene::actor_type(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_type");
+  if (r.soft) return ActorType::Soft;
   if (r.articulation->is_rigid) return ActorType::Rigid;
   return r.link >= 0 ? ActorType::Link : ActorType::Articulated;
 }
 
 std::string Scene::actor_name(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_name");
+  if (r.soft) return r.soft->model.name;
   return r.link >= 0 ? r.articulation->model.link_names[r.link] : r.articulation->model.name;
 }
 
@@ -113,41 +121,56 @@ Vec6 Scene::velocity(ActorHandle h) const {
 
 real Scene::mass(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_mass");
+  if (r.soft) return r.soft->model.total_mass;
   if (r.link >= 0) return r.articulation->model.inertia[r.link].mass;
   real m = 0;
   for (const auto& I : r.articulation->model.inertia) m += I.mass;
   return m;
 }
 
-int Scene::num_dofs(ActorHandle h) const { return lookup(scene_data(handle_), h, "get_num_dofs").articulation->model.nv; }
+int Scene::num_dofs(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_num_dofs");
+  return r.soft ? static_cast<int>(r.soft->state.v.size()) : r.articulation->model.nv;
+}
 
 void Scene::set_external_forces_on_dofs(ActorHandle h, const std::vector<int>& dofs, const std::vector<real>& values) {
   const char* what = "set_external_forces_on_dofs";
-  Articulation& a = whole(scene_data(handle_), h, what);
+  ActorRef ref = lookup(scene_data(handle_), h, what);
+  VecX* target = ref.soft ? &ref.soft->state.tau_external : nullptr;
+  Articulation* art = ref.soft ? nullptr : &whole(scene_data(handle_), h, what);
+  const int nv = ref.soft ? static_cast<int>(target->size()) : art->model.nv;
   if (dofs.size() != values.size())
     throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but force_values has " +
                 std::to_string(values.size()));
-  VecX tau = VecX::Zero(a.model.nv);
+  VecX tau = VecX::Zero(nv);
   std::set<int> seen;
   for (size_t i = 0; i < dofs.size(); ++i) {
-    if (dofs[i] < 0 || dofs[i] >= a.model.nv)
+    if (dofs[i] < 0 || dofs[i] >= nv)
       throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) +
-                  " is out of range: the actor has " + std::to_string(a.model.nv) + " DOFs");
+                  " is out of range: the actor has " + std::to_string(nv) + " DOFs");
     if (!seen.insert(dofs[i]).second)
       throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) + " appears twice");
     if (!std::isfinite(values[i]))
       throw Error(std::string(what) + ": force_values[" + std::to_string(i) + "] is not finite (NaN or infinity)");
     tau[dofs[i]] = values[i];
   }
-  a.state.tau_external = tau;
+  (target ? *target : art->state.tau_external) = tau;
 }
 
 void Scene::clear_external_forces(ActorHandle h) {
-  Articulation& a = whole(scene_data(handle_), h, "clear_external_forces");
-  a.state.tau_external.setZero();
+  ActorRef r = lookup(scene_data(handle_), h, "clear_external_forces");
+  if (r.soft) {
+    r.soft->state.tau_external.setZero();
+    return;
+  }
+  whole(scene_data(handle_), h, "clear_external_forces").state.tau_external.setZero();
 }
 
-VecX Scene::external_forces(ActorHandle h) const { return whole(scene_data(handle_), h, "get_external_forces").state.tau_external; }
+VecX Scene::external_forces(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_external_forces");
+  if (r.soft) return r.soft->state.tau_external;
+  return whole(scene_data(handle_), h, "get_external_forces").state.tau_external;
+}
 
 std::vector<ActorHandle> Scene::nested_link_actors(ActorHandle h) const {
   Articulation& a = whole(scene_data(handle_), h, "get_nested_link_actors");

@@ -12,6 +12,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "articulation_model.h"
+#include "soft_body.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/scene.h"
 
@@ -33,8 +34,9 @@ struct Articulation {
 
 // What an actor handle refers to: a whole articulation (link -1) or one of its links.
 struct ActorRef {
-  Articulation* articulation = nullptr;
+  Articulation* articulation = nullptr;  // null for a soft actor
   int link = -1;
+  SoftBody* soft = nullptr;              // a soft actor
 };
 
 // One contact of the last step, as reported to queries. Force is applied to actor_a (world).
@@ -69,6 +71,7 @@ struct SceneData {
   SolverParams params;
   SolverStats stats;
   std::vector<std::unique_ptr<Articulation>> articulations;  // creation order
+  std::vector<std::unique_ptr<SoftBody>> soft_bodies;        // creation order
   std::unordered_map<ActorHandle, ActorRef> actors;
   long long step_count = 0;
   // contact filtering: disabled actor pairs (smaller handle first) and per-layer masks
@@ -93,6 +96,7 @@ struct EngineData {
   std::unique_ptr<oneapi::tbb::task_arena> arena;  // null when single-threaded
   std::map<SceneHandle, std::unique_ptr<SceneData>> scenes;
   std::map<ShapeHandle, ShapeGeometry> shapes;
+  std::map<ShapeHandle, std::shared_ptr<const TetMesh>> tet_meshes;
 };
 
 EngineData& engine_data();

@@ -6,6 +6,7 @@
 // joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
 // 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
 // velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
+// Then u32 soft body count; per soft body: u32 3N, node positions, velocities and forces (3N each).
 
 #include <cstring>
 
@@ -20,7 +21,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 
 class Writer {
  public:
@@ -92,6 +93,13 @@ std::vector<std::uint8_t> Scene::capture_state() const {
       w.put_reals(x, 19);
     }
   }
+  w.put(static_cast<std::uint32_t>(s.soft_bodies.size()));
+  for (const auto& b : s.soft_bodies) {
+    w.put(static_cast<std::uint32_t>(b->state.x.size()));
+    w.put_reals(b->state.x.data(), b->state.x.size());
+    w.put_reals(b->state.v.data(), b->state.v.size());
+    w.put_reals(b->state.tau_external.data(), b->state.tau_external.size());
+  }
   return std::move(w.bytes);
 }
 
@@ -153,7 +161,25 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
     if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");
   }
+  const auto soft_count = r.get<std::uint32_t>("soft body count");
+  if (soft_count != s.soft_bodies.size())
+    throw Error("restore_state: the state has " + std::to_string(soft_count) + " soft actors but the scene has " +
+                std::to_string(s.soft_bodies.size()));
+  std::vector<SoftState> soft_states(soft_count);
+  for (std::uint32_t i = 0; i < soft_count; ++i) {
+    const auto n = r.get<std::uint32_t>("soft sizes");
+    if (n != s.soft_bodies[i]->state.x.size())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " of the state does not match '" + s.soft_bodies[i]->model.name + "'");
+    SoftState& st = soft_states[i];
+    st.x.resize(n), st.v.resize(n), st.tau_external.resize(n);
+    r.get_reals(st.x.data(), n, "soft positions");
+    r.get_reals(st.v.data(), n, "soft velocities");
+    r.get_reals(st.tau_external.data(), n, "soft forces");
+    if (!st.x.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
+  }
   if (!r.done()) throw Error("restore_state: unexpected bytes after the last actor");
+  for (std::uint32_t i = 0; i < soft_count; ++i) s.soft_bodies[i]->state = std::move(soft_states[i]);
   for (std::uint32_t i = 0; i < count; ++i) {
     s.articulations[i]->state = std::move(states[i]);
     refresh_kinematics(*s.articulations[i]);

@@ -34,6 +34,7 @@ create_plane_shape = _m.create_plane_shape
 create_sphere_shape = _m.create_sphere_shape
 create_box_shape = _m.create_box_shape
 create_capsule_shape = _m.create_capsule_shape
+create_tet_mesh_shape = _m.create_tet_mesh_shape
 release_shape = _m.release_shape
 create_tri_mesh_shape = _m.create_tri_mesh_shape
 load_shape_from_file = _m.load_shape_from_file

@@ -4,6 +4,7 @@
 /// Thread-safety: the registries are guarded; scenes may be stepped concurrently from
 /// different threads, but one scene must not be used from two threads at once.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,13 @@ ShapeHandle create_shape(const ShapeGeometry& geometry);
 void release_shape(ShapeHandle shape);
 /// The geometry of a live shape.
 ShapeGeometry shape_geometry(ShapeHandle shape);
+
+/// Registers a tetrahedral mesh (for soft actors). Checks indices and that every tetrahedron is
+/// positively oriented and not degenerate; throws superdex::Error naming `where`, the tetrahedron
+/// index and the defect.
+ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where);
+/// The tet mesh of a live tet-mesh shape; throws if `shape` is not one.
+std::shared_ptr<const TetMesh> tet_mesh_shape(ShapeHandle shape);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

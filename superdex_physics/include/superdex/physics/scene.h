@@ -79,6 +79,16 @@ struct SolverStats {
   double time_total = 0;
 };
 
+/// The material of a soft body (FORMATS.md `material`).
+struct SoftMaterial {
+  std::string type = "NeoHookean";  ///< NeoHookean, StVK, Corotated or Linear
+  real youngs_modulus = 1e5;        ///< Pa
+  real poisson_ratio = real(0.3);   ///< < 0.5
+  real density = 1000;              ///< kg/m^3
+  real damping_alpha = 0;           ///< Rayleigh mass-proportional damping (1/s)
+  real damping_beta = 0;            ///< Rayleigh stiffness-proportional damping (s)
+};
+
 /// One joint's slice of the generalized coordinates.
 struct DofInfo {
   int offset = 0;      ///< first DOF index of the joint
@@ -126,6 +136,14 @@ class Scene {
                                  std::optional<real> density, std::optional<real> mass,
                                  const ContactMaterial& contact = {}, int layer = 0,
                                  ColliderType collider_type = ColliderType::Auto);
+  /// A soft body from a tet-mesh shape (create_tet_mesh_shape) placed at X_WL, with pinned
+  /// nodes (indices into the mesh). Throws superdex::Error naming the defect.
+  ActorHandle create_soft_actor(const std::string& name, ShapeHandle tet_mesh, const SoftMaterial& material,
+                                const Transform& X_WL, const std::vector<int>& fixed_nodes);
+  /// Node positions of a soft actor, world frame (N x 3, row-major).
+  std::vector<Vec3> node_positions(ActorHandle soft) const;
+  /// Elastic energy of a soft actor at its current positions (J).
+  real elastic_energy(ActorHandle soft) const;
   /// An articulation from its description; `source` names it in error messages (a file).
   /// Creates one link actor per link.
   ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);

@@ -72,6 +72,13 @@ struct ContactMaterial {
   real dissipation_time = 0;
 };
 
+/// A tetrahedral mesh for soft bodies: nodes (m) and tetrahedra as node indices, positively
+/// oriented (det[x1 - x0, x2 - x0, x3 - x0] > 0).
+struct TetMesh {
+  std::vector<Vec3> nodes;
+  std::vector<std::array<int, 4>> tets;
+};
+
 /// How a body's collision geometry is derived from its shape.
 enum class ColliderType { Auto, None, Sphere, Box, Plane, Mesh, Sdf };
 
