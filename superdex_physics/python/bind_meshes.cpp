@@ -103,6 +103,9 @@ void export_meshes(nb::module_& m) {
           const Transform X = read_transform(bake_transform, where + ": bake_transform");
           bake.rotation = X.rotation;
           bake.translation = X.translation;
+          // tetrahedra make a tet-mesh shape (for soft actors); other files a rigid shape
+          if (std::optional<TetMesh> tets = read_tet_mesh_file(path, bake))
+            return shape_object(create_tet_mesh_shape(std::move(*tets), path));
           return shape_object(create_shape(load_shape_file(path, bake)));
         }, "file_path"_a, "bake_scale"_a.none() = nb::none(), "bake_transform"_a.none() = nb::none(),
         "A shape from a .mochi.h5, .obj, .stl or .ply file. bake_scale (a number or 3 numbers) and then\n"

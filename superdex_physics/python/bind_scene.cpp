@@ -48,31 +48,6 @@ void emit_warnings(const std::vector<std::string>& warnings) {
 
 }  // namespace
 
-// A soft material from the JSON fields of FORMATS.md (all optional).
-SoftMaterial soft_material_from_json(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_object()) throw Error(where + ": material: expected a dict");
-  SoftMaterial m;
-  auto number = [&](const char* key, real& out) {
-    if (!j.contains(key)) return;
-    if (!j.at(key).is_number()) throw Error(where + ": material." + key + ": expected a number");
-    out = j.at(key).get<real>();
-  };
-  if (j.contains("type")) {
-    if (!j.at("type").is_string()) throw Error(where + ": material.type: expected a string");
-    m.type = j.at("type").get<std::string>();
-  }
-  number("youngsModulus", m.youngs_modulus);
-  number("poissonRatio", m.poisson_ratio);
-  number("density", m.density);
-  number("damping", m.damping_beta);
-  number("dampingAlpha", m.damping_alpha);
-  for (auto it = j.begin(); it != j.end(); ++it)
-    if (it.key() != "type" && it.key() != "youngsModulus" && it.key() != "poissonRatio" && it.key() != "density" &&
-        it.key() != "damping" && it.key() != "dampingAlpha")
-      PyErr_WarnEx(PyExc_UserWarning, (where + ": material." + it.key() + ": unknown field, ignored").c_str(), 1);
-  return m;
-}
-
 ActorHandle actor_handle_of(nb::handle obj, const std::string& arg) {
   if (nb::isinstance<Actor>(obj)) return nb::cast<Actor&>(obj).handle;
   ActorHandle h;
@@ -193,7 +168,11 @@ void export_scene(nb::module_& m) {
               nb::handle density, nb::handle fixed_nodes) {
              const std::string where = "create_soft_actor('" + name + "')";
              SoftMaterial mat;
-             if (!material.is_none()) mat = soft_material_from_json(to_json(material, "material"), where);
+             if (!material.is_none()) {
+               std::vector<std::string> warnings;
+               mat = soft_material_from_json(to_json(material, "material"), where, "material", &warnings);
+               emit_warnings(warnings);
+             }
              if (!density.is_none()) mat.density = *optional_positive(density, where + ": density");
              std::vector<int> fixed;
              if (!fixed_nodes.is_none()) {

@@ -270,6 +270,22 @@ ContactMaterial contact_material_from_json(const json& j, const std::string& sou
   });
 }
 
+SoftMaterial soft_material_from_json(const json& j, const std::string& source, const std::string& path,
+                                     std::vector<std::string>* warnings) {
+  return with_source(source, [&] {
+    Reader r(j, source, path, warnings);
+    SoftMaterial m;
+    if (r.has("type")) m.type = r.string("type");
+    if (r.has("youngsModulus")) m.youngs_modulus = r.number("youngsModulus");
+    if (r.has("poissonRatio")) m.poisson_ratio = r.number("poissonRatio");
+    if (r.has("density")) m.density = r.number("density");
+    if (r.has("damping")) m.damping_beta = r.number("damping");
+    if (r.has("dampingAlpha")) m.damping_alpha = r.number("dampingAlpha");
+    r.check_unknown({"type", "youngsModulus", "poissonRatio", "density", "damping", "dampingAlpha"}, {});
+    return m;
+  });
+}
+
 ArticulationDesc articulation_desc_from_json(const json& doc, const std::string& source, std::vector<std::string>* warnings,
                                              const std::vector<std::string>& extra) {
   return with_source(source, [&] {

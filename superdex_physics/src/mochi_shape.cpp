@@ -102,5 +102,18 @@ ShapeGeometry shape_from_mochi_h5(const std::string& path, const ShapeBake& bake
   return make_mesh_shape(std::move(m), path, {}, std::move(sdf));
 }
 
+std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake) {
+  const bool h5 = path.size() >= 9 && path.compare(path.size() - 9, 9, ".mochi.h5") == 0;
+  if (!h5) return std::nullopt;
+  const MochiH5 h = read_mochi_h5(path);
+  if (!h.mesh || h.mesh->nodes_per_element != 4) return std::nullopt;
+  if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) throw Error(path + ": the bake scale must be positive");
+  TetMesh mesh;
+  for (const Vec3& x : h.mesh->coordinates) mesh.nodes.push_back(bake.rotation * bake.scale.cwiseProduct(x) + bake.translation);
+  const auto& c = h.mesh->connectivity;
+  for (int e = 0; e < h.mesh->num_elements(); ++e) mesh.tets.push_back({c[4 * e], c[4 * e + 1], c[4 * e + 2], c[4 * e + 3]});
+  return mesh;
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -98,8 +98,8 @@ struct Loader {
       if (actors.contains(kind) && !actors.at(kind).is_array()) fail(file, std::string("actors.") + kind, "expected an array");
     if (actors.contains("rigid"))
       for (size_t i = 0; i < actors.at("rigid").size(); ++i) add_rigid(actors.at("rigid")[i], file, dir, "actors.rigid[" + std::to_string(i) + "]", place, prefixed, s);
-    if (actors.contains("soft") && !actors.at("soft").empty())
-      fail(file, "actors.soft", "soft actors need the soft-body engine, which this build does not have yet");
+    if (actors.contains("soft"))
+      for (size_t i = 0; i < actors.at("soft").size(); ++i) add_soft(actors.at("soft")[i], file, dir, "actors.soft[" + std::to_string(i) + "]", place, prefixed, s);
     if (actors.contains("articulated"))
       for (size_t i = 0; i < actors.at("articulated").size(); ++i)
         add_articulated(actors.at("articulated")[i], file, dir, "actors.articulated[" + std::to_string(i) + "]", place, prefixed, s);
@@ -162,6 +162,58 @@ struct Loader {
                                                        opt_number(e, "mass", file, path), material, layer, collider));
     } catch (const Error& err) {
       fail(file, path, err.what());
+    }
+  }
+
+  // A soft actor: a tetrahedral .mochi.h5 shape, a material, and pinned nodes (fixedNodes indices
+  // and/or the nodes inside fixedRegion, an AABB {min, max} in the actor's frame, scaled with it).
+  template <class Place, class Prefix>
+  void add_soft(const json& e, const std::string& file, const fs::path& dir, const std::string& path, Place place, Prefix prefixed, real s) {
+    if (!e.is_object()) fail(file, path, "expected an object");
+    if (!e.contains("name") || !e.at("name").is_string()) fail(file, path + ".name", "required: a string");
+    if (!e.contains("shape") || !e.at("shape").is_string()) fail(file, path + ".shape", "required: a .mochi.h5 file with a tetrahedral mesh/");
+    const fs::path p = resolve(e.at("shape").get<std::string>(), dir, root, file, path + ".shape");
+    if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+    ShapeBake bake;
+    bake.scale = Vec3::Constant(s);
+    std::optional<TetMesh> mesh;
+    try {
+      mesh = read_tet_mesh_file(p.string(), bake);
+    } catch (const Error& err) {
+      fail(file, path + ".shape", err.what());
+    }
+    if (!mesh) fail(file, path + ".shape", "'" + p.string() + "' has no tetrahedral mesh/ (connectivity M x 4)");
+    SoftMaterial material;
+    if (e.contains("material")) material = soft_material_from_json(e.at("material"), file, path + ".material", warnings);
+    if (auto d = opt_number(e, "density", file, path)) material.density = *d;
+    std::vector<int> fixed;
+    if (e.contains("fixedNodes")) {
+      const json& list = e.at("fixedNodes");
+      if (!list.is_array()) fail(file, path + ".fixedNodes", "expected an array of node indices");
+      for (size_t k = 0; k < list.size(); ++k) {
+        if (!list[k].is_number_integer()) fail(file, path + ".fixedNodes[" + std::to_string(k) + "]", "expected an integer");
+        fixed.push_back(list[k].get<int>());
+      }
+    }
+    if (e.contains("fixedRegion")) {
+      const json& r = e.at("fixedRegion");
+      auto corner = [&](const char* key) {
+        if (!r.is_object() || !r.contains(key) || !r.at(key).is_array() || r.at(key).size() != 3)
+          fail(file, path + ".fixedRegion." + key, "expected 3 numbers");
+        return Vec3(r.at(key)[0].get<real>(), r.at(key)[1].get<real>(), r.at(key)[2].get<real>()) * s;
+      };
+      const Vec3 lo = corner("min"), hi = corner("max");
+      for (size_t k = 0; k < mesh->nodes.size(); ++k)
+        if ((mesh->nodes[k].array() >= lo.array()).all() && (mesh->nodes[k].array() <= hi.array()).all()) fixed.push_back(static_cast<int>(k));
+    }
+    const std::string source = file + ": " + path;
+    try {
+      const ShapeHandle shape = create_tet_mesh_shape(std::move(*mesh), source + ".shape");
+      result.actors.push_back(scene.create_soft_actor(prefixed(e.at("name").get<std::string>()), shape, material,
+                                                      place(local_pose(e, file, path)), fixed));
+    } catch (const Error& err) {
+      const std::string msg = err.what();
+      throw Error(msg.rfind(file, 0) == 0 ? msg : source + ": " + msg);
     }
   }
 

@@ -241,11 +241,18 @@ def test_sdf_without_mesh_and_tetrahedra(engine, tmp_path):
     path = write_sdf(tmp_path / "grid_only.mochi.h5", with_mesh=False, grid_min=[0.0, 0, 0], grid_max=[1.0, 1, 1])
     with pytest.raises(sdp.Error, match=r"grid_only\.mochi\.h5: sdf/ without mesh/"):
         sdp.load_shape_from_file(path)
+    # tetrahedra load as a tet-mesh shape for soft actors; an inverted one is named with the file
     with h5py.File(tmp_path / "tet.mochi.h5", "w") as f:
-        f["mesh/coordinates"] = np.eye(4, 3)
+        f["mesh/coordinates"] = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
         f["mesh/connectivity"] = np.array([[0, 1, 2, 3]], dtype=np.int32)
-    with pytest.raises(sdp.Error, match=r"tet\.mochi\.h5: .*tet meshes become soft bodies, not rigid shapes"):
-        sdp.load_shape_from_file(tmp_path / "tet.mochi.h5")
+    scene = sdp.create_scene("soft")
+    soft = scene.create_soft_actor("tet", sdp.load_shape_from_file(tmp_path / "tet.mochi.h5"), material={"density": 600})
+    assert soft.get_mass() == pytest.approx(600 / 6)
+    with h5py.File(tmp_path / "inverted.mochi.h5", "w") as f:
+        f["mesh/coordinates"] = np.array([[0, 0, 0], [0, 1, 0], [1, 0, 0], [0, 0, 1]], dtype=float)
+        f["mesh/connectivity"] = np.array([[0, 1, 2, 3]], dtype=np.int32)
+    with pytest.raises(sdp.Error, match=r"inverted\.mochi\.h5: tetrahedron 0 is inverted"):
+        sdp.load_shape_from_file(tmp_path / "inverted.mochi.h5")
 
 
 def test_bad_arrays_and_arguments(engine, tmp_path):

@@ -123,7 +123,7 @@ def test_errors_leave_nothing_behind(scene, tmp_path):
 
 def test_other_errors(scene, tmp_path):
     soft = write(tmp_path / "soft.mochi_prefab", {"actors": {"soft": [{"name": "s", "shape": "./x.mochi.h5"}]}})
-    with pytest.raises(sdp.Error, match=r"actors\.soft: soft actors need the soft-body engine"):
+    with pytest.raises(sdp.Error, match=r"actors\.soft\[0\]\.shape: shape file .*x\.mochi\.h5' does not exist"):
         add_to_scene(soft, tmp_path, scene)
     loop = write(tmp_path / "loop.mochi_prefab", {"prefabs": [{"path": "./loop.mochi_prefab"}]})
     with pytest.raises(sdp.Error, match="nest more than 16 deep"):
@@ -138,3 +138,27 @@ def test_other_errors(scene, tmp_path):
         add_to_scene(nameless, tmp_path, scene)
     with pytest.raises(sdp.Error, match="scale must be a positive"):
         add_to_scene(nameless, tmp_path, scene, PrefabParams(scale=0))
+
+
+def test_duck_lamp_prefab_loads_as_a_pinned_soft_actor(scene):
+    """The seed's prop: one soft actor of the committed tet mesh, placed at x = -0.30, its bottom
+    pinned by fixedRegion; under gravity its pinned nodes stay put and the rest sags only a little
+    (E = 100 kPa), with no contact needed to hold it."""
+    from superdex.physics.paths import resolve_asset
+
+    inst = add_to_scene(resolve_asset("prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab"), get_assets_root(), scene,
+                        PrefabParams(name="duck_lamp"))
+    assert len(inst.actors) == 1
+    duck = scene.get_actor(inst.actors[0])
+    assert duck.get_type() == sdp.ActorType.SOFT and duck.get_name() == "duck_lamp/duck_lamp"
+    x0 = duck.get_node_positions_world()
+    assert x0.shape == (1210, 3)
+    assert np.mean(x0[:, 0]) == pytest.approx(-0.30, abs=0.02)
+    assert duck.get_mass() == pytest.approx(1100 * 428e-6, rel=0.05)
+    bottom = np.flatnonzero(x0[:, 2] <= 1e-3)
+    for _ in range(10):
+        scene.step(0.02)
+    x = duck.get_node_positions_world()
+    np.testing.assert_allclose(x[bottom], x0[bottom], atol=1e-12)
+    sag = np.abs(x - x0).max()
+    assert 0 < sag < 0.005

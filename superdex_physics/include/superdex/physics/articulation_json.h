@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "superdex/physics/articulation_desc.h"
+#include "superdex/physics/scene.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -39,6 +40,12 @@ Transform shape_pose_from_json(const nlohmann::json& j, const std::string& sourc
 
 /// Parses `{coulombFrictionCoefficient, stiffness, dissipationTimeScale}` (all optional).
 ContactMaterial contact_material_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+
+/// Parses a soft material `{type, youngsModulus, poissonRatio, density, damping (stiffness-
+/// proportional Rayleigh, s), dampingAlpha (mass-proportional, 1/s)}`, all optional; unknown
+/// fields are appended to `warnings`.
+SoftMaterial soft_material_from_json(const nlohmann::json& j, const std::string& source, const std::string& path,
+                                     std::vector<std::string>* warnings);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -3,6 +3,7 @@
 /// Building mesh shapes: from vertex and triangle arrays, or from a shape file of any
 /// supported format (.mochi.h5, .obj, .stl, .ply).
 
+#include <optional>
 #include <string>
 
 #include "superdex/physics/mochi_h5.h"
@@ -22,6 +23,10 @@ MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const Sd
 /// Applies `bake` to every vertex: v' = rotation * (scale .* v) + translation. Throws
 /// superdex::Error "<where>: ..." for a non-positive or non-finite scale.
 void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where);
+
+/// When `path` is a `.mochi.h5` file whose mesh/ holds tetrahedra, its tet mesh with `bake`
+/// applied to the nodes; otherwise nothing. Throws superdex::Error naming the file for a bad file.
+std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake = {});
 
 /// Loads a shape file by extension: `.mochi.h5` (shape_from_mochi_h5), or a mesh file
 /// (read_mesh_file) made into a MeshShape after baking `bake` into its vertices.
