@@ -178,6 +178,12 @@ void export_actor(nb::module_& m) {
              for (const Vec3& p : x) flat.insert(flat.end(), p.data(), p.data() + 3);
              return numpy_copy(flat.data(), {x.size(), 3});
            }, "Soft actors: node positions (m), world frame, N x 3.")
+      .def("get_node_contact_forces_world", [](const Actor& a) {
+             const std::vector<Vec3> f = a.scene.node_contact_forces(a.handle);
+             std::vector<real> flat;
+             for (const Vec3& p : f) flat.insert(flat.end(), p.data(), p.data() + 3);
+             return numpy_copy(flat.data(), {f.size(), 3});
+           }, "Soft actors: contact force on each node in the last step (N, world), N x 3. Needs NODE_CONTACT_FORCES.")
       .def("get_elastic_energy", [](const Actor& a) { return a.scene.elastic_energy(a.handle); },
            "Soft actors: elastic energy at the current positions (J).")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,

@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "island_solver.h"
+#include "soft_body.h"
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
@@ -240,8 +241,13 @@ void Scene::step_dynamics(real dt) {
 
   // soft bodies: their own islands for now (contact coupling is issue 5's next part); a
   // non-finite result throws here, before anything is committed
+  std::vector<StaticSurface> surfaces;
+  if (!s.soft_bodies.empty())
+    for (const auto& a : s.articulations)
+      if (a->model.nv == 0)
+        for (const LinkCollider& c : a->model.colliders) surfaces.push_back({&c.shape, a->kin.X_WL[c.link] * c.X_LS, c.material});
   std::vector<SoftState> soft_next(s.soft_bodies.size());
-  parallel(s.soft_bodies.size(), [&](size_t i) { soft_next[i] = step_soft_body(*s.soft_bodies[i], s.gravity, dt, s.params); });
+  parallel(s.soft_bodies.size(), [&](size_t i) { soft_next[i] = step_soft_body(*s.soft_bodies[i], s.gravity, dt, s.params, surfaces); });
 
   // 4. next states; a non-finite result leaves every actor in its last good state
   std::vector<VecX> q_next(n), v_next(n);

@@ -64,9 +64,13 @@ void for_each_side(const SceneData& s, const ActorRef& ref, F&& fn) {
 std::int64_t Scene::register_query(ActorHandle actor, QueryType type) {
   SceneData& s = scene_data(handle_);
   lookup(s, actor, "register_query");
-  if (type != QueryType::TotalContactForce && type != QueryType::ContactPoints)
-    throw Error(std::string("register_query: ") + query_type_name(type) + " is not available for actor " +
-                std::to_string(actor) + " (rigid and articulated actors offer TOTAL_CONTACT_FORCE and CONTACT_POINTS)");
+  const bool soft = s.actors.at(actor).soft != nullptr;
+  const bool ok = soft ? (type == QueryType::TotalContactForce || type == QueryType::NodePositions || type == QueryType::NodeContactForces)
+                       : (type == QueryType::TotalContactForce || type == QueryType::ContactPoints);
+  if (!ok)
+    throw Error(std::string("register_query: ") + query_type_name(type) + " is not available for actor " + std::to_string(actor) +
+                (soft ? " (soft actors offer TOTAL_CONTACT_FORCE, NODE_POSITIONS and NODE_CONTACT_FORCES)"
+                      : " (rigid and articulated actors offer TOTAL_CONTACT_FORCE and CONTACT_POINTS)"));
   const std::int64_t id = next_handle();
   s.queries[id] = {actor, static_cast<int>(type), s.step_count};
   return id;
@@ -84,6 +88,12 @@ Vec3 Scene::contact_force(ActorHandle actor) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_force_world");
   require_query(s, actor, QueryType::TotalContactForce, "get_contact_force_world");
+  if (ref.soft) {
+    Vec3 f = Vec3::Zero();
+    const VecX& nodes = ref.soft->node_contact_forces;
+    for (Eigen::Index i = 0; i + 2 < nodes.size(); i += 3) f += nodes.segment<3>(i);
+    return f;
+  }
   Vec3 f = Vec3::Zero();
   for_each_side(s, ref, [&](const ContactRecord& c, real sign) { f += sign * c.force; });
   return f;
@@ -92,6 +102,7 @@ Vec3 Scene::contact_force(ActorHandle actor) const {
 Vec3 Scene::contact_torque(ActorHandle actor) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_torque_world");
+  if (ref.soft) throw Error("get_contact_torque_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   require_query(s, actor, QueryType::TotalContactForce, "get_contact_torque_world");
   const Vec3 origin = ref.articulation->kin.X_WL[ref.link < 0 ? 0 : ref.link].p;
   Vec3 t = Vec3::Zero();
@@ -102,6 +113,7 @@ Vec3 Scene::contact_torque(ActorHandle actor) const {
 Vec3 Scene::contact_force_from(ActorHandle actor, ActorHandle other) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_force_from_actor_world");
+  if (ref.soft) throw Error("get_contact_force_from_actor_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   const ActorRef& other_ref = lookup(s, other, "get_contact_force_from_actor_world: other");
   require_query(s, actor, QueryType::TotalContactForce, "get_contact_force_from_actor_world");
   Vec3 f = Vec3::Zero();
@@ -115,6 +127,7 @@ Vec3 Scene::contact_force_from(ActorHandle actor, ActorHandle other) const {
 std::vector<ContactPointInfo> Scene::contact_points(ActorHandle actor) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_points_world");
+  if (ref.soft) throw Error("get_contact_points_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   require_query(s, actor, QueryType::ContactPoints, "get_contact_points_world");
   std::vector<ContactPointInfo> out;
   for_each_side(s, ref, [&](const ContactRecord& c, real sign) {
@@ -127,6 +140,17 @@ std::vector<ContactPointInfo> Scene::contact_points(ActorHandle actor) const {
     p.force = sign * c.force;
     out.push_back(p);
   });
+  return out;
+}
+
+std::vector<Vec3> Scene::node_contact_forces(ActorHandle actor) const {
+  const SceneData& s = scene_data(handle_);
+  const ActorRef& ref = lookup(s, actor, "get_node_contact_forces_world");
+  if (!ref.soft) throw Error("get_node_contact_forces_world: actor " + std::to_string(actor) + " is not a soft actor");
+  require_query(s, actor, QueryType::NodeContactForces, "get_node_contact_forces_world");
+  const VecX& f = ref.soft->node_contact_forces;
+  std::vector<Vec3> out(ref.soft->state.x.size() / 3, Vec3::Zero());
+  for (size_t i = 0; i < out.size() && 3 * i + 2 < static_cast<size_t>(f.size()); ++i) out[i] = f.segment<3>(3 * i);
   return out;
 }
 

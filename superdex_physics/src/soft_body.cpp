@@ -5,6 +5,9 @@
 #include <Eigen/Sparse>
 #include <cmath>
 
+#include "articulation_step.h"
+#include "collision_detection.h"
+#include "newton_solver.h"
 #include "superdex/physics/error.h"
 
 namespace superdex::physics {
@@ -103,7 +106,8 @@ real soft_elastic_energy(const SoftBody& b, const VecX& x) {
   return elastic(b, x, rotations(b, b.state.x), nullptr, nullptr, 0);
 }
 
-SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverParams& params) {
+SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverParams& params,
+                         const std::vector<StaticSurface>& surfaces) {
   const SoftModel& m = b.model;
   const int n = static_cast<int>(b.state.x.size());
   const VecX& x0 = b.state.x;
@@ -126,11 +130,72 @@ SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverPara
   SparseMat D(n, n);
   D.setFromTriplets(damping.begin(), damping.end());
 
+  // contacts of free nodes with static surfaces, detected at the start of the step
+  struct NodeContact {
+    int node;
+    Mat3 R_C;  // contact frame [t1 t2 n], n out of the surface
+    ConstraintBlock block;
+  };
+  std::vector<NodeContact> contacts;
+  const real near_rigid = near_rigid_factor(params);
+  for (int i = 0; i < n / 3; ++i) {
+    if (m.pinned[i]) continue;
+    const Vec3 p = x0.segment<3>(3 * i);
+    const real reach = params.contact_margin + dt * (v0.segment<3>(3 * i).norm() + dt * g_W.norm());
+    for (const StaticSurface& surface : surfaces) {
+      Vec3 g_S;
+      const real phi = shape_signed_distance(*surface.shape, surface.X_WS.R.transpose() * (p - surface.X_WS.p), &g_S);
+      if (phi >= reach) continue;
+      const Vec3 nrm = surface.X_WS.R * g_S;
+      NodeContact c;
+      c.node = i;
+      const Vec3 helper = std::abs(nrm.x()) < real(0.9) ? Vec3::UnitX() : Vec3::UnitY();
+      const Vec3 t1 = nrm.cross(helper).normalized();
+      c.R_C << t1, nrm.cross(t1), nrm;
+      // near-rigid regularisation from the node's compliance 1/m, target compensated as for rigid contacts
+      const real w = 1 / m.node_mass[i];
+      c.block.kind = BlockKind::FrictionalContact;
+      c.block.Rn = near_rigid * w;
+      c.block.R = params.friction_sigma * w;
+      const real vhat = -phi / dt;
+      const real vn_free = nrm.dot(v0.segment<3>(3 * i) + dt * (g_W + b.state.tau_external.segment<3>(3 * i) / m.node_mass[i]));
+      c.block.vhat = vhat + (c.block.Rn / w) * (vhat - vn_free);
+      c.block.bound = combine_materials(b.model.contact, surface.material).friction;
+      contacts.push_back(c);
+    }
+  }
+  // impulses (3 per contact, contact frame) and Hessian blocks at velocities v
+  auto contact_response = [&](const VecX& v, VecX& gamma, std::vector<Mat3>* G) {
+    gamma.resize(3 * contacts.size());
+    if (G) G->resize(contacts.size());
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      const Vec3 vc = contacts[k].R_C.transpose() * v.segment<3>(3 * contacts[k].node);
+      Mat3 Gk;
+      block_response(contacts[k].block, vc.data(), gamma.data() + 3 * k, Gk.data());
+      if (G) (*G)[k] = Gk;
+    }
+  };
+
   // gradient of the objective (pinned DOFs masked); its Hessian triplets when `hess` is given
   auto gradient = [&](const VecX& v, std::vector<Eigen::Triplet<real>>* hess, VecX* grad_psi_out) {
     VecX grad_psi;
     elastic(b, x0 + dt * v, R, &grad_psi, hess, dt * dt);
-    const VecX g = (M.cwiseProduct(v - v0) - dt * f_ext + dt * grad_psi + dt * (D * v)).cwiseProduct(free);
+    VecX g = M.cwiseProduct(v - v0) - dt * f_ext + dt * grad_psi + dt * (D * v);
+    if (!contacts.empty()) {
+      VecX gamma;
+      std::vector<Mat3> G;
+      contact_response(v, gamma, hess ? &G : nullptr);
+      for (size_t k = 0; k < contacts.size(); ++k) {
+        const int i = contacts[k].node;
+        g.segment<3>(3 * i) -= contacts[k].R_C * gamma.segment<3>(3 * k);
+        if (hess) {
+          const Mat3 Hk = contacts[k].R_C * G[k] * contacts[k].R_C.transpose();
+          for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < 3; ++c) hess->emplace_back(3 * i + a, 3 * i + c, Hk(a, c));
+        }
+      }
+    }
+    g = g.cwiseProduct(free);
     if (grad_psi_out) *grad_psi_out = std::move(grad_psi);
     return g;
   };
@@ -175,6 +240,14 @@ SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverPara
       alpha /= 2;
     }
     v += alpha * dv;
+  }
+  // contact forces of the solution, per node (N), world
+  b.node_contact_forces = VecX::Zero(n);
+  if (!contacts.empty()) {
+    VecX gamma;
+    contact_response(v, gamma, nullptr);
+    for (size_t k = 0; k < contacts.size(); ++k)
+      b.node_contact_forces.segment<3>(3 * contacts[k].node) += contacts[k].R_C * gamma.segment<3>(3 * k) / dt;
   }
   b.last_iterations = it;
   b.last_residual = residual;

@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "collision_geometry.h"
 #include "fem_elasticity.h"
+#include "spatial.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/scene.h"
 #include "superdex/physics/shape.h"
@@ -33,6 +35,7 @@ struct SoftModel {
   std::vector<char> pinned;              // per node (N)
   real alpha = 0, beta = 0;              // Rayleigh damping: mass (1/s) and stiffness (s) proportional
   real total_mass = 0;
+  ContactMaterial contact;               // surface contact parameters
 };
 
 struct SoftState {
@@ -45,6 +48,7 @@ struct SoftBody {
   ActorHandle handle = 0;
   SoftModel model;
   SoftState state;
+  VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
   int last_iterations = 0;
   real last_residual = 0;
 };
@@ -54,8 +58,18 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
                                           const SoftMaterial& material, const Transform& X_WL,
                                           const std::vector<int>& fixed_nodes, const std::string& where);
 
-// One implicit step; returns the next state (not committed). Throws on non-finite results.
-SoftState step_soft_body(SoftBody& body, const Vec3& g_W, real dt, const SolverParams& params);
+// A static surface soft nodes can touch (a collider of an immovable body), posed in the world.
+struct StaticSurface {
+  const ShapeGeometry* shape;
+  SpatialTransform X_WS;
+  ContactMaterial material;
+};
+
+// One implicit step; returns the next state (not committed). Nodes closer than the margin to a
+// static surface get frictional contact blocks (SAP cone, near-rigid, as for rigid bodies) in the
+// same Newton solve; their impulses are returned as node contact forces. Throws on non-finite results.
+SoftState step_soft_body(SoftBody& body, const Vec3& g_W, real dt, const SolverParams& params,
+                         const std::vector<StaticSurface>& surfaces);
 
 // Total elastic energy at positions x (J).
 real soft_elastic_energy(const SoftBody& body, const VecX& x);

@@ -145,3 +145,31 @@ def test_bad_soft_materials_and_pins(scene):
         scene.create_soft_actor("s", shape, fixed_nodes=[99])
     with pytest.raises(sdp.Error, match="is not a tet mesh"):
         scene.create_soft_actor("s", sdp.create_sphere_shape([0, 0, 0], 1.0))
+
+
+def test_soft_cube_dropped_on_the_plane_rests_on_its_weight(scene):
+    """A soft cube (Neo-Hookean, nu = 0.45) dropped on the ground comes to rest: the total contact
+    force on it equals its weight within 1 %, the node forces add up to it, and its volume
+    changes by less than 2 %."""
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    h = 0.1
+    nodes, tets = box_tet_mesh([h, h, h], [4, 4, 4])
+    cube = scene.create_soft_actor("cube", sdp.create_tet_mesh_shape(nodes, tets),
+                                   material={"youngsModulus": 1e5, "poissonRatio": 0.45, "density": 500, "damping": 0.01},
+                                   world_from_local=sdp.TransformRT(translation=[0, 0, 0.02]))
+    cube.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
+    cube.register_query(sdp.QueryType.NODE_CONTACT_FORCES)
+    for _ in range(150):
+        scene.step(0.01)
+    weight = cube.get_mass() * 9.81
+    f = cube.get_contact_force_world()
+    assert f[2] == pytest.approx(weight, rel=0.01)
+    assert abs(f[0]) < 0.01 * weight and abs(f[1]) < 0.01 * weight
+    np.testing.assert_allclose(cube.get_node_contact_forces_world().sum(axis=0), f, rtol=1e-5, atol=1e-6)
+    x = cube.get_node_positions_world()
+    assert x[:, 2].min() > -1e-3, "it rests on the ground, not in it"
+
+    def volume(p):
+        return sum(np.linalg.det(np.array([p[t[1]] - p[t[0]], p[t[2]] - p[t[0]], p[t[3]] - p[t[0]]])) / 6 for t in tets)
+
+    assert volume(x) == pytest.approx(volume(nodes), rel=0.02)

@@ -142,6 +142,8 @@ class Scene {
                                 const Transform& X_WL, const std::vector<int>& fixed_nodes);
   /// Node positions of a soft actor, world frame (N x 3, row-major).
   std::vector<Vec3> node_positions(ActorHandle soft) const;
+  /// Contact force on each node of a soft actor in the last step (N, world). Needs NODE_CONTACT_FORCES.
+  std::vector<Vec3> node_contact_forces(ActorHandle soft) const;
   /// Elastic energy of a soft actor at its current positions (J).
   real elastic_energy(ActorHandle soft) const;
   /// An articulation from its description; `source` names it in error messages (a file).
