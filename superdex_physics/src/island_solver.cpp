@@ -5,23 +5,13 @@
 #include <chrono>
 #include <map>
 
+#include "contact_block.h"
 #include "kinematics.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
-
-// Orthonormal contact frame [t1 t2 n] (columns) around the normal n.
-Mat3 contact_frame(const Vec3& n) {
-  const Vec3 helper = std::abs(n.x()) < real(0.9) ? Vec3::UnitX() : Vec3::UnitY();
-  const Vec3 t1 = n.cross(helper).normalized();
-  Mat3 R;
-  R.col(0) = t1;
-  R.col(1) = n.cross(t1);
-  R.col(2) = n;
-  return R;
-}
 
 }  // namespace
 
@@ -76,7 +66,6 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     const MatXR& J = it->second;
     return MatX(J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>());
   };
-  const real near_rigid = near_rigid_factor(params);
   // velocities of the free (unconstrained) motion, for the near-rigid target compensation
   VecX v_free(n);
   for (int b : island.bodies) v_free.segment(offset[b], s.articulations[b]->model.nv) = terms[b].A_llt.solve(terms[b].r);
@@ -101,25 +90,8 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
       W += Jc * terms[body].A_llt.solve(Jc.transpose());
       vn_free += Jc.row(2).dot(v_free.segment(o, nb));
     }
-    const real w = W.trace() / 3;
-    ConstraintBlock blk;
-    blk.kind = BlockKind::FrictionalContact;
+    ConstraintBlock blk = frictional_contact_block(c.material, c.phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
     blk.row = row;
-    if (c.material.stiffness > 0) {
-      // compliant contact (SAP): impulse = dt k (-(phi + dt vn) - tau_d vn), no stiffer than near-rigid
-      const real tau_d = c.material.dissipation_time;
-      blk.Rn = std::max(near_rigid * w, 1 / (dt * c.material.stiffness * (dt + tau_d)));
-      blk.vhat = -c.phi / (dt + tau_d);
-    } else {
-      // near-rigid contact: remove the predicted penetration within one step, with the target
-      // compensated for the regularisation (for an isolated contact vn = vhat exactly), so that
-      // an impact does not overshoot into the surface and resting bodies do not sag
-      blk.Rn = near_rigid * w;
-      const real vhat = -c.phi / dt;
-      blk.vhat = vhat + (blk.Rn / W(2, 2)) * (vhat - vn_free);
-    }
-    blk.R = params.friction_sigma * w;
-    blk.bound = c.material.friction;
     contact_mu.push_back(c.material.friction);
     rows.blocks.push_back(blk);
     row += 3;

@@ -7,6 +7,7 @@
 
 #include "articulation_step.h"
 #include "collision_detection.h"
+#include "contact_block.h"
 #include "newton_solver.h"
 #include "superdex/physics/error.h"
 
@@ -137,7 +138,6 @@ SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverPara
     ConstraintBlock block;
   };
   std::vector<NodeContact> contacts;
-  const real near_rigid = near_rigid_factor(params);
   for (int i = 0; i < n / 3; ++i) {
     if (m.pinned[i]) continue;
     const Vec3 p = x0.segment<3>(3 * i);
@@ -149,18 +149,11 @@ SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverPara
       const Vec3 nrm = surface.X_WS.R * g_S;
       NodeContact c;
       c.node = i;
-      const Vec3 helper = std::abs(nrm.x()) < real(0.9) ? Vec3::UnitX() : Vec3::UnitY();
-      const Vec3 t1 = nrm.cross(helper).normalized();
-      c.R_C << t1, nrm.cross(t1), nrm;
-      // near-rigid regularisation from the node's compliance 1/m, target compensated as for rigid contacts
+      c.R_C = contact_frame(nrm);
+      // the node's compliance 1/m for the regularisation, as an isolated contact
       const real w = 1 / m.node_mass[i];
-      c.block.kind = BlockKind::FrictionalContact;
-      c.block.Rn = near_rigid * w;
-      c.block.R = params.friction_sigma * w;
-      const real vhat = -phi / dt;
       const real vn_free = nrm.dot(v0.segment<3>(3 * i) + dt * (g_W + b.state.tau_external.segment<3>(3 * i) / m.node_mass[i]));
-      c.block.vhat = vhat + (c.block.Rn / w) * (vhat - vn_free);
-      c.block.bound = combine_materials(b.model.contact, surface.material).friction;
+      c.block = frictional_contact_block(combine_materials(b.model.contact, surface.material), phi, w, w, vn_free, dt, params);
       contacts.push_back(c);
     }
   }
