@@ -7,6 +7,7 @@ set -euo pipefail
 APT_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libhdf5-dev libtbb-dev
+  libsuitesparse-dev libopenblas-dev
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
 )
 

@@ -28,6 +28,8 @@ struct PosedCollider {
   real sweep;  // how far its surface can move within the step (m)
 };
 
+}  // namespace
+
 Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
   Aabb out;
   for (int i = 0; i < 8; ++i) {
@@ -38,12 +40,27 @@ Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
   return out;
 }
 
-ActorHandle link_actor(const Articulation& a, int link) { return a.link_handles[link]; }
-
 bool actor_pair_disabled(const SceneData& s, ActorHandle x, ActorHandle y) {
   if (s.disabled_actor_pairs.empty()) return false;
   return s.disabled_actor_pairs.count({std::min(x, y), std::max(x, y)}) > 0;
 }
+
+real collider_sweep(const Articulation& a, const LinkCollider& col, real dt) {
+  const Vec6& V = a.kin.V_L[col.link];
+  if (std::holds_alternative<PlaneShape>(col.shape)) return dt * V.norm() * (a.model.nv > 0);
+  // speed bound of the surface: origin speed plus angular speed times the farthest extent
+  real reach = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner(k & 1 ? col.aabb_S.max.x() : col.aabb_S.min.x(), k & 2 ? col.aabb_S.max.y() : col.aabb_S.min.y(),
+                      k & 4 ? col.aabb_S.max.z() : col.aabb_S.min.z());
+    reach = std::max(reach, (col.X_LS.R * corner + col.X_LS.p).norm());
+  }
+  return dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
+}
+
+namespace {
+
+ActorHandle link_actor(const Articulation& a, int link) { return a.link_handles[link]; }
 
 // Whether two colliders may touch: not both immovable, layers, per-actor switches, and
 // within one articulation the joined-links rule and its overrides.
@@ -73,22 +90,13 @@ std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
     const Articulation& a = *s.articulations[b];
     for (size_t c = 0; c < a.model.colliders.size(); ++c) {
       const LinkCollider& col = a.model.colliders[c];
-      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, false, 0};
+      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, false,
+                       collider_sweep(a, col, dt)};
       if (std::holds_alternative<PlaneShape>(col.shape)) {
         pc.unbounded = true;
-        pc.sweep = dt * a.kin.V_L[col.link].norm() * (a.model.nv > 0);
         planes.push_back(pc);
         continue;
       }
-      // speed bound of the surface: origin speed plus angular speed times the farthest extent
-      real reach = 0;
-      for (int k = 0; k < 8; ++k) {
-        const Vec3 corner(k & 1 ? col.aabb_S.max.x() : col.aabb_S.min.x(), k & 2 ? col.aabb_S.max.y() : col.aabb_S.min.y(),
-                          k & 4 ? col.aabb_S.max.z() : col.aabb_S.min.z());
-        reach = std::max(reach, (col.X_LS.R * corner + col.X_LS.p).norm());
-      }
-      const Vec6& V = a.kin.V_L[col.link];
-      pc.sweep = dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
       pc.box = world_bounds(col.aabb_S, pc.X_WS);
       pc.box.min.array() -= margin + pc.sweep;
       pc.box.max.array() += margin + pc.sweep;

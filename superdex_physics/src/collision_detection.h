@@ -24,6 +24,13 @@ struct Contact {
 // within `dt` at their current speeds (speculative contact), in a deterministic order.
 std::vector<Contact> detect_contacts(const SceneData& scene, real margin, real dt);
 
+// World bounds of local bounds posed by X.
+Aabb world_bounds(const Aabb& local, const SpatialTransform& X);
+// Whether contact between these two actors was switched off.
+bool actor_pair_disabled(const SceneData& scene, ActorHandle x, ActorHandle y);
+// How far a collider's surface can move within dt at its link's current velocity (m).
+real collider_sweep(const Articulation& a, const LinkCollider& col, real dt);
+
 // Contact parameters of a pair (see ContactMaterial).
 ContactMaterial combine_materials(const ContactMaterial& a, const ContactMaterial& b);
 

@@ -2,6 +2,7 @@
 
 #include "fem_elasticity.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <cmath>
@@ -185,7 +186,11 @@ real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, co
   if (gradient) *gradient = rest.volume * dFdx.transpose() * vec(first_piola(m, F, R));
   if (hessian) {
     Mat9 H = stress_derivative(m, F, R);
-    if (project_spd) {
+    // linear and corotated stress derivatives are positive semi-definite already; others are
+    // projected only when a Cholesky factorization shows they are indefinite (most elements
+    // at moderate strain are not)
+    const bool psd = m.model == MaterialModel::Linear || m.model == MaterialModel::Corotated;
+    if (project_spd && !psd && Eigen::LLT<Mat9>((H + H.transpose()) / 2).info() != Eigen::Success) {
       // clamp negative eigenvalues of the symmetric stress derivative
       Eigen::SelfAdjointEigenSolver<Mat9> eig((H + H.transpose()) / 2);
       const Vec9 l = eig.eigenvalues().cwiseMax(real(0));

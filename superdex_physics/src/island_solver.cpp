@@ -7,38 +7,52 @@
 
 #include "contact_block.h"
 #include "kinematics.h"
+#include "soft_island_solver.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-namespace {
-
-}  // namespace
-
 IslandSolution solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
-                            const std::vector<Contact>& contacts, real dt, const SolverParams& params) {
+                            const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params) {
   const auto t0 = std::chrono::steady_clock::now();
   IslandSolution out;
-  // DOF offsets of the island's bodies
-  std::map<int, int> offset;
+  // variable offsets: the articulations' DOFs, then each soft body's free DOFs
+  std::map<int, int> offset, soft_offset;
   int n = 0;
   for (int b : island.bodies) offset[b] = n, n += s.articulations[b]->model.nv;
+  const int n_rigid = n;
+  std::vector<SoftStep*> soft;
+  for (int k : island.soft_bodies) {
+    soft.push_back(soft_steps[k].get());
+    soft_offset[k] = n;
+    n += soft.back()->size();
+  }
 
   int m = 0;
   for (int b : island.bodies) m += static_cast<int>(terms[b].joint_rows.size());
   const int joint_rows = m;
-  m += 3 * static_cast<int>(island.contacts.size());
+  const int num_contacts = static_cast<int>(island.contacts.size() + island.soft_contacts.size());
+  m += 3 * num_contacts;
 
-  MatX A = MatX::Zero(n, n);
-  VecX r(n);
+  MatX A = MatX::Zero(n_rigid, n_rigid);
+  VecX r(n), v_start(n);
   for (int b : island.bodies) {
     const int o = offset[b], nb = s.articulations[b]->model.nv;
     A.block(o, o, nb, nb) = terms[b].A;
     r.segment(o, nb) = terms[b].r;
+    // velocities of the free (unconstrained) motion: the start of the Newton iteration, and the
+    // reference of the near-rigid target compensation
+    v_start.segment(o, nb) = terms[b].A_llt.solve(terms[b].r);
+  }
+  for (size_t j = 0; j < soft.size(); ++j) {
+    const int o = soft_offset[island.soft_bodies[j]];
+    r.segment(o, soft[j]->size()) = soft[j]->r;
+    v_start.segment(o, soft[j]->size()) = soft[j]->v0;
   }
   ConstraintRows rows;
   std::vector<Eigen::Triplet<real>> J_entries;
-  rows.blocks.reserve(joint_rows + island.contacts.size());
+  rows.blocks.reserve(joint_rows + num_contacts);
   int row = 0;
   for (int b : island.bodies)
     for (const JointRow& jr : terms[b].joint_rows) {
@@ -66,9 +80,19 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     const MatXR& J = it->second;
     return MatX(J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>());
   };
-  // velocities of the free (unconstrained) motion, for the near-rigid target compensation
-  VecX v_free(n);
-  for (int b : island.bodies) v_free.segment(offset[b], s.articulations[b]->model.nv) = terms[b].A_llt.solve(terms[b].r);
+  // adds the rows of one side (an articulation link) of a contact in frame R_C, with its
+  // Delassus block and free-motion normal velocity
+  auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Mat3& W, real& vn_free) {
+    const int nb = s.articulations[body]->model.nv;
+    if (nb == 0) return;
+    const MatX Jc = sign * R_C.transpose() * point_jacobian(body, link, p_W);
+    const int o = offset.at(body);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < nb; ++k)
+        if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
+    W += Jc * terms[body].A_llt.solve(Jc.transpose());
+    vn_free += Jc.row(2).dot(v_start.segment(o, nb));
+  };
   std::vector<Mat3> frames;
   std::vector<real> contact_mu;
   for (int ci : island.contacts) {
@@ -77,19 +101,36 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     frames.push_back(R_C);
     Mat3 W = Mat3::Zero();
     real vn_free = 0;
-    for (int side = 0; side < 2; ++side) {
-      const int body = side == 0 ? c.body_a : c.body_b;
-      const int link = side == 0 ? c.link_a : c.link_b;
-      const int nb = s.articulations[body]->model.nv;
-      if (nb == 0) continue;
-      const MatX Jc = (side == 0 ? real(1) : real(-1)) * R_C.transpose() * point_jacobian(body, link, c.p_W);
-      const int o = offset.at(body);
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < nb; ++k)
-          if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
-      W += Jc * terms[body].A_llt.solve(Jc.transpose());
-      vn_free += Jc.row(2).dot(v_free.segment(o, nb));
+    add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W, vn_free);
+    add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W, vn_free);
+    ConstraintBlock blk = frictional_contact_block(c.material, c.phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
+    blk.row = row;
+    contact_mu.push_back(c.material.friction);
+    rows.blocks.push_back(blk);
+    row += 3;
+  }
+  // soft contacts: a point moving with up to three nodes by barycentric weights (side a, the
+  // compliance of the lumped node masses) against a link (side b)
+  for (int ci : island.soft_contacts) {
+    const SoftContact& c = soft_contacts[ci];
+    const SoftStep& st = *soft_steps[c.soft];
+    const Mat3 R_C = contact_frame(c.n_W);
+    frames.push_back(R_C);
+    Mat3 W = Mat3::Zero();
+    real vn_free = 0;
+    const int o = soft_offset.at(c.soft);
+    for (int j = 0; j < 3; ++j) {
+      if (c.nodes[j] < 0 || c.weights[j] == 0 || st.pattern.free_of_dof[3 * c.nodes[j]] < 0) continue;
+      const real w = c.weights[j];
+      for (int a = 0; a < 3; ++a) {
+        const int f = st.pattern.free_of_dof[3 * c.nodes[j] + a];
+        for (int i = 0; i < 3; ++i)
+          if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + f, w * R_C(a, i));
+        vn_free += w * R_C(a, 2) * (st.r[f] / st.mass[f]);
+      }
+      W += (w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]]) * Mat3::Identity();
     }
+    add_link_side(c.body, c.link, c.p_W, R_C, -1, W, vn_free);
     ConstraintBlock blk = frictional_contact_block(c.material, c.phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
     blk.row = row;
     contact_mu.push_back(c.material.friction);
@@ -101,23 +142,27 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   rows.J.resize(m, n);
   rows.J.setFromTriplets(J_entries.begin(), J_entries.end());
 
-  // small islands: dense algebra (A's factor reused for one body); large ones: sparse
+  // small islands: dense algebra (A's factor reused for one body); large ones: sparse; with soft
+  // bodies: block elimination
   Eigen::LLT<MatX> A_llt;
-  const Eigen::LLT<MatX>* llt = &terms[island.bodies[0]].A_llt;
+  const Eigen::LLT<MatX>* llt = island.bodies.empty() ? nullptr : &terms[island.bodies[0]].A_llt;
   SparseMat A_sparse;
   const bool sparse = n > params.dense_island_max_dofs;
-  if (sparse) {
+  if (soft.empty() && sparse) {
     A_sparse = A.sparseView();
-  } else if (island.bodies.size() > 1) {
+  } else if (soft.empty() && island.bodies.size() > 1) {
     A_llt.compute(A);
     llt = &A_llt;
   }
-  auto solve = [&] { return sparse ? solve_convex(A_sparse, r, rows, params) : solve_convex(A, *llt, r, rows, params); };
+  auto solve = [&] {
+    if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, params);
+    return sparse ? solve_convex(A_sparse, r, rows, params) : solve_convex(A, *llt, r, rows, params);
+  };
   ConvexResult sol = solve();
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
   // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
-  const int first_contact = static_cast<int>(rows.blocks.size() - island.contacts.size());
-  for (int pass = 0; pass < params.max_friction_passes && !island.contacts.empty(); ++pass) {
+  const int first_contact = static_cast<int>(rows.blocks.size()) - num_contacts;
+  for (int pass = 0; pass < params.max_friction_passes && num_contacts > 0; ++pass) {
     real change = 0, scale = 0;
     for (size_t k = first_contact; k < rows.blocks.size(); ++k) {
       ConstraintBlock& blk = rows.blocks[k];
@@ -130,6 +175,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     }
     if (pass > 0 && change <= params.friction_pass_tolerance * scale) break;
     const int previous = sol.iterations;
+    if (!soft.empty()) v_start = sol.v;  // the elastic iteration restarts from the last solution
     sol = solve();
     sol.iterations += previous;
   }
@@ -138,6 +184,8 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   out.converged = sol.converged;
   for (int i = 0; i < joint_rows; ++i) out.active_rows += sol.gamma[i] != 0;
   for (int b : island.bodies) out.v.push_back(sol.v.segment(offset[b], s.articulations[b]->model.nv));
+  for (size_t j = 0; j < soft.size(); ++j)
+    out.soft_v.push_back(soft[j]->full_velocity(sol.v.segment(soft_offset[island.soft_bodies[j]], soft[j]->size())));
   // joint drive impulses back to efforts, per body
   int jr = 0;
   for (int b : island.bodies) {
@@ -150,6 +198,8 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   }
   for (size_t k = 0; k < island.contacts.size(); ++k)
     out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+  for (size_t k = island.contacts.size(); k < frames.size(); ++k)
+    out.soft_contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

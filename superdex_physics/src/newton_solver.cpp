@@ -2,6 +2,9 @@
 
 #include "newton_solver.h"
 
+#include "newton_loop.h"
+#include "sparse_cholesky.h"
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -81,6 +84,21 @@ void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real*
   }
 }
 
+SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
+                             const SparseRowMat& J, const SparseMat& Jt) {
+  // G as a sparse block-diagonal matrix
+  std::vector<Eigen::Triplet<real>> entries;
+  for (size_t k = 0; k < rows.blocks.size(); ++k) {
+    const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+    for (int i = 0; i < s; ++i)
+      for (int j = 0; j < s; ++j)
+        if (G[k](i, j) != 0) entries.emplace_back(r0 + i, r0 + j, G[k](i, j));
+  }
+  SparseMat Gs(J.rows(), J.rows());
+  Gs.setFromTriplets(entries.begin(), entries.end());
+  return Jt * Gs * J;
+}
+
 namespace {
 
 // Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
@@ -93,7 +111,10 @@ class DenseAlgebra {
   VecX J_mul(const VecX& x) const { return J_ * x; }
   VecX Jt_mul(const VecX& y) const { return J_.transpose() * y; }
   // factors H = A + J^T G J (G block diagonal, blocks of `rows`)
-  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
+  bool smooth() const { return false; }
+  void add_smooth_gradient(const VecX&, VecX&) const {}
+  real smooth_curvature(const VecX&) const { return 0; }
+  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
     H_ = A_;
     if (J_.rows() > 0) {
       MatX GJ(J_.rows(), J_.cols());
@@ -123,119 +144,21 @@ class SparseAlgebra {
   VecX A_mul(const VecX& x) const { return A_ * x; }
   VecX J_mul(const VecX& x) const { return J_ * x; }
   VecX Jt_mul(const VecX& y) const { return Jt_ * y; }
-  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
-    // G as a sparse block-diagonal matrix
-    std::vector<Eigen::Triplet<real>> entries;
-    for (size_t k = 0; k < rows.blocks.size(); ++k) {
-      const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-      for (int i = 0; i < s; ++i)
-        for (int j = 0; j < s; ++j)
-          if (G[k](i, j) != 0) entries.emplace_back(r0 + i, r0 + j, G[k](i, j));
-    }
-    SparseMat Gs(J_.rows(), J_.rows());
-    Gs.setFromTriplets(entries.begin(), entries.end());
-    const SparseMat H = A_ + SparseMat(Jt_ * Gs * J_);
-    ldlt_.compute(H);
+  bool smooth() const { return false; }
+  void add_smooth_gradient(const VecX&, VecX&) const {}
+  real smooth_curvature(const VecX&) const { return 0; }
+  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
+    const SparseMat H = A_ + constraint_hessian(rows, G, J_, Jt_);
+    cholesky_.compute(H);
   }
-  VecX solve(const VecX& b) const { return ldlt_.solve(b); }
+  VecX solve(const VecX& b) const { return cholesky_.solve(b); }
 
  private:
   const SparseMat& A_;
   const SparseRowMat& J_;
   SparseMat Jt_;
-  Eigen::SimplicialLDLT<SparseMat> ldlt_;
+  SparseCholesky cholesky_;
 };
-
-// Newton's method with exact line search from v (the unconstrained optimum), on either algebra.
-template <class Algebra>
-ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, VecX v) {
-  const int n = alg.n();
-  const int m = rows.size();
-  ConvexResult out;
-  out.v = std::move(v);
-  out.gamma.setZero(m);
-  // diagonal scaling so that the stopping test is independent of units and masses
-  const VecX D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
-  const real r_norm = (D.asDiagonal() * r).norm();
-
-  VecX vc(m), grad(n), dv(n), dvc(m), jc(n);
-  std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
-
-  // impulses and Hessian blocks at the current constraint velocities
-  auto respond = [&](const VecX& velocities, VecX& gamma) {
-    for (size_t k = 0; k < rows.blocks.size(); ++k)
-      block_response(rows.blocks[k], velocities.data() + rows.blocks[k].row, gamma.data() + rows.blocks[k].row, G[k].data());
-  };
-
-  for (int it = 0; it <= params.max_newton_iterations; ++it) {
-    if (m > 0) {
-      vc = alg.J_mul(out.v);
-      respond(vc, out.gamma);
-      jc = alg.Jt_mul(out.gamma);
-    } else {
-      jc.setZero(n);
-    }
-    const VecX Av_r = alg.A_mul(out.v) - r;
-    grad = Av_r - jc;
-    out.residual = (D.asDiagonal() * grad).norm();
-    out.iterations = it;
-    const real scale = std::max(r_norm, (D.asDiagonal() * jc).norm());
-    if (out.residual <= params.absolute_tolerance + params.relative_tolerance * scale) {
-      out.converged = true;
-      break;
-    }
-    if (it == params.max_newton_iterations) break;
-    // Newton direction from the Hessian A + J^T G J
-    alg.factor(rows, G);
-    dv = -alg.solve(grad);
-    if (m > 0) dvc = alg.J_mul(dv);
-    // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
-    const real a0 = dv.dot(Av_r);
-    const real a1 = dv.dot(alg.A_mul(dv));
-    VecX vc_alpha(m), gamma_alpha(m);
-    auto dphi = [&](real alpha, real* ddphi) {
-      real d = a0 + alpha * a1, dd = a1;
-      if (m > 0) {
-        vc_alpha = vc + alpha * dvc;
-        respond(vc_alpha, gamma_alpha);
-        d -= dvc.dot(gamma_alpha);
-        for (size_t k = 0; k < rows.blocks.size(); ++k) {
-          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-          dd += dvc.segment(r0, s).dot(G[k].topLeftCorner(s, s) * dvc.segment(r0, s));
-        }
-      }
-      if (ddphi) *ddphi = dd;
-      return d;
-    };
-    real alpha = 1;
-    if (dphi(1, nullptr) > 0) {
-      // safeguarded Newton on phi' over [lo, hi]
-      real lo = 0, hi = 1;
-      for (int ls = 0; ls < params.max_line_search_iterations; ++ls) {
-        real dd;
-        const real d = dphi(alpha, &dd);
-        if (std::abs(d) <= real(1e-10) * (std::abs(a0) + std::numeric_limits<real>::min())) break;
-        (d > 0 ? hi : lo) = alpha;
-        real next = dd > 0 ? alpha - d / dd : (lo + hi) / 2;
-        if (!(next > lo && next < hi)) next = (lo + hi) / 2;
-        if (hi - lo < real(1e-12)) break;
-        alpha = next;
-      }
-    }
-    out.v += alpha * dv;
-    if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
-      // no further progress is possible at this precision
-      if (m > 0) {
-        vc = alg.J_mul(out.v);
-        respond(vc, out.gamma);
-      }
-      out.iterations = it + 1;
-      out.converged = true;
-      break;
-    }
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -246,9 +169,10 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 }
 
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
-  Eigen::SimplicialLDLT<SparseMat> ldlt(A);
+  SparseCholesky A_chol;
+  A_chol.compute(A);
   SparseAlgebra alg(A, rows.J);
-  return newton(alg, r, rows, params, ldlt.solve(r));
+  return newton(alg, r, rows, params, A_chol.solve(r));
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

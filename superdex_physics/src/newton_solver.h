@@ -72,6 +72,10 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 // A + J^T G J.
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
 
+// J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.
+SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
+                             const SparseRowMat& J, const SparseMat& Jt);
+
 // Impulse and Hessian block d(-gamma)/d(vc) of one block at constraint velocity vc (the
 // block's segment). Exposed for tests.
 void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real* G);

@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "island_solver.h"
+#include "soft_contact.h"
 #include "soft_body.h"
 #include "kinematics.h"
 #include "scene_data.h"
@@ -146,7 +147,13 @@ void Scene::destroy_actor(ActorHandle actor) {
   if (SoftBody* soft = it->second.soft) {
     s.actors.erase(it);
     std::erase_if(s.queries, [&](const auto& q) { return q.second.actor == actor; });
-    std::erase_if(s.soft_bodies, [&](const auto& p) { return p.get() == soft; });
+    // contact records refer to soft bodies by -1 - index: drop this one's and renumber the rest
+    const int index = static_cast<int>(std::find_if(s.soft_bodies.begin(), s.soft_bodies.end(),
+                                                    [&](const auto& p) { return p.get() == soft; }) - s.soft_bodies.begin());
+    std::erase_if(s.contacts, [&](const ContactRecord& c) { return c.body_a == -1 - index; });
+    for (ContactRecord& c : s.contacts)
+      if (c.body_a < -1 - index) ++c.body_a;
+    s.soft_bodies.erase(s.soft_bodies.begin() + index);
     return;
   }
   if (it->second.link >= 0 && !it->second.articulation->is_rigid)
@@ -231,23 +238,24 @@ void Scene::step_dynamics(real dt) {
   // 2. collision detection
   const auto t1 = Clock::now();
   const std::vector<Contact> contacts = detect_contacts(s, s.params.contact_margin, dt);
+  const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
   const double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
-  // 3. islands, each one implicit solve
+  // soft bodies' parts of the problem
+  std::vector<std::unique_ptr<SoftStep>> soft_steps(s.soft_bodies.size());
+  std::vector<int> soft_free(s.soft_bodies.size(), 0);
+  for (size_t k = 0; k < s.soft_bodies.size(); ++k)
+    for (char pinned : s.soft_bodies[k]->model.pinned) soft_free[k] += pinned ? 0 : 3;
+  parallel(s.soft_bodies.size(), [&](size_t k) {
+    if (soft_free[k] > 0) soft_steps[k] = std::make_unique<SoftStep>(*s.soft_bodies[k], s.gravity, dt);
+  });
+  // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
   std::vector<int> num_dofs(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
-  const std::vector<Island> islands = build_islands(num_dofs, contacts);
+  const std::vector<Island> islands = build_islands(num_dofs, contacts, soft_free, soft_contacts);
   std::vector<IslandSolution> solutions(islands.size());
-  parallel(islands.size(), [&](size_t k) { solutions[k] = solve_island(s, islands[k], terms, contacts, dt, s.params); });
-
-  // soft bodies: their own islands for now (contact coupling is issue 5's next part); a
-  // non-finite result throws here, before anything is committed
-  std::vector<StaticSurface> surfaces;
-  if (!s.soft_bodies.empty())
-    for (const auto& a : s.articulations)
-      if (a->model.nv == 0)
-        for (const LinkCollider& c : a->model.colliders) surfaces.push_back({&c.shape, a->kin.X_WL[c.link] * c.X_LS, c.material});
-  std::vector<SoftState> soft_next(s.soft_bodies.size());
-  parallel(s.soft_bodies.size(), [&](size_t i) { soft_next[i] = step_soft_body(*s.soft_bodies[i], s.gravity, dt, s.params, surfaces); });
+  parallel(islands.size(), [&](size_t k) {
+    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params);
+  });
 
   // 4. next states; a non-finite result leaves every actor in its last good state
   std::vector<VecX> q_next(n), v_next(n);
@@ -267,6 +275,28 @@ void Scene::step_dynamics(real dt) {
                   (v_next[b].allFinite() ? "positions" : "velocities") +
                   " became non-finite; the scene keeps its last good state (check forces, masses and dt)");
   }
+  // soft bodies: next positions and node contact forces
+  std::vector<SoftState> soft_next(s.soft_bodies.size());
+  std::vector<VecX> node_forces(s.soft_bodies.size());
+  for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
+    soft_next[k] = s.soft_bodies[k]->state;
+    node_forces[k] = VecX::Zero(soft_next[k].x.size());
+  }
+  for (size_t i = 0; i < islands.size(); ++i) {
+    for (size_t j = 0; j < islands[i].soft_bodies.size(); ++j) {
+      const int k = islands[i].soft_bodies[j];
+      soft_next[k].v = solutions[i].soft_v[j];
+      soft_next[k].x += dt * soft_next[k].v;
+      if (!soft_next[k].x.allFinite() || !soft_next[k].v.allFinite())
+        throw Error("step: soft actor '" + s.soft_bodies[k]->model.name +
+                    "': positions or velocities became non-finite; the scene keeps its last good state");
+    }
+    for (size_t j = 0; j < islands[i].soft_contacts.size(); ++j) {
+      const SoftContact& c = soft_contacts[islands[i].soft_contacts[j]];
+      for (int v = 0; v < 3; ++v)
+        if (c.nodes[v] >= 0) node_forces[c.soft].segment<3>(3 * c.nodes[v]) += c.weights[v] * solutions[i].soft_contact_force[j];
+    }
+  }
   for (size_t b = 0; b < n; ++b) {
     if (num_dofs[b] == 0) continue;
     Articulation& a = *s.articulations[b];
@@ -275,7 +305,10 @@ void Scene::step_dynamics(real dt) {
     refresh_kinematics(a);
   }
 
-  for (size_t i = 0; i < s.soft_bodies.size(); ++i) s.soft_bodies[i]->state = std::move(soft_next[i]);
+  for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
+    s.soft_bodies[k]->state = std::move(soft_next[k]);
+    s.soft_bodies[k]->node_contact_forces = std::move(node_forces[k]);
+  }
 
   // 5. contact results for queries
   s.contacts.clear();
@@ -290,6 +323,20 @@ void Scene::step_dynamics(real dt) {
       rec.normal = c.n_W;
       rec.distance = c.phi;
       rec.force = solutions[k].contact_force[j];
+      s.contacts.push_back(rec);
+    }
+  // soft contacts: side a is the soft body (body index -1 - soft index)
+  for (size_t k = 0; k < islands.size(); ++k)
+    for (size_t j = 0; j < islands[k].soft_contacts.size(); ++j) {
+      const SoftContact& c = soft_contacts[islands[k].soft_contacts[j]];
+      ContactRecord rec;
+      rec.body_a = -1 - c.soft, rec.body_b = c.body, rec.link_a = c.nodes[0], rec.link_b = c.link;
+      rec.actor_a = s.soft_bodies[c.soft]->handle;
+      rec.actor_b = s.articulations[c.body]->link_handles[c.link];
+      rec.position = c.p_W;
+      rec.normal = c.n_W;
+      rec.distance = c.phi;
+      rec.force = solutions[k].soft_contact_force[j];
       s.contacts.push_back(rec);
     }
   std::sort(s.contacts.begin(), s.contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {

@@ -45,7 +45,9 @@ void require_query(const SceneData& s, ActorHandle actor, QueryType type, const 
 }
 
 // Whether side (body, link) of a contact belongs to the actor `ref`.
+// Soft sides are bodies -1 - (soft body index).
 bool belongs(const SceneData& s, const ActorRef& ref, int body, int link) {
+  if (body < 0) return ref.soft && s.soft_bodies[-1 - body].get() == ref.soft;
   if (s.articulations[body].get() != ref.articulation) return false;
   return ref.link < 0 || ref.articulation->is_rigid || ref.link == link;
 }
@@ -65,11 +67,12 @@ std::int64_t Scene::register_query(ActorHandle actor, QueryType type) {
   SceneData& s = scene_data(handle_);
   lookup(s, actor, "register_query");
   const bool soft = s.actors.at(actor).soft != nullptr;
-  const bool ok = soft ? (type == QueryType::TotalContactForce || type == QueryType::NodePositions || type == QueryType::NodeContactForces)
+  const bool ok = soft ? (type == QueryType::TotalContactForce || type == QueryType::ContactPoints ||
+                          type == QueryType::NodePositions || type == QueryType::NodeContactForces)
                        : (type == QueryType::TotalContactForce || type == QueryType::ContactPoints);
   if (!ok)
     throw Error(std::string("register_query: ") + query_type_name(type) + " is not available for actor " + std::to_string(actor) +
-                (soft ? " (soft actors offer TOTAL_CONTACT_FORCE, NODE_POSITIONS and NODE_CONTACT_FORCES)"
+                (soft ? " (soft actors offer TOTAL_CONTACT_FORCE, CONTACT_POINTS, NODE_POSITIONS and NODE_CONTACT_FORCES)"
                       : " (rigid and articulated actors offer TOTAL_CONTACT_FORCE and CONTACT_POINTS)"));
   const std::int64_t id = next_handle();
   s.queries[id] = {actor, static_cast<int>(type), s.step_count};
@@ -102,9 +105,16 @@ Vec3 Scene::contact_force(ActorHandle actor) const {
 Vec3 Scene::contact_torque(ActorHandle actor) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_torque_world");
-  if (ref.soft) throw Error("get_contact_torque_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   require_query(s, actor, QueryType::TotalContactForce, "get_contact_torque_world");
-  const Vec3 origin = ref.articulation->kin.X_WL[ref.link < 0 ? 0 : ref.link].p;
+  // about the link origin, or a soft body's centre of mass
+  Vec3 origin = Vec3::Zero();
+  if (ref.soft) {
+    const SoftModel& m = ref.soft->model;
+    for (int i = 0; i < m.node_mass.size(); ++i) origin += m.node_mass[i] * ref.soft->state.x.segment<3>(3 * i);
+    origin /= m.total_mass;
+  } else {
+    origin = ref.articulation->kin.X_WL[ref.link < 0 ? 0 : ref.link].p;
+  }
   Vec3 t = Vec3::Zero();
   for_each_side(s, ref, [&](const ContactRecord& c, real sign) { t += (c.position - origin).cross(sign * c.force); });
   return t;
@@ -113,7 +123,6 @@ Vec3 Scene::contact_torque(ActorHandle actor) const {
 Vec3 Scene::contact_force_from(ActorHandle actor, ActorHandle other) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_force_from_actor_world");
-  if (ref.soft) throw Error("get_contact_force_from_actor_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   const ActorRef& other_ref = lookup(s, other, "get_contact_force_from_actor_world: other");
   require_query(s, actor, QueryType::TotalContactForce, "get_contact_force_from_actor_world");
   Vec3 f = Vec3::Zero();
@@ -127,7 +136,6 @@ Vec3 Scene::contact_force_from(ActorHandle actor, ActorHandle other) const {
 std::vector<ContactPointInfo> Scene::contact_points(ActorHandle actor) const {
   const SceneData& s = scene_data(handle_);
   const ActorRef& ref = lookup(s, actor, "get_contact_points_world");
-  if (ref.soft) throw Error("get_contact_points_world: actor " + std::to_string(actor) + " is a soft actor (use get_contact_force_world or get_node_contact_forces_world)");
   require_query(s, actor, QueryType::ContactPoints, "get_contact_points_world");
   std::vector<ContactPointInfo> out;
   for_each_side(s, ref, [&](const ContactRecord& c, real sign) {

@@ -3,12 +3,17 @@
 #include "soft_body.h"
 
 #include <Eigen/Sparse>
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "articulation_step.h"
 #include "collision_detection.h"
 #include "contact_block.h"
 #include "newton_solver.h"
+#include "scene_data.h"
 #include "superdex/physics/error.h"
 
 namespace superdex::physics {
@@ -35,27 +40,37 @@ std::vector<Mat3> rotations(const SoftBody& b, const VecX& x0) {
   return R;
 }
 
-// Elastic energy, and optionally its gradient and (projected) Hessian triplets scaled by `h_scale`.
-real elastic(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R, VecX* grad,
-             std::vector<Eigen::Triplet<real>>* hess, real h_scale) {
-  real energy = 0;
-  if (grad) grad->setZero(x.size());
-  for (size_t t = 0; t < b.model.tets.size(); ++t) {
-    const auto& tet = b.model.tets[t];
+// Runs work(t) for every tetrahedron, on the engine's worker threads when it has any.
+template <class Work>
+void for_each_tet(size_t count, Work&& work) {
+  EngineData& e = engine_data();
+  auto range = [&](const oneapi::tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t) work(t);
+  };
+  if (e.arena && count > 512)
+    e.arena->execute([&] { oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, count, 256), range); });
+  else
+    range(oneapi::tbb::blocked_range<size_t>(0, count));
+}
+
+// Elastic energy, and optionally its gradient.
+real elastic(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R, VecX* grad) {
+  const size_t M = b.model.tets.size();
+  std::vector<real> energy(M);
+  std::vector<Vec12> g(grad ? M : 0);
+  for_each_tet(M, [&](size_t t) {
     Vec3 xs[4];
-    gather(tet, x, xs);
-    Vec12 g;
-    Mat12 H;
-    energy += tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], grad ? &g : nullptr, hess ? &H : nullptr, true);
-    for (int i = 0; i < 4; ++i) {
-      if (grad) grad->segment<3>(3 * tet[i]) += g.segment<3>(3 * i);
-      if (hess)
-        for (int j = 0; j < 4; ++j)
-          for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) hess->emplace_back(3 * tet[i] + a, 3 * tet[j] + c, h_scale * H(3 * i + a, 3 * j + c));
-    }
+    gather(b.model.tets[t], x, xs);
+    energy[t] = tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], grad ? &g[t] : nullptr, nullptr, false);
+  });
+  if (grad) {
+    grad->setZero(x.size());
+    for (size_t t = 0; t < M; ++t)
+      for (int i = 0; i < 4; ++i) grad->segment<3>(3 * b.model.tets[t][i]) += g[t].segment<3>(3 * i);
   }
-  return energy;
+  real total = 0;
+  for (real e : energy) total += e;
+  return total;
 }
 
 }  // namespace
@@ -93,6 +108,26 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
   for (int i = 0; i < n; ++i)
     if (m.node_mass[i] <= 0) throw Error(where + ": node " + std::to_string(i) + " belongs to no tetrahedron");
   m.total_mass = m.node_mass.sum();
+  // surface: faces that belong to one tetrahedron only, outward for positively oriented tets
+  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;  // sorted -> (count, oriented)
+  for (const auto& tet : m.tets)
+    for (const auto& f : kFaces) {
+      const std::array<int, 3> oriented{tet[f[0]], tet[f[1]], tet[f[2]]};
+      std::array<int, 3> key = oriented;
+      std::sort(key.begin(), key.end());
+      auto& entry = faces[key];
+      entry.first += 1;
+      entry.second = oriented;
+    }
+  std::vector<char> on_surface(n, 0);
+  for (const auto& [key, entry] : faces)
+    if (entry.first == 1) {
+      m.surface_faces.push_back(entry.second);
+      for (int i : key) on_surface[i] = 1;
+    }
+  for (int i = 0; i < n; ++i)
+    if (on_surface[i]) m.surface_nodes.push_back(i);
   m.pinned.assign(n, 0);
   for (size_t k = 0; k < fixed_nodes.size(); ++k) {
     if (fixed_nodes[k] < 0 || fixed_nodes[k] >= n)
@@ -104,150 +139,108 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
 }
 
 real soft_elastic_energy(const SoftBody& b, const VecX& x) {
-  return elastic(b, x, rotations(b, b.state.x), nullptr, nullptr, 0);
+  return elastic(b, x, rotations(b, b.state.x), nullptr);
 }
 
-SoftState step_soft_body(SoftBody& b, const Vec3& g_W, real dt, const SolverParams& params,
-                         const std::vector<StaticSurface>& surfaces) {
+int SoftPattern::slot(int row, int col) const {
+  const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
+  const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  return it != end && *it == row ? static_cast<int>(it - H.innerIndexPtr()) : -1;
+}
+
+namespace {
+
+// The pattern of every coupling between free DOFs through a tetrahedron, its value slots per
+// tetrahedron, and the symbolic factorization.
+std::unique_ptr<SoftPattern> build_pattern(const SoftModel& m) {
+  auto p = std::make_unique<SoftPattern>();
+  const int n = 3 * static_cast<int>(m.pinned.size());
+  p->free_of_dof.assign(n, -1);
+  for (int d = 0; d < n; ++d)
+    if (!m.pinned[d / 3]) p->free_of_dof[d] = p->num_free++, p->dof_of_free.push_back(d);
+  std::vector<Eigen::Triplet<real>> entries;
+  for (int f = 0; f < p->num_free; ++f) entries.emplace_back(f, f, real(1));
+  for (const auto& tet : m.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const int r = p->free_of_dof[3 * tet[i] + a], col = p->free_of_dof[3 * tet[j] + c];
+            if (r >= 0 && col >= 0) entries.emplace_back(r, col, real(1));
+          }
+  p->H.resize(p->num_free, p->num_free);
+  p->H.setFromTriplets(entries.begin(), entries.end());
+  p->H.makeCompressed();
+  p->tet_slots.assign(144 * m.tets.size(), -1);
+  for (size_t t = 0; t < m.tets.size(); ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const int r = p->free_of_dof[3 * m.tets[t][i] + a], col = p->free_of_dof[3 * m.tets[t][j] + c];
+            if (r >= 0 && col >= 0) p->tet_slots[144 * t + 12 * (3 * i + a) + 3 * j + c] = p->slot(r, col);
+          }
+  std::fill(p->H.valuePtr(), p->H.valuePtr() + p->H.nonZeros(), real(0));
+  p->cholesky.analyze(p->H);
+  return p;
+}
+
+// Adds scale * (projected) element Hessians at positions x into the values of a matrix with the
+// pattern's structure.
+void add_element_hessians(const SoftBody& b, const SoftPattern& p, const VecX& x, const std::vector<Mat3>& R, real scale,
+                          real* values) {
+  const size_t M = b.model.tets.size();
+  std::vector<Mat12> H(M);
+  for_each_tet(M, [&](size_t t) {
+    Vec3 xs[4];
+    gather(b.model.tets[t], x, xs);
+    tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, &H[t], true);
+  });
+  for (size_t t = 0; t < M; ++t) {
+    const int* slots = p.tet_slots.data() + 144 * t;
+    for (int k = 0; k < 144; ++k)
+      if (slots[k] >= 0) values[slots[k]] += scale * H[t](k / 12, k % 12);
+  }
+}
+
+}  // namespace
+
+SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
+    : body(b), pattern(*(b.pattern ? b.pattern : (b.pattern = build_pattern(b.model))).get()), dt(dt_), x0(b.state.x) {
   const SoftModel& m = b.model;
-  const int n = static_cast<int>(b.state.x.size());
-  const VecX& x0 = b.state.x;
-  VecX v0 = b.state.v;
-  VecX M(n), free(n);
-  for (int i = 0; i < n / 3; ++i) {
-    M.segment<3>(3 * i).setConstant(m.node_mass[i]);
-    free.segment<3>(3 * i).setConstant(m.pinned[i] ? 0 : 1);
+  const int nf = pattern.num_free;
+  R_ = rotations(b, x0);
+  v0.resize(nf);
+  mass.resize(nf);
+  r.resize(nf);
+  for (int f = 0; f < nf; ++f) {
+    const int d = pattern.dof_of_free[f];
+    v0[f] = b.state.v[d];
+    mass[f] = m.node_mass[d / 3];
+    r[f] = mass[f] * v0[f] + dt * (mass[f] * g_W[d % 3] + b.state.tau_external[d]);
   }
-  v0 = v0.cwiseProduct(free);
-  // external impulse: gravity and user forces
-  VecX f_ext(n);
-  for (int i = 0; i < n / 3; ++i) f_ext.segment<3>(3 * i) = m.node_mass[i] * g_W;
-  f_ext += b.state.tau_external;
-  const std::vector<Mat3> R = rotations(b, x0);
-  // Rayleigh damping D = alpha M + beta K(x0), fixed over the step
-  std::vector<Eigen::Triplet<real>> damping;
-  if (m.beta > 0) elastic(b, x0, R, nullptr, &damping, m.beta);
-  for (int i = 0; i < n; ++i) damping.emplace_back(i, i, m.alpha * M[i]);
-  SparseMat D(n, n);
-  D.setFromTriplets(damping.begin(), damping.end());
+  // A = M + dt (alpha M + beta K(x0))
+  A = pattern.H;
+  if (m.beta > 0) add_element_hessians(b, pattern, x0, R_, dt * m.beta, A.valuePtr());
+  for (int f = 0; f < nf; ++f) A.valuePtr()[pattern.slot(f, f)] += (1 + dt * m.alpha) * mass[f];
+}
 
-  // contacts of free nodes with static surfaces, detected at the start of the step
-  struct NodeContact {
-    int node;
-    Mat3 R_C;  // contact frame [t1 t2 n], n out of the surface
-    ConstraintBlock block;
-  };
-  std::vector<NodeContact> contacts;
-  for (int i = 0; i < n / 3; ++i) {
-    if (m.pinned[i]) continue;
-    const Vec3 p = x0.segment<3>(3 * i);
-    const real reach = params.contact_margin + dt * (v0.segment<3>(3 * i).norm() + dt * g_W.norm());
-    for (const StaticSurface& surface : surfaces) {
-      Vec3 g_S;
-      const real phi = shape_signed_distance(*surface.shape, surface.X_WS.R.transpose() * (p - surface.X_WS.p), &g_S);
-      if (phi >= reach) continue;
-      const Vec3 nrm = surface.X_WS.R * g_S;
-      NodeContact c;
-      c.node = i;
-      c.R_C = contact_frame(nrm);
-      // the node's compliance 1/m for the regularisation, as an isolated contact
-      const real w = 1 / m.node_mass[i];
-      const real vn_free = nrm.dot(v0.segment<3>(3 * i) + dt * (g_W + b.state.tau_external.segment<3>(3 * i) / m.node_mass[i]));
-      c.block = frictional_contact_block(combine_materials(b.model.contact, surface.material), phi, w, w, vn_free, dt, params);
-      contacts.push_back(c);
-    }
-  }
-  // impulses (3 per contact, contact frame) and Hessian blocks at velocities v
-  auto contact_response = [&](const VecX& v, VecX& gamma, std::vector<Mat3>* G) {
-    gamma.resize(3 * contacts.size());
-    if (G) G->resize(contacts.size());
-    for (size_t k = 0; k < contacts.size(); ++k) {
-      const Vec3 vc = contacts[k].R_C.transpose() * v.segment<3>(3 * contacts[k].node);
-      Mat3 Gk;
-      block_response(contacts[k].block, vc.data(), gamma.data() + 3 * k, Gk.data());
-      if (G) (*G)[k] = Gk;
-    }
-  };
+VecX SoftStep::full_velocity(const VecX& v_free) const {
+  VecX v = VecX::Zero(x0.size());
+  for (int f = 0; f < pattern.num_free; ++f) v[pattern.dof_of_free[f]] = v_free[f];
+  return v;
+}
 
-  // gradient of the objective (pinned DOFs masked); its Hessian triplets when `hess` is given
-  auto gradient = [&](const VecX& v, std::vector<Eigen::Triplet<real>>* hess, VecX* grad_psi_out) {
-    VecX grad_psi;
-    elastic(b, x0 + dt * v, R, &grad_psi, hess, dt * dt);
-    VecX g = M.cwiseProduct(v - v0) - dt * f_ext + dt * grad_psi + dt * (D * v);
-    if (!contacts.empty()) {
-      VecX gamma;
-      std::vector<Mat3> G;
-      contact_response(v, gamma, hess ? &G : nullptr);
-      for (size_t k = 0; k < contacts.size(); ++k) {
-        const int i = contacts[k].node;
-        g.segment<3>(3 * i) -= contacts[k].R_C * gamma.segment<3>(3 * k);
-        if (hess) {
-          const Mat3 Hk = contacts[k].R_C * G[k] * contacts[k].R_C.transpose();
-          for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) hess->emplace_back(3 * i + a, 3 * i + c, Hk(a, c));
-        }
-      }
-    }
-    g = g.cwiseProduct(free);
-    if (grad_psi_out) *grad_psi_out = std::move(grad_psi);
-    return g;
-  };
+void SoftStep::add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const {
+  VecX grad;
+  elastic(body, x0 + dt * full_velocity(v_free), R_, &grad);
+  for (int f = 0; f < pattern.num_free; ++f) g[f] += dt * grad[pattern.dof_of_free[f]];
+}
 
-  VecX v = v0;
-  const VecX scale = M.cwiseSqrt().cwiseInverse();
-  const real ref = std::max({(scale.asDiagonal() * M.cwiseProduct(v0)).norm(), (scale.asDiagonal() * (dt * f_ext)).norm(), real(1e-30)});
-  Eigen::SimplicialLDLT<SparseMat> ldlt;
-  int it = 0;
-  real residual = 0;
-  real best = std::numeric_limits<real>::infinity();
-  int stalled = 0;
-  for (; it < params.max_newton_iterations; ++it) {
-    VecX grad_psi;
-    std::vector<Eigen::Triplet<real>> hess;
-    const VecX grad = gradient(v, &hess, &grad_psi);
-    residual = (scale.asDiagonal() * grad).norm();
-    if (residual <= params.absolute_tolerance + params.relative_tolerance * std::max(ref, (scale.asDiagonal() * (dt * grad_psi)).norm()))
-      break;
-    // no progress over three iterations: converged as far as this precision allows
-    stalled = residual < real(0.99) * best ? 0 : stalled + 1;
-    best = std::min(best, residual);
-    if (stalled >= 3) break;
-    // H = M + dt^2 K + dt D, with pinned DOFs kept at their velocity (identity rows and columns)
-    for (int i = 0; i < n; ++i) hess.emplace_back(i, i, M[i]);
-    SparseMat H(n, n);
-    H.setFromTriplets(hess.begin(), hess.end());
-    H += dt * D;
-    H.prune([&](const Eigen::Index& r, const Eigen::Index& c, const real&) { return free[r] != 0 && free[c] != 0; });
-    for (int i = 0; i < n; ++i)
-      if (free[i] == 0) H.coeffRef(i, i) = 1;
-    ldlt.compute(H);
-    if (ldlt.info() != Eigen::Success) throw Error("soft actor '" + m.name + "': the Newton system could not be factored");
-    const VecX dv = -ldlt.solve(grad);
-    // line search on the directional derivative (gradients stay accurate in float where energy
-    // differences at small strain do not): halve until it stops overshooting the minimum
-    const real slope = grad.dot(dv);
-    real alpha = 1;
-    for (int ls = 0; ls < 12; ++ls) {
-      const real d = gradient(v + alpha * dv, nullptr, nullptr).dot(dv);
-      if (d <= real(0.5) * std::abs(slope)) break;
-      alpha /= 2;
-    }
-    v += alpha * dv;
-  }
-  // contact forces of the solution, per node (N), world
-  b.node_contact_forces = VecX::Zero(n);
-  if (!contacts.empty()) {
-    VecX gamma;
-    contact_response(v, gamma, nullptr);
-    for (size_t k = 0; k < contacts.size(); ++k)
-      b.node_contact_forces.segment<3>(3 * contacts[k].node) += contacts[k].R_C * gamma.segment<3>(3 * k) / dt;
-  }
-  b.last_iterations = it;
-  b.last_residual = residual;
-  SoftState next{x0 + dt * v, v, b.state.tau_external};
-  if (!next.x.allFinite() || !next.v.allFinite())
-    throw Error("step: soft actor '" + m.name + "': positions or velocities became non-finite; the scene keeps its last good state");
-  return next;
+void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const {
+  std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), real(0));
+  add_element_hessians(body, pattern, x0 + dt * full_velocity(v_free), R_, dt * dt, K.valuePtr());
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

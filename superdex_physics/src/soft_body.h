@@ -1,22 +1,23 @@
 #pragma once
 // Soft bodies: tetrahedral finite elements with lumped masses, hyperelastic materials
-// (fem_elasticity.h), Rayleigh damping and pinned nodes. Each step solves the implicit
-// (backward Euler) problem in the next node velocities v by Newton's method:
+// (fem_elasticity.h), Rayleigh damping and pinned nodes. Each step, a soft body contributes to its
+// island's convex problem (newton_solver.h), in the velocities v of its free (unpinned) nodes:
 //
-//   min_v  1/2 (v - v0)^T M (v - v0) - dt (M g)^T v + Psi(x0 + dt v) + dt/2 v^T D v
+//   1/2 (v - v0)^T M (v - v0) - dt (M g + f)^T v + dt/2 v^T D v  +  Psi(x0 + dt v)
 //
-// with Psi the elastic energy, D = alpha M + beta K(x0) the Rayleigh damping, projected element
-// Hessians, a sparse LDL^T per iteration and a line search on the directional derivative (energy
-// differences at small strain are round-off in float), iterated to a tolerance (not a single
-// linearisation). Pinned nodes keep their velocity (zero).
-// Contact with other bodies is not coupled yet (issue 5): soft bodies are their own islands.
+// a quadratic part (A = M + dt D, r = M v0 + dt f_ext) and a smooth convex part, the elastic
+// energy Psi, whose gradient and projected Hessian the Newton loop evaluates at each iterate, so
+// that nonlinear elasticity is iterated to the tolerance together with contact. D = alpha M +
+// beta K(x0) is the Rayleigh damping. Pinned nodes keep their velocity (zero).
 
+#include <Eigen/Sparse>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "collision_geometry.h"
 #include "fem_elasticity.h"
+#include "sparse_cholesky.h"
 #include "spatial.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/scene.h"
@@ -33,6 +34,8 @@ struct SoftModel {
   std::vector<ElasticMaterial> material; // per tetrahedron (M)
   VecX node_mass;                        // lumped masses (N)
   std::vector<char> pinned;              // per node (N)
+  std::vector<int> surface_nodes;        // nodes on boundary faces, ascending
+  std::vector<std::array<int, 3>> surface_faces;  // boundary faces, counter-clockwise seen from outside
   real alpha = 0, beta = 0;              // Rayleigh damping: mass (1/s) and stiffness (s) proportional
   real total_mass = 0;
   ContactMaterial contact;               // surface contact parameters
@@ -44,13 +47,27 @@ struct SoftState {
   VecX tau_external;  // user forces on the nodes (N), world (3N)
 };
 
+// The fixed sparsity of a soft body's Newton matrix over its free DOFs and its symbolic
+// factorization, computed once and reused every step (until the pinned set changes).
+struct SoftPattern {
+  int num_free = 0;
+  std::vector<int> free_of_dof;              // (3N) index among the free DOFs, -1 when pinned
+  std::vector<int> dof_of_free;              // (num_free)
+  Eigen::SparseMatrix<real> H;               // free x free, full symmetric storage, zero values
+  std::vector<int> tet_slots;                // (144 per tet) value index of entry (3i+a, 3j+c), -1 if pinned
+  SparseCholesky cholesky;                   // analysed on H's pattern
+
+  // Value index of entry (row, col) of H, or -1 when it is not in the pattern.
+  int slot(int row, int col) const;
+};
+
 struct SoftBody {
   ActorHandle handle = 0;
   SoftModel model;
   SoftState state;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
+  std::unique_ptr<SoftPattern> pattern;  // built on first use
   int last_iterations = 0;
-  real last_residual = 0;
 };
 
 // Builds a soft body from a registered tet mesh placed at X_WL; throws naming `where`.
@@ -58,18 +75,32 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
                                           const SoftMaterial& material, const Transform& X_WL,
                                           const std::vector<int>& fixed_nodes, const std::string& where);
 
-// A static surface soft nodes can touch (a collider of an immovable body), posed in the world.
-struct StaticSurface {
-  const ShapeGeometry* shape;
-  SpatialTransform X_WS;
-  ContactMaterial material;
-};
+// One soft body's part of an island's convex problem for one step, in its free DOFs.
+class SoftStep {
+ public:
+  SoftStep(SoftBody& body, const Vec3& g_W, real dt);
 
-// One implicit step; returns the next state (not committed). Nodes closer than the margin to a
-// static surface get frictional contact blocks (SAP cone, near-rigid, as for rigid bodies) in the
-// same Newton solve; their impulses are returned as node contact forces. Throws on non-finite results.
-SoftState step_soft_body(SoftBody& body, const Vec3& g_W, real dt, const SolverParams& params,
-                         const std::vector<StaticSurface>& surfaces);
+  SoftBody& body;
+  const SoftPattern& pattern;
+  real dt;
+  VecX x0;                   // node positions at the start of the step (3N), world
+  VecX v0;                   // free-DOF velocities at the start of the step
+  VecX mass;                 // lumped mass per free DOF (kg)
+  Eigen::SparseMatrix<real> A;  // M + dt D on the free DOFs, in the pattern
+  VecX r;                    // M v0 + dt f_ext on the free DOFs
+
+  int size() const { return pattern.num_free; }
+  // Velocities of all nodes (3N) from the free-DOF velocities.
+  VecX full_velocity(const VecX& v_free) const;
+  // g += dt P^T grad Psi(x0 + dt v) (N s): the elastic part of the gradient.
+  void add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const;
+  // K = dt^2 P^T hess Psi(x0 + dt v) P, element Hessians projected to be positive semi-definite;
+  // K must have the pattern's structure (its values are overwritten).
+  void hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const;
+
+ private:
+  std::vector<Mat3> R_;  // per-tetrahedron rotations of the corotated model, at x0
+};
 
 // Total elastic energy at positions x (J).
 real soft_elastic_energy(const SoftBody& body, const VecX& x);

@@ -1,0 +1,147 @@
+#pragma once
+// Newton's method with exact line search for the convex implicit step (newton_solver.h), on any
+// linear-algebra backend. An Algebra provides:
+//
+//   int n(); VecX diagonal();                 size, and the diagonal of A (for scaling)
+//   VecX A_mul(x), J_mul(x), Jt_mul(y);       products with A and the constraint Jacobian
+//   bool smooth();                            whether the objective has a smooth non-quadratic
+//                                             part e(v) (soft bodies' elastic energy)
+//   void add_smooth_gradient(v, g);           g += grad e(v)
+//   void factor(rows, G, v);                  factors H = A + J^T G J + hess e(v)
+//   real smooth_curvature(dv);                dv^T hess e(v) dv at the last factored v
+//   VecX solve(b);                            H^-1 b
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "newton_solver.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+template <class Algebra>
+ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, VecX v) {
+  const int n = alg.n();
+  const int m = rows.size();
+  const bool smooth = alg.smooth();
+  ConvexResult out;
+  out.v = std::move(v);
+  out.gamma.setZero(m);
+  // diagonal scaling so that the stopping test is independent of units and masses
+  const VecX D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
+  const real r_norm = (D.asDiagonal() * r).norm();
+
+  VecX vc(m), grad(n), dv(n), dvc(m), jc(n), smooth_grad(n);
+  std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
+
+  // impulses and Hessian blocks at the current constraint velocities
+  auto respond = [&](const VecX& velocities, VecX& gamma) {
+    for (size_t k = 0; k < rows.blocks.size(); ++k)
+      block_response(rows.blocks[k], velocities.data() + rows.blocks[k].row, gamma.data() + rows.blocks[k].row, G[k].data());
+  };
+
+  real best = std::numeric_limits<real>::infinity();
+  int stalled = 0;
+  for (int it = 0; it <= params.max_newton_iterations; ++it) {
+    if (m > 0) {
+      vc = alg.J_mul(out.v);
+      respond(vc, out.gamma);
+      jc = alg.Jt_mul(out.gamma);
+    } else {
+      jc.setZero(n);
+    }
+    const VecX Av_r = alg.A_mul(out.v) - r;
+    grad = Av_r - jc;
+    real scale = std::max(r_norm, (D.asDiagonal() * jc).norm());
+    if (smooth) {
+      smooth_grad.setZero(n);
+      alg.add_smooth_gradient(out.v, smooth_grad);
+      grad += smooth_grad;
+      scale = std::max(scale, (D.asDiagonal() * smooth_grad).norm());
+    }
+    out.residual = (D.asDiagonal() * grad).norm();
+    out.iterations = it;
+    if (out.residual <= params.absolute_tolerance + params.relative_tolerance * scale) {
+      out.converged = true;
+      break;
+    }
+    if (smooth) {
+      // Newton converges quadratically: two iterations in a row that do not halve the residual
+      // mean it has reached the round-off floor of the elastic forces (float positions limit the
+      // strain to about 1e-7 of the element size)
+      stalled = out.residual < real(0.5) * best ? 0 : stalled + 1;
+      best = std::min(best, out.residual);
+      if (stalled >= 2) {
+        out.converged = true;
+        break;
+      }
+    }
+    if (it == params.max_newton_iterations) break;
+    // Newton direction from the Hessian A + J^T G J (+ the smooth term's)
+    alg.factor(rows, G, out.v);
+    dv = -alg.solve(grad);
+    if (m > 0) dvc = alg.J_mul(dv);
+    // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
+    const real a0 = dv.dot(Av_r);
+    const real a1 = dv.dot(alg.A_mul(dv));
+    const real curvature = smooth ? alg.smooth_curvature(dv) : real(0);
+    const real slope_ref = smooth ? std::abs(grad.dot(dv)) : std::abs(a0);
+    // the contact problem is piecewise quadratic and its line search nearly exact; with the
+    // elastic energy each trial costs a gradient evaluation, and a strong-Wolfe-like reduction
+    // of the slope keeps Newton's convergence
+    const real line_search_tolerance = smooth ? real(0.05) : real(1e-10);
+    VecX vc_alpha(m), gamma_alpha(m), v_alpha;
+    auto dphi = [&](real alpha, real* ddphi) {
+      real d = a0 + alpha * a1, dd = a1 + curvature;
+      if (m > 0) {
+        vc_alpha = vc + alpha * dvc;
+        respond(vc_alpha, gamma_alpha);
+        d -= dvc.dot(gamma_alpha);
+        for (size_t k = 0; k < rows.blocks.size(); ++k) {
+          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+          dd += dvc.segment(r0, s).dot(G[k].topLeftCorner(s, s) * dvc.segment(r0, s));
+        }
+      }
+      if (smooth) {
+        v_alpha = out.v + alpha * dv;
+        smooth_grad.setZero(n);
+        alg.add_smooth_gradient(v_alpha, smooth_grad);
+        d += dv.dot(smooth_grad);
+      }
+      if (ddphi) *ddphi = dd;
+      return d;
+    };
+    real alpha = 1;
+    if (dphi(1, nullptr) > 0) {
+      // safeguarded Newton on phi' over [lo, hi]
+      real lo = 0, hi = 1;
+      for (int ls = 0; ls < params.max_line_search_iterations; ++ls) {
+        real dd;
+        const real d = dphi(alpha, &dd);
+        if (std::abs(d) <= line_search_tolerance * (slope_ref + std::numeric_limits<real>::min())) break;
+        (d > 0 ? hi : lo) = alpha;
+        real next = dd > 0 ? alpha - d / dd : (lo + hi) / 2;
+        if (!(next > lo && next < hi)) next = (lo + hi) / 2;
+        if (hi - lo < std::max(real(1e-12), 8 * std::numeric_limits<real>::epsilon())) break;
+        alpha = next;
+      }
+    }
+    out.v += alpha * dv;
+    if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
+      // no further progress is possible at this precision
+      if (m > 0) {
+        vc = alg.J_mul(out.v);
+        respond(vc, out.gamma);
+      }
+      out.iterations = it + 1;
+      out.converged = true;
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

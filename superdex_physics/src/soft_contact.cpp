@@ -1,0 +1,112 @@
+// Soft node contacts against rigid and articulated colliders (soft_contact.h).
+
+#include "soft_contact.h"
+
+#include <memory>
+
+#include "collision_geometry.h"
+#include "triangle_bvh.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+// The soft body's surface at its current node positions, with a closest-triangle hierarchy.
+struct DeformedSurface {
+  std::vector<Eigen::Vector3d> vertices;
+  TriangleBvh bvh;
+  explicit DeformedSurface(const SoftBody& soft) : vertices(positions(soft)), bvh(vertices, soft.model.surface_faces) {}
+  static std::vector<Eigen::Vector3d> positions(const SoftBody& soft) {
+    std::vector<Eigen::Vector3d> v(soft.state.x.size() / 3);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = soft.state.x.segment<3>(3 * i).cast<double>();
+    return v;
+  }
+};
+
+}  // namespace
+
+std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, real dt) {
+  std::vector<SoftContact> out;
+  for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
+    const SoftBody& soft = *s.soft_bodies[k];
+    const VecX& x = soft.state.x;
+    const VecX& v = soft.state.v;
+    // how far a surface node can move within the step
+    real node_sweep = 0;
+    Aabb bounds;
+    for (int i : soft.model.surface_nodes) {
+      if (soft.model.pinned[i]) continue;
+      node_sweep = std::max(node_sweep, dt * (v.segment<3>(3 * i).norm() + dt * s.gravity.norm()));
+      bounds.extend(x.segment<3>(3 * i));
+    }
+    if (!(bounds.min.array() <= bounds.max.array()).all()) continue;  // every surface node pinned
+    // samples deeper than a quarter of the body's smallest extent are left to the node contacts
+    const real max_depth = (bounds.max - bounds.min).minCoeff() / 4;
+    std::unique_ptr<DeformedSurface> surface;  // built when a collider with samples comes near
+    for (size_t b = 0; b < s.articulations.size(); ++b) {
+      const Articulation& a = *s.articulations[b];
+      for (const LinkCollider& col : a.model.colliders) {
+        if (!((s.layer_masks[0] >> col.layer) & 1)) continue;
+        if (actor_pair_disabled(s, soft.handle, a.handle) || actor_pair_disabled(s, soft.handle, a.link_handles[col.link]))
+          continue;
+        const SpatialTransform X_WS = a.kin.X_WL[col.link] * col.X_LS;
+        const real reach = margin + node_sweep + collider_sweep(a, col, dt);
+        const bool plane = std::holds_alternative<PlaneShape>(col.shape);
+        if (!plane) {
+          Aabb box = world_bounds(col.aabb_S, X_WS);
+          box.min.array() -= reach;
+          box.max.array() += reach;
+          if (!box.overlaps(bounds)) continue;
+        }
+        const ContactMaterial material = combine_materials(soft.model.contact, col.material);
+        for (int i : soft.model.surface_nodes) {
+          if (soft.model.pinned[i]) continue;
+          const Vec3 p = x.segment<3>(3 * i);
+          Vec3 g_S;
+          const real phi = shape_signed_distance(col.shape, X_WS.R.transpose() * (p - X_WS.p), &g_S);
+          if (!(phi < reach)) continue;
+          SoftContact c;
+          c.soft = static_cast<int>(k), c.nodes = {i, -1, -1}, c.body = static_cast<int>(b), c.link = col.link;
+          c.p_W = p, c.n_W = X_WS.R * g_S, c.phi = phi, c.material = material;
+          out.push_back(c);
+        }
+        // the collider's samples against the deformed surface triangles
+        if (col.samples_S.empty()) continue;
+        if (!surface) surface = std::make_unique<DeformedSurface>(soft);
+        int hint = -1;
+        for (const Vec3& sample_S : col.samples_S) {
+          const Vec3 p = X_WS.R * sample_S + X_WS.p;
+          if (!(p.array() >= bounds.min.array() - reach).all() || !(p.array() <= bounds.max.array() + reach).all()) continue;
+          const TriangleBvh::Hit hit = surface->bvh.closest(p.cast<double>(), hint);
+          if (hit.triangle < 0) continue;
+          hint = hit.triangle;
+          const auto& face = soft.model.surface_faces[hit.triangle];
+          const Eigen::Vector3d a = surface->vertices[face[0]], bb = surface->vertices[face[1]], cc = surface->vertices[face[2]];
+          const Eigen::Vector3d normal = (bb - a).cross(cc - a);
+          if (normal.norm() <= 0) continue;
+          const Eigen::Vector3d n_out = normal.normalized();
+          const Eigen::Vector3d q = hit.closest.point;
+          // signed distance along the face normal: negative inside the soft body
+          const real phi = static_cast<real>((p.cast<double>() - q).dot(n_out));
+          if (!(phi < reach) || phi < -max_depth) continue;
+          // barycentric weights of q
+          const Eigen::Vector3d v0 = bb - a, v1 = cc - a, v2 = q - a;
+          const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+          const double det = d00 * d11 - d01 * d01;
+          if (!(det > 0)) continue;
+          const double w1 = (d11 * d20 - d01 * d21) / det, w2 = (d00 * d21 - d01 * d20) / det;
+          SoftContact c;
+          c.soft = static_cast<int>(k), c.nodes = face, c.body = static_cast<int>(b), c.link = col.link;
+          c.weights = {static_cast<real>(1 - w1 - w2), static_cast<real>(w1), static_cast<real>(w2)};
+          c.p_W = p, c.n_W = (-n_out).cast<real>(), c.phi = phi, c.material = material;
+          out.push_back(c);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
