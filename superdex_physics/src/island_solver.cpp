@@ -95,6 +95,14 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   };
   std::vector<Mat3> frames;
   std::vector<real> contact_mu;
+  // the frictional block of a contact with Delassus block W and free-motion normal velocity
+  auto push_contact_block = [&](const ContactMaterial& material, real phi, const Mat3& W, real vn_free) {
+    ConstraintBlock blk = frictional_contact_block(material, phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
+    blk.row = row;
+    contact_mu.push_back(material.friction);
+    rows.blocks.push_back(blk);
+    row += 3;
+  };
   for (int ci : island.contacts) {
     const Contact& c = contacts[ci];
     const Mat3 R_C = contact_frame(c.n_W);
@@ -103,11 +111,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     real vn_free = 0;
     add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W, vn_free);
     add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W, vn_free);
-    ConstraintBlock blk = frictional_contact_block(c.material, c.phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
-    blk.row = row;
-    contact_mu.push_back(c.material.friction);
-    rows.blocks.push_back(blk);
-    row += 3;
+    push_contact_block(c.material, c.phi, W, vn_free);
   }
   // soft contacts: a point moving with up to three nodes by barycentric weights (side a, the
   // compliance of the lumped node masses) against a link (side b)
@@ -131,11 +135,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
       W += (w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]]) * Mat3::Identity();
     }
     add_link_side(c.body, c.link, c.p_W, R_C, -1, W, vn_free);
-    ConstraintBlock blk = frictional_contact_block(c.material, c.phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
-    blk.row = row;
-    contact_mu.push_back(c.material.friction);
-    rows.blocks.push_back(blk);
-    row += 3;
+    push_contact_block(c.material, c.phi, W, vn_free);
   }
 
   // same-row entries of a contact with both bodies on one articulation add up

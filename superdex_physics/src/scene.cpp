@@ -315,29 +315,15 @@ void Scene::step_dynamics(real dt) {
   for (size_t k = 0; k < islands.size(); ++k)
     for (size_t j = 0; j < islands[k].contacts.size(); ++j) {
       const Contact& c = contacts[islands[k].contacts[j]];
-      ContactRecord rec;
-      rec.body_a = c.body_a, rec.body_b = c.body_b, rec.link_a = c.link_a, rec.link_b = c.link_b;
-      rec.actor_a = s.articulations[c.body_a]->link_handles[c.link_a];
-      rec.actor_b = s.articulations[c.body_b]->link_handles[c.link_b];
-      rec.position = c.p_W;
-      rec.normal = c.n_W;
-      rec.distance = c.phi;
-      rec.force = solutions[k].contact_force[j];
-      s.contacts.push_back(rec);
+      s.contacts.push_back({s.articulations[c.body_a]->link_handles[c.link_a], s.articulations[c.body_b]->link_handles[c.link_b],
+                            c.body_a, c.body_b, c.link_a, c.link_b, c.p_W, c.n_W, c.phi, solutions[k].contact_force[j]});
     }
   // soft contacts: side a is the soft body (body index -1 - soft index)
   for (size_t k = 0; k < islands.size(); ++k)
     for (size_t j = 0; j < islands[k].soft_contacts.size(); ++j) {
       const SoftContact& c = soft_contacts[islands[k].soft_contacts[j]];
-      ContactRecord rec;
-      rec.body_a = -1 - c.soft, rec.body_b = c.body, rec.link_a = c.nodes[0], rec.link_b = c.link;
-      rec.actor_a = s.soft_bodies[c.soft]->handle;
-      rec.actor_b = s.articulations[c.body]->link_handles[c.link];
-      rec.position = c.p_W;
-      rec.normal = c.n_W;
-      rec.distance = c.phi;
-      rec.force = solutions[k].soft_contact_force[j];
-      s.contacts.push_back(rec);
+      s.contacts.push_back({s.soft_bodies[c.soft]->handle, s.articulations[c.body]->link_handles[c.link], -1 - c.soft, c.body,
+                            c.nodes[0], c.link, c.p_W, c.n_W, c.phi, solutions[k].soft_contact_force[j]});
     }
   std::sort(s.contacts.begin(), s.contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
     return std::tie(x.body_a, x.link_a, x.body_b, x.link_b) < std::tie(y.body_a, y.link_a, y.body_b, y.link_b);

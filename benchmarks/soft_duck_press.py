@@ -1,0 +1,53 @@
+"""Time per step of the seed's soft prop: the duck-lamp prefab settling on the ground, then pressed
+by a ball on a vertical slider (as the seed's arm presses it), at the seed's 250 Hz.
+
+    uv run python benchmarks/soft_duck_press.py [--threads N] [--steps N]
+
+Prints milliseconds per step and Newton iterations per step for both phases."""
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+import superdex.physics as sdp
+
+DUCK = Path(__file__).resolve().parents[1] / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+
+
+def run(threads, steps, dt=0.004):
+    sdp.initialize(num_worker_threads=threads)
+    scene = sdp.create_scene("bench")
+    scene.set_gravity([0, 0, -9.81])
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    duck = scene.get_actor(sdp.prefab.add_to_scene(str(DUCK), "/duck", scene).actors[0])
+
+    def phase(name):
+        iterations, start = [], time.perf_counter()
+        for _ in range(steps):
+            scene.step(dt)
+            iterations.append(scene.get_solver_stats().total_newton_iterations)
+        ms = 1e3 * (time.perf_counter() - start) / steps
+        print(f"{name:>8}: {ms:7.1f} ms/step, {np.mean(iterations):5.1f} Newton iterations/step")
+
+    phase("settle")
+    top = duck.get_node_positions_world()[:, 2].max()
+    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
+             {"name": "ball", "parentLink": 0, "mass": 0.05, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
+              "shape": {"sphere": {"radius": 0.015, "center": [0, 0, 0]}}}]
+    joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [-0.30, 0, top + 0.016]}},
+              {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
+    slider = scene.create_articulated_actor("slider", links, joints)
+    slider.set_external_forces_on_dofs([0], [-0.5])
+    phase("press")
+    sdp.shutdown()
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--steps", type=int, default=100)
+    args = parser.parse_args()
+    print(f"precision: {'double' if sdp.uses_double_precision() else 'float'}, worker threads: {args.threads}")
+    run(args.threads, args.steps)
