@@ -3,6 +3,7 @@
 #include "island_solver.h"
 
 #include <chrono>
+#include <cmath>
 #include <map>
 
 #include "contact_block.h"
@@ -162,7 +163,14 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
   // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
   const int first_contact = static_cast<int>(rows.blocks.size()) - num_contacts;
-  for (int pass = 0; pass < params.max_friction_passes && num_contacts > 0; ++pass) {
+  // when no contact slides (every impulse strictly inside its cone) the refined problem has the
+  // same solution, so the passes are skipped
+  bool sliding = false;
+  for (size_t k = first_contact; k < rows.blocks.size() && !sliding; ++k) {
+    const real* g = sol.gamma.data() + rows.blocks[k].row;
+    sliding = g[2] > 0 && std::hypot(g[0], g[1]) >= real(0.999) * rows.blocks[k].bound * g[2];
+  }
+  for (int pass = 0; pass < params.max_friction_passes && sliding; ++pass) {
     real change = 0, scale = 0;
     for (size_t k = first_contact; k < rows.blocks.size(); ++k) {
       ConstraintBlock& blk = rows.blocks[k];
