@@ -169,6 +169,43 @@ Mat9 stress_derivative(const ElasticMaterial& m, const Mat3& F, const Mat3& R) {
   return Mat9::Zero();
 }
 
+Mat9 neo_hookean_projected_stress_derivative(const ElasticMaterial& m, const Mat3& F) {
+  // rotation-variant SVD: U and V proper rotations, the sign of det F on the last singular value
+  Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 U = svd.matrixU(), V = svd.matrixV();
+  Vec3 sigma = svd.singularValues();
+  if (U.determinant() < 0) U.col(2) = -U.col(2), sigma[2] = -sigma[2];
+  if (V.determinant() < 0) V.col(2) = -V.col(2), sigma[2] = -sigma[2];
+  const real J = sigma.prod(), lam = neo_hookean_lambda(m);
+  // Hessian = mu I + lam g g^T + c H_J, with H_J the Hessian of det F
+  const real c = lam * (J - 1) - m.mu;
+  Mat9 H = Mat9::Zero();
+  auto add_mode = [&](real eigenvalue, const Mat3& Q_sigma) {
+    if (eigenvalue <= 0) return;
+    const Vec9 q = vec(U * Q_sigma * V.transpose());
+    H.noalias() += eigenvalue * q * q.transpose();
+  };
+  // scaling modes: the 3 x 3 Hessian with respect to the singular values
+  const Vec3 dJ(sigma[1] * sigma[2], sigma[0] * sigma[2], sigma[0] * sigma[1]);
+  Mat3 A = m.mu * Mat3::Identity() + lam * dJ * dJ.transpose();
+  A(0, 1) += c * sigma[2], A(1, 0) += c * sigma[2];
+  A(0, 2) += c * sigma[1], A(2, 0) += c * sigma[1];
+  A(1, 2) += c * sigma[0], A(2, 1) += c * sigma[0];
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(A);
+  for (int i = 0; i < 3; ++i) add_mode(eig.eigenvalues()[i], eig.eigenvectors().col(i).asDiagonal());
+  // twist and flip modes of each pair (i, j), k the third axis: mu + c sigma_k and mu - c sigma_k
+  const real r = 1 / std::sqrt(real(2));
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    Mat3 T = Mat3::Zero(), L = Mat3::Zero();
+    T(i, j) = -r, T(j, i) = r;
+    L(i, j) = r, L(j, i) = r;
+    add_mode(m.mu + c * sigma[k], T);
+    add_mode(m.mu - c * sigma[k], L);
+  }
+  return H;
+}
+
 real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
                 Mat12* hessian, bool project_spd) {
   const Mat3 F = deformation_gradient(rest, x);
@@ -185,11 +222,12 @@ real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, co
       }
   if (gradient) *gradient = rest.volume * dFdx.transpose() * vec(first_piola(m, F, R));
   if (hessian) {
-    Mat9 H = stress_derivative(m, F, R);
+    Mat9 H = project_spd && m.model == MaterialModel::NeoHookean ? neo_hookean_projected_stress_derivative(m, F)
+                                                                    : stress_derivative(m, F, R);
     // linear and corotated stress derivatives are positive semi-definite already; others are
     // projected only when a Cholesky factorization shows they are indefinite (most elements
     // at moderate strain are not)
-    const bool psd = m.model == MaterialModel::Linear || m.model == MaterialModel::Corotated;
+    const bool psd = m.model != MaterialModel::StVK;
     if (project_spd && !psd && Eigen::LLT<Mat9>((H + H.transpose()) / 2).info() != Eigen::Success) {
       // clamp negative eigenvalues of the symmetric stress derivative
       Eigen::SelfAdjointEigenSolver<Mat9> eig((H + H.transpose()) / 2);

@@ -57,6 +57,12 @@ Mat3 first_piola(const ElasticMaterial& m, const Mat3& F, const Mat3& R);
 /// d2Psi/dF2 as a 9 x 9 matrix on column-stacked vec(F).
 Mat9 stress_derivative(const ElasticMaterial& m, const Mat3& F, const Mat3& R);
 
+/// The Neo-Hookean stress derivative projected to the nearest positive semi-definite matrix, in
+/// closed form from the SVD of F (the Hessian's nine eigenpairs: three scaling modes from a 3 x 3
+/// matrix, three twists and three flips; Smith, de Goes and Kim 2019, "Analytic Eigensystems for
+/// Isotropic Distortion Energies"). Equals clamping the eigenvalues of stress_derivative().
+Mat9 neo_hookean_projected_stress_derivative(const ElasticMaterial& m, const Mat3& F);
+
 /// Rotation of the polar decomposition F = R S (det R = +1, also for inverted F).
 Mat3 polar_rotation(const Mat3& F);
 

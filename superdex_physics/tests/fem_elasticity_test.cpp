@@ -32,6 +32,23 @@ Mat3 random_near_identity(std::mt19937& rng, double scale) {
 
 Mat3 rotation(double angle, Vec3 axis) { return Eigen::AngleAxis<double>(angle, axis.normalized()).toRotationMatrix(); }
 
+// The closed-form projection of the Neo-Hookean Hessian equals clamping the eigenvalues of the
+// dense stress derivative, at rest, stretched, compressed, sheared and inverted.
+TEST(FemElasticity, NeoHookeanAnalyticProjectionMatchesTheEigenDecomposition) {
+  std::mt19937 rng(7);
+  const ElasticMaterial m = ElasticMaterial::from_young_poisson(MaterialModel::NeoHookean, 1e5, 0.45, "test");
+  std::vector<Mat3> cases = {Mat3::Identity(), Vec3(1.2, 0.9, 1.0).asDiagonal(), Vec3(0.7, 0.7, 0.7).asDiagonal(),
+                             Vec3(1.0, 1.0, -0.5).asDiagonal(), rotation(0.7, Vec3(1, 2, 3)) * Vec3(1.1, 0.8, 0.95).asDiagonal()};
+  for (int trial = 0; trial < 40; ++trial) cases.push_back(random_near_identity(rng, trial < 20 ? 0.05 : 0.6));
+  for (const Mat3& F : cases) {
+    const Mat9 H = stress_derivative(m, F, Mat3::Identity());
+    Eigen::SelfAdjointEigenSolver<Mat9> eig((H + H.transpose()) / 2);
+    const Mat9 expected = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0).asDiagonal() * eig.eigenvectors().transpose();
+    const Mat9 analytic = neo_hookean_projected_stress_derivative(m, F);
+    EXPECT_LT((analytic - expected).norm(), 1e-8 * expected.norm()) << "F =\n" << F;
+  }
+}
+
 TEST(FemElasticity, StressIsTheDerivativeOfTheEnergy) {
   std::mt19937 rng(1);
   for (MaterialModel model : kModels) {
