@@ -186,6 +186,27 @@ void export_actor(nb::module_& m) {
            }, "Soft actors: contact force on each node in the last step (N, world), N x 3. Needs NODE_CONTACT_FORCES.")
       .def("get_elastic_energy", [](const Actor& a) { return a.scene.elastic_energy(a.handle); },
            "Soft actors: elastic energy at the current positions (J).")
+      .def("add_boundary_condition_nodes_world", [](Actor& a, nb::handle node_indices, nb::handle positions) {
+             const char* what = "add_boundary_condition_nodes_world";
+             const VecX idx = read_vector(node_indices, std::string(what) + ": node_indices");
+             const nb::object flat_positions = nb::module_::import_("numpy").attr("ravel")(positions);
+             const VecX flat = read_vector(flat_positions, std::string(what) + ": positions (K x 3)", 3 * idx.size());
+             std::vector<int> nodes;
+             std::vector<Vec3> targets;
+             for (Eigen::Index k = 0; k < idx.size(); ++k) {
+               nodes.push_back(static_cast<int>(idx[k]));
+               targets.push_back(flat.segment<3>(3 * k));
+             }
+             a.scene.set_boundary_nodes(a.handle, nodes, targets);
+           }, "node_indices"_a, "positions"_a,
+           "Soft actors: pins nodes at world positions (m, K x 3); the next step moves them there. Call again to\n"
+           "move them along a path.")
+      .def("remove_boundary_condition_nodes", [](Actor& a, nb::handle node_indices) {
+             const VecX idx = read_vector(node_indices, "remove_boundary_condition_nodes: node_indices");
+             std::vector<int> nodes;
+             for (Eigen::Index k = 0; k < idx.size(); ++k) nodes.push_back(static_cast<int>(idx[k]));
+             a.scene.release_boundary_nodes(a.handle, nodes);
+           }, "node_indices"_a, "Soft actors: releases pinned nodes.")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)

@@ -112,6 +112,10 @@ std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBa
   for (const Vec3& x : h.mesh->coordinates) mesh.nodes.push_back(bake.rotation * bake.scale.cwiseProduct(x) + bake.translation);
   const auto& c = h.mesh->connectivity;
   for (int e = 0; e < h.mesh->num_elements(); ++e) mesh.tets.push_back({c[4 * e], c[4 * e + 1], c[4 * e + 2], c[4 * e + 3]});
+  if (h.material) {
+    mesh.youngs_modulus = h.material->youngs_modulus;
+    mesh.poisson_ratio = h.material->poisson_ratio;
+  }
   return mesh;
 }
 

@@ -140,6 +140,51 @@ real Scene::elastic_energy(ActorHandle h) const {
   return soft_elastic_energy(*it->second.soft, it->second.soft->state.x);
 }
 
+namespace {
+
+SoftBody& soft_actor(SceneData& s, ActorHandle h, const char* what) {
+  auto it = s.actors.find(h);
+  if (it == s.actors.end() || !it->second.soft)
+    throw Error(std::string(what) + ": actor " + std::to_string(h) + " is not a soft actor of scene '" + s.name + "'");
+  return *it->second.soft;
+}
+
+void check_nodes(const SoftBody& b, const std::vector<int>& nodes, const char* what) {
+  const int n = static_cast<int>(b.model.pinned.size());
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k] < 0 || nodes[k] >= n)
+      throw Error(std::string(what) + ": node_indices[" + std::to_string(k) + "] = " + std::to_string(nodes[k]) +
+                  " is out of range (" + std::to_string(n) + " nodes)");
+}
+
+}  // namespace
+
+void Scene::set_boundary_nodes(ActorHandle h, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W) {
+  const char* what = "add_boundary_condition_nodes_world";
+  SoftBody& b = soft_actor(scene_data(handle_), h, what);
+  check_nodes(b, nodes, what);
+  if (positions_W.size() != nodes.size())
+    throw Error(std::string(what) + ": " + std::to_string(nodes.size()) + " node indices but " + std::to_string(positions_W.size()) +
+                " positions");
+  for (size_t k = 0; k < positions_W.size(); ++k)
+    if (!positions_W[k].allFinite()) throw Error(std::string(what) + ": positions[" + std::to_string(k) + "] is not finite");
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    if (!b.model.pinned[nodes[k]]) b.pattern.reset();  // the free DOFs change
+    b.model.pinned[nodes[k]] = 1;
+    b.model.pin_target.segment<3>(3 * nodes[k]) = positions_W[k];
+  }
+}
+
+void Scene::release_boundary_nodes(ActorHandle h, const std::vector<int>& nodes) {
+  const char* what = "remove_boundary_condition_nodes";
+  SoftBody& b = soft_actor(scene_data(handle_), h, what);
+  check_nodes(b, nodes, what);
+  for (int i : nodes) {
+    if (b.model.pinned[i]) b.pattern.reset();
+    b.model.pinned[i] = 0;
+  }
+}
+
 void Scene::destroy_actor(ActorHandle actor) {
   SceneData& s = scene_data(handle_);
   auto it = s.actors.find(actor);

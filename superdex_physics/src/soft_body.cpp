@@ -89,9 +89,17 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
     throw Error(where + ": material damping must be >= 0");
   m.alpha = material.damping_alpha;
   m.beta = material.damping_beta;
-  const ElasticMaterial elastic_material = ElasticMaterial::from_young_poisson(
-      material_model_from_name(material.type, where + ": material.type"), material.youngs_modulus, material.poisson_ratio,
-      where + ": material");
+  const MaterialModel model = material_model_from_name(material.type, where + ": material.type");
+  // per-element parameters: the caller's, else the mesh file's, else the defaults
+  auto parameter = [&](const std::optional<real>& given, const std::vector<real>& per_element, real fallback, size_t t) {
+    if (given) return *given;
+    if (per_element.empty()) return fallback;
+    return per_element.size() == 1 ? per_element[0] : per_element[t];
+  };
+  for (const auto* values : {&mesh->youngs_modulus, &mesh->poisson_ratio})
+    if (values->size() > 1 && values->size() != mesh->tets.size())
+      throw Error(where + ": the mesh has " + std::to_string(values->size()) + " per-element material values for " +
+                  std::to_string(mesh->tets.size()) + " tetrahedra");
   // world rest positions, rest data and lumped masses
   body->state.x.resize(3 * n);
   for (int i = 0; i < n; ++i) body->state.x.segment<3>(3 * i) = X_WL * mesh->nodes[i];
@@ -102,7 +110,11 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
     Vec3 xs[4];
     gather(m.tets[t], body->state.x, xs);
     m.rest.push_back(make_tet_rest(xs[0], xs[1], xs[2], xs[3], 0, where + ": tetrahedron " + std::to_string(t)));
-    m.material.push_back(elastic_material);
+    m.material.push_back(ElasticMaterial::from_young_poisson(
+        model, parameter(material.youngs_modulus, mesh->youngs_modulus, real(1e5), t),
+        parameter(material.poisson_ratio, mesh->poisson_ratio, real(0.3), t),
+        mesh->youngs_modulus.size() > 1 && !material.youngs_modulus ? where + ": tetrahedron " + std::to_string(t) + " material"
+                                                                     : where + ": material"));
     for (int k = 0; k < 4; ++k) m.node_mass[m.tets[t][k]] += material.density * m.rest.back().volume / 4;
   }
   for (int i = 0; i < n; ++i)
@@ -129,6 +141,7 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
   for (int i = 0; i < n; ++i)
     if (on_surface[i]) m.surface_nodes.push_back(i);
   m.pinned.assign(n, 0);
+  m.pin_target = body->state.x;
   for (size_t k = 0; k < fixed_nodes.size(); ++k) {
     if (fixed_nodes[k] < 0 || fixed_nodes[k] >= n)
       throw Error(where + ": fixed_nodes[" + std::to_string(k) + "] = " + std::to_string(fixed_nodes[k]) + " is out of range (" +
@@ -211,6 +224,9 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
   const SoftModel& m = b.model;
   const int nf = pattern.num_free;
   R_ = rotations(b, x0);
+  v_pinned = VecX::Zero(x0.size());
+  for (int d = 0; d < x0.size(); ++d)
+    if (pattern.free_of_dof[d] < 0) v_pinned[d] = (m.pin_target[d] - x0[d]) / dt;
   v0.resize(nf);
   mass.resize(nf);
   r.resize(nf);
@@ -227,7 +243,7 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
 }
 
 VecX SoftStep::full_velocity(const VecX& v_free) const {
-  VecX v = VecX::Zero(x0.size());
+  VecX v = v_pinned;
   for (int f = 0; f < pattern.num_free; ++f) v[pattern.dof_of_free[f]] = v_free[f];
   return v;
 }

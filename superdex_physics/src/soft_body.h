@@ -8,7 +8,8 @@
 // a quadratic part (A = M + dt D, r = M v0 + dt f_ext) and a smooth convex part, the elastic
 // energy Psi, whose gradient and projected Hessian the Newton loop evaluates at each iterate, so
 // that nonlinear elasticity is iterated to the tolerance together with contact. D = alpha M +
-// beta K(x0) is the Rayleigh damping. Pinned nodes keep their velocity (zero).
+// beta K(x0) is the Rayleigh damping. Pinned nodes move to their targets within the step (they stay
+// put unless a boundary condition moves them); the stiffness damping does not see their motion.
 
 #include <Eigen/Sparse>
 #include <memory>
@@ -34,6 +35,7 @@ struct SoftModel {
   std::vector<ElasticMaterial> material; // per tetrahedron (M)
   VecX node_mass;                        // lumped masses (N)
   std::vector<char> pinned;              // per node (N)
+  VecX pin_target;                       // where pinned nodes go in the next step (3N), world
   std::vector<int> surface_nodes;        // nodes on boundary faces, ascending
   std::vector<std::array<int, 3>> surface_faces;  // boundary faces, counter-clockwise seen from outside
   real alpha = 0, beta = 0;              // Rayleigh damping: mass (1/s) and stiffness (s) proportional
@@ -84,13 +86,14 @@ class SoftStep {
   const SoftPattern& pattern;
   real dt;
   VecX x0;                   // node positions at the start of the step (3N), world
+  VecX v_pinned;             // velocities of the pinned DOFs (3N, zero on free ones): to their targets
   VecX v0;                   // free-DOF velocities at the start of the step
   VecX mass;                 // lumped mass per free DOF (kg)
   Eigen::SparseMatrix<real> A;  // M + dt D on the free DOFs, in the pattern
   VecX r;                    // M v0 + dt f_ext on the free DOFs
 
   int size() const { return pattern.num_free; }
-  // Velocities of all nodes (3N) from the free-DOF velocities.
+  // Velocities of all nodes (3N) from the free-DOF velocities and the pinned nodes' motion.
   VecX full_velocity(const VecX& v_free) const;
   // g += dt P^T grad Psi(x0 + dt v) (N s): the elastic part of the gradient.
   void add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const;

@@ -176,3 +176,81 @@ def test_soft_cube_dropped_on_the_plane_rests_on_its_weight(scene):
         return sum(np.linalg.det(np.array([p[t[1]] - p[t[0]], p[t[2]] - p[t[0]], p[t[3]] - p[t[0]]])) / 6 for t in tets)
 
     assert volume(x) == pytest.approx(volume(nodes), rel=0.02)
+
+
+def test_per_element_materials_from_mochi_h5(scene, tmp_path):
+    """A bar of two materials in series, their Young's moduli given per element in the .mochi.h5
+    `material/` group (Linear, nu = 0), clamped at x = 0 and pulled at x = L by a uniform traction:
+    each half strains uniformly (the linear elements pass this patch test exactly), so the end
+    moves by F (L/2) / (E1 A) + F (L/2) / (E2 A). Explicit values in the call override the file."""
+    import h5py
+
+    scene.set_gravity([0, 0, 0])
+    length, side, E1, E2, F = 0.2, 0.02, 1e5, 4e5, 0.5
+    nodes, tets = box_tet_mesh([length, side, side], [8, 2, 2])
+    centroid_x = nodes[tets].mean(axis=1)[:, 0]
+    path = tmp_path / "bar.mochi.h5"
+    with h5py.File(path, "w") as f:
+        f["mesh/coordinates"] = nodes
+        f["mesh/connectivity"] = tets.astype(np.int32)
+        f.create_group("material").attrs["type"] = "Linear"
+        f["material/youngs_modulus"] = np.where(centroid_x < length / 2, E1, E2)
+        f["material/poisson_ratio"] = np.zeros(len(tets))
+    shape = sdp.load_shape_from_file(str(path))
+    clamped = np.flatnonzero(nodes[:, 0] < 1e-9)
+    end = nodes[:, 0] > length - 1e-9
+    # consistent nodal loads of a uniform traction on the end face: a third of each triangle's area
+    # to each of its corners (the face is split along diagonals, so corner shares differ)
+    face_tris = [t for tet in tets for t in ((tet[1], tet[2], tet[3]), (tet[0], tet[3], tet[2]), (tet[0], tet[1], tet[3]), (tet[0], tet[2], tet[1]))
+                 if all(end[list(t)])]
+    load = np.zeros(len(nodes))
+    for t in face_tris:
+        a, b, c = nodes[list(t)]
+        load[list(t)] += F * 0.5 * np.linalg.norm(np.cross(b - a, c - a)) / side**2 / 3
+
+    def extension(material):
+        bar = scene.create_soft_actor("bar", shape, material=material, fixed_nodes=clamped)
+        loaded = np.flatnonzero(load)
+        bar.set_external_forces_on_dofs([3 * int(i) for i in loaded], load[loaded])
+        scene.step(1e3)  # the static equilibrium
+        x = bar.get_node_positions_world()
+        scene.destroy_actor(bar)
+        return float(np.mean(x[end, 0] - nodes[end, 0]))
+
+    area = side**2
+    expected = F * (length / 2) / (E1 * area) + F * (length / 2) / (E2 * area)
+    tol = 1e-6 if sdp.uses_double_precision() else 2e-3
+    assert extension({"type": "Linear", "density": 1000}) == pytest.approx(expected, rel=tol)
+    uniform = F * length / (E2 * area)
+    assert extension({"type": "Linear", "youngsModulus": E2, "poissonRatio": 0.0, "density": 1000}) == pytest.approx(uniform, rel=tol)
+
+
+def test_boundary_nodes_pin_move_and_release(scene):
+    """Nodes pinned at run time move where they are told within the next step and hold there; a
+    linear-elastic bar (nu = 0) whose end face is moved by d along its axis carries the force
+    E A d / L; released nodes fall freely again. Bad indices are refused naming the argument."""
+    scene.set_gravity([0, 0, 0])
+    length, side, E = 0.2, 0.02, 1e5
+    nodes, tets = box_tet_mesh([length, side, side], [8, 2, 2])
+    bar = scene.create_soft_actor("bar", sdp.create_tet_mesh_shape(nodes, tets),
+                                  material={"type": "Linear", "youngsModulus": E, "poissonRatio": 0.0, "density": 1000},
+                                  fixed_nodes=np.flatnonzero(nodes[:, 0] < 1e-9))
+    end = np.flatnonzero(nodes[:, 0] > length - 1e-9)
+    d = 0.002
+    bar.add_boundary_condition_nodes_world(end, nodes[end] + [d, 0, 0])
+    scene.step(1e3)  # static equilibrium with the end face moved
+    x = bar.get_node_positions_world()
+    np.testing.assert_allclose(x[end], nodes[end] + [d, 0, 0], atol=1e-6)
+    # uniform strain d / L everywhere: the middle cross-section moved by d / 2
+    middle = np.abs(nodes[:, 0] - length / 2) < 1e-9
+    np.testing.assert_allclose(x[middle, 0] - nodes[middle, 0], d / 2, rtol=1e-3)
+    # released, under gravity, the end face falls
+    scene.set_gravity([0, 0, -9.81])
+    bar.remove_boundary_condition_nodes(end)
+    for _ in range(5):
+        scene.step(0.01)
+    assert (bar.get_node_positions_world()[end, 2] < nodes[end, 2] - 1e-4).all()
+    with pytest.raises(sdp.Error, match=r"node_indices\[0\] = 999 is out of range"):
+        bar.add_boundary_condition_nodes_world([999], [[0, 0, 0]])
+    with pytest.raises(sdp.Error, match="positions"):
+        bar.add_boundary_condition_nodes_world([0, 1], [[0, 0, 0]])

@@ -82,8 +82,10 @@ struct SolverStats {
 /// The material of a soft body (FORMATS.md `material`).
 struct SoftMaterial {
   std::string type = "NeoHookean";  ///< NeoHookean, StVK, Corotated or Linear
-  real youngs_modulus = 1e5;        ///< Pa
-  real poisson_ratio = real(0.3);   ///< < 0.5
+  /// Pa and (< 0.5) for every element. When absent, the tet mesh's per-element values from its
+  /// .mochi.h5 `material/` group are used, or 1e5 Pa and 0.3 when it has none.
+  std::optional<real> youngs_modulus;
+  std::optional<real> poisson_ratio;
   real density = 1000;              ///< kg/m^3
   real damping_alpha = 0;           ///< Rayleigh mass-proportional damping (1/s)
   real damping_beta = 0;            ///< Rayleigh stiffness-proportional damping (s)
@@ -146,6 +148,11 @@ class Scene {
   std::vector<Vec3> node_contact_forces(ActorHandle soft) const;
   /// Elastic energy of a soft actor at its current positions (J).
   real elastic_energy(ActorHandle soft) const;
+  /// Pins nodes of a soft actor at world positions (m); the next step moves them there (a moving
+  /// boundary condition: call again each step to drive them along a path). Throws on bad indices.
+  void set_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W);
+  /// Releases pinned nodes: they move freely from the next step.
+  void release_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes);
   /// An articulation from its description; `source` names it in error messages (a file).
   /// Creates one link actor per link.
   ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);

@@ -77,6 +77,10 @@ struct ContactMaterial {
 struct TetMesh {
   std::vector<Vec3> nodes;
   std::vector<std::array<int, 4>> tets;
+  /// Optional per-element elastic parameters (one per tetrahedron, or one for all), as read
+  /// from a .mochi.h5 `material/` group: Young's modulus (Pa) and Poisson's ratio.
+  std::vector<real> youngs_modulus;
+  std::vector<real> poisson_ratio;
 };
 
 /// How a body's collision geometry is derived from its shape.
