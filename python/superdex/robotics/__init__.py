@@ -1,5 +1,7 @@
 """superdex.robotics: bot files, the component framework and the robotics context (API.md)."""
 
+import os
+
 from superdex._native import module as _m
 
 _r = _m.robotics
@@ -22,7 +24,12 @@ register_python_actuator = _r.register_python_actuator
 get_python_controller = _r.get_python_controller
 get_python_sensor = _r.get_python_sensor
 get_python_actuator = _r.get_python_actuator
-load_bot_prefab_from_file = _r.load_bot_prefab_from_file
+
+
+def load_bot_prefab_from_file(path):
+    """Reads a .superdex_bot file (a str or os.PathLike) into a BotPrefab; Error names the file and field."""
+    return _r.load_bot_prefab_from_file(os.fspath(path))
+
 load_bot_prefab_from_urdf_file = _r.load_bot_prefab_from_urdf_file
 create_bot = _r.create_bot
 destroy_bot = _r.destroy_bot

@@ -149,3 +149,23 @@ def test_arm_pressing_on_a_box_balances_joint_torques(scene):
     np.testing.assert_allclose(f, [0, 0, F_TARGET], atol=0.02 * F_TARGET)
     assert np.linalg.norm(f[:2]) <= MU * f[2]
     np.testing.assert_allclose(vec(lower.get_contact_torque_world()), np.cross(p - e, f), atol=0.01 * F_TARGET * L2)
+
+
+def test_welded_base_touching_the_ground_is_not_a_contact(scene):
+    """A robot's base welded to the world and resting on the ground plane: neither side can move,
+    so the pair yields no contact (it used to produce a zero-compliance block and NaN)."""
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01],
+              "shape": {"box": {"halfExtents": [0.05, 0.05, 0.1], "center": [0, 0, 0.1]}}},
+             {"name": "arm", "parentLink": 0, "mass": 0.5, "centerOfMass": [0.2, 0, 0],
+              "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]}]
+    joints = [{"name": "weld", "type": "Hard"},
+              {"name": "j", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0, 0, 0.3]}}]
+    robot = scene.create_articulated_actor("robot", links, joints)
+    robot.register_query(sdp.QueryType.CONTACT_POINTS)
+    for _ in range(10):
+        scene.step(0.004)
+    v = np.zeros(1, dtype=np.float64 if sdp.uses_double_precision() else np.float32)
+    robot.get_articulated_joint_velocities(out_velocities=v)
+    assert np.isfinite(v).all() and v[0] != 0, "the arm swings under gravity"
+    assert robot.get_contact_points_world() == []
