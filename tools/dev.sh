@@ -26,7 +26,11 @@ PY
 case "${1:-}" in
   demo)
     shift
-    exec uv run python superdex_physics/examples/double_pendulum.py "$@"
+    # the seed example; without a display its debugger records the run (3 simulated seconds,
+    # one period of its circle, unless SUPERDEX_DEBUGGER_DURATION says otherwise)
+    export SUPERDEX_DEBUGGER_RECORD="${SUPERDEX_DEBUGGER_RECORD:-$PWD/build/seed_example.jsonl}"
+    export SUPERDEX_DEBUGGER_DURATION="${SUPERDEX_DEBUGGER_DURATION:-3}"
+    exec uv run python superdex_robotics/examples/advanced/example_custom_components.py "$@"
     ;;
   test)
     dir=$(build_dir)

@@ -5,6 +5,7 @@
 
 #include "bind_common.h"
 #include "superdex/physics/engine.h"
+#include "superdex/physics/recording.h"
 #include "superdex/physics/scene.h"
 
 namespace superdex::python {
@@ -30,6 +31,12 @@ void export_engine(nb::module_& m) {
         "Starts the engine: 0 single-threaded, -1 one worker per core, N worker threads.");
   m.def("shutdown", &physics::shutdown, "Destroys every scene and shape and stops the engine.");
   m.def("is_initialized", &physics::is_initialized);
+  m.def("start_recording", &physics::start_recording, "path"_a, "frame_interval"_a = 1.0 / 60,
+        "Records every live scene's steps to a JSON-lines file (docs/recording_format.md), a frame per\n"
+        "frame_interval simulated seconds (0: every step).");
+  m.def("stop_recording", &physics::stop_recording, "Flushes and closes the running recording.");
+  m.def("is_recording", &physics::is_recording);
+  m.def("recorded_time", &physics::recorded_time, "Latest simulated time (s) a recorded scene reached.");
   m.def("uses_double_precision", [] { return kUsesDoublePrecision; }, "True in the float64 build (SUPERDEX_PRECISION=double).");
   m.def("create_scene", &physics::create_scene, "name"_a = "scene");
   m.def("destroy_scene", [](const Scene& s) { physics::destroy_scene(s.handle()); }, "scene"_a);

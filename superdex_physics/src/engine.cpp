@@ -7,6 +7,7 @@
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
+#include "superdex/physics/recording.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -35,6 +36,7 @@ void initialize(int num_worker_threads) {
 }
 
 void shutdown() {
+  stop_recording();
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
   e.scenes.clear();

@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "island_solver.h"
+#include "recording_internal.h"
 #include "soft_contact.h"
 #include "soft_body.h"
 #include "kinematics.h"
@@ -263,6 +264,7 @@ void Scene::step(real dt) {
   run_callbacks(*this, scene_data(handle_), false, dt);
   step_dynamics(dt);
   run_callbacks(*this, scene_data(handle_), true, dt);
+  record_step(scene_data(handle_));
 }
 
 void Scene::step_dynamics(real dt) {

@@ -38,7 +38,11 @@ create_tet_mesh_shape = _m.create_tet_mesh_shape
 release_shape = _m.release_shape
 create_tri_mesh_shape = _m.create_tri_mesh_shape
 load_shape_from_file = _m.load_shape_from_file
+start_recording = _m.start_recording
+stop_recording = _m.stop_recording
+is_recording = _m.is_recording
+recorded_time = _m.recorded_time
 
-from superdex.physics import paths, prefab  # noqa: E402  (submodules, after the native names)
+from superdex.physics import debugger, paths, prefab  # noqa: E402  (submodules, after the native names)
 
 __all__ = [name for name in dir() if not name.startswith("_")]

@@ -1,0 +1,93 @@
+"""Recordings (docs/recording_format.md): a header, each scene and actor once, then frames with
+link poses, soft node positions and contacts; destroyed actors are announced; the debugger's
+headless mode records for a set simulated duration."""
+
+import json
+
+import numpy as np
+import pytest
+
+import superdex.physics as sdp
+
+
+def read(path):
+    return [json.loads(line) for line in open(path)]
+
+
+def test_recording_of_a_ball_falling_on_the_ground(scene, tmp_path):
+    path = tmp_path / "run.jsonl"
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0,
+                                    world_from_local=sdp.TransformRT(translation=[0, 0, 0.5]))
+    sdp.start_recording(str(path), 0.0)
+    with pytest.raises(sdp.Error, match="already running"):
+        sdp.start_recording(str(tmp_path / "other.jsonl"), 0.0)
+    positions = []
+    for _ in range(50):
+        scene.step(0.01)
+        positions.append(np.array(ball.get_root_transform().translation, dtype=float))
+    scene.destroy_actor(ball)
+    scene.step(0.01)
+    sdp.stop_recording()
+    assert not sdp.is_recording()
+    lines = read(path)
+    assert lines[0] == {"type": "header", "format": "superdex-recording", "version": 1, "units": "m, s, kg, N",
+                        "frameInterval": 0.0}
+    assert lines[1]["type"] == "scene" and lines[1]["gravity"] == [0.0, 0.0, -9.81]
+    actors = {l["name"]: l for l in lines if l["type"] == "actor"}
+    assert actors["ground"]["kind"] == "static"
+    assert actors["ball"]["kind"] == "rigid"
+    assert actors["ball"]["links"][0]["colliders"][0]["shape"] == {"sphere": {"radius": 0.1, "center": [0.0, 0.0, 0.0]}}
+    frames = [l for l in lines if l["type"] == "frame"]
+    assert len(frames) == 51
+    handle = str(actors["ball"]["links"][0]["handle"])
+    recorded = np.array([f["links"][handle][:3] for f in frames[:50]])
+    np.testing.assert_allclose(recorded, positions, rtol=1e-6, atol=1e-7)
+    # resting on the ground at the end: contacts carry its weight
+    assert sum(c["f"][2] for c in frames[49]["contacts"]) == pytest.approx(9.81, rel=1e-3)
+    destroyed = [l for l in lines if l["type"] == "destroy"]
+    assert [d["handle"] for d in destroyed] == [actors["ball"]["handle"]]
+    assert handle not in frames[50]["links"]
+
+
+def test_frame_interval_decimates(scene, tmp_path):
+    path = tmp_path / "run.jsonl"
+    scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    sdp.start_recording(str(path), 0.05)
+    for _ in range(100):
+        scene.step(0.01)
+    sdp.stop_recording()
+    times = [l["t"] for l in read(path) if l["type"] == "frame"]
+    np.testing.assert_allclose(np.diff(times), 0.05, atol=1e-9)
+    with pytest.raises(sdp.Error, match="frame_interval must be >= 0"):
+        sdp.start_recording(str(path), -1.0)
+    with pytest.raises(sdp.Error, match="cannot write"):
+        sdp.start_recording(str(tmp_path / "missing" / "run.jsonl"), 0.0)
+
+
+def test_debugger_records_headless_for_a_duration(scene, tmp_path, monkeypatch, capsys):
+    path = tmp_path / "run.jsonl"
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_RECORD", str(path))
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "0.5")
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_FRAME_INTERVAL", "0.1")
+    scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    assert sdp.debugger.attach()
+    steps = 0
+    while sdp.debugger.is_attached():
+        scene.step(0.01)
+        steps += 1
+    assert steps == 50
+    assert not sdp.is_recording()
+    assert "recording to" in capsys.readouterr().out
+    assert [round(l["t"], 6) for l in read(path) if l["type"] == "frame"] == [0.01, 0.11, 0.21, 0.31, 0.41]
+
+
+def test_debugger_without_a_recording_says_so(engine, monkeypatch, capsys):
+    monkeypatch.delenv("SUPERDEX_DEBUGGER_RECORD", raising=False)
+    monkeypatch.delenv("SUPERDEX_DEBUGGER_DURATION", raising=False)
+    assert not sdp.debugger.attach()
+    assert not sdp.debugger.is_attached()
+    assert "SUPERDEX_DEBUGGER_RECORD" in capsys.readouterr().err
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "soon")
+    with pytest.raises(sdp.Error, match="SUPERDEX_DEBUGGER_DURATION: expected a number of seconds"):
+        sdp.debugger.attach()
