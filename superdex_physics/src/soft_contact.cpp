@@ -12,6 +12,13 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
+// Barycentric points inside a triangle: the centroid and the midpoints between it and the corners.
+constexpr real kThird = real(1) / 3, kCentreToCorner = real(2) / 3, kOther = real(1) / 6;
+constexpr std::array<std::array<real, 3>, 4> kFacePoints = {{{kThird, kThird, kThird},
+                                                             {kCentreToCorner, kOther, kOther},
+                                                             {kOther, kCentreToCorner, kOther},
+                                                             {kOther, kOther, kCentreToCorner}}};
+
 // The soft body's surface at its current node positions, with a closest-triangle hierarchy.
 struct DeformedSurface {
   std::vector<Eigen::Vector3d> vertices;
@@ -71,6 +78,25 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           c.p_W = p, c.n_W = X_WS.R * g_S, c.phi = phi, c.material = material;
           out.push_back(c);
         }
+        // points inside the surface triangles (barycentric quadrature points) against bounded
+        // colliders: a body smaller than a few elements is then held by the faces it rests on,
+        // not only by the nearest nodes, and its contact force does not jump from node to node
+        // as it slides
+        if (!plane)
+          for (const auto& face : soft.model.surface_faces) {
+            if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
+            const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
+            for (const auto& w : kFacePoints) {
+              const Vec3 p = w[0] * a0 + w[1] * a1 + w[2] * a2;
+              Vec3 g_S;
+              const real phi = shape_signed_distance(col.shape, X_WS.R.transpose() * (p - X_WS.p), &g_S);
+              if (!(phi < reach)) continue;
+              SoftContact c;
+              c.soft = static_cast<int>(k), c.nodes = face, c.weights = w, c.body = static_cast<int>(b), c.link = col.link;
+              c.p_W = p, c.n_W = X_WS.R * g_S, c.phi = phi, c.material = material;
+              out.push_back(c);
+            }
+          }
         // the collider's samples against the deformed surface triangles
         if (col.samples_S.empty()) continue;
         if (!surface) surface = std::make_unique<DeformedSurface>(soft);
