@@ -1,9 +1,13 @@
 #!/usr/bin/env python3
 """Generate the duck-lamp soft-body asset (assets/prefabs/duck_lamp/) deterministically.
 
-A recumbent ("lying flat") duck: body, raised tail, folded wings, head resting forward and a flat
-beak, each an ellipsoid, joined by smooth unions into one implicit function and cut flat by the
-ground plane z = 0 (a small fillet rounds the rim), so that it rests stably on its belly. No
+A recumbent ("lying flat") duck lamp: a loaf-shaped body (a box with 14 mm rounded edges) with a
+flat back, folded wings, and a round head resting forward low over the ground with a flat beak (both
+ellipsoids), joined by smooth unions into one implicit function and cut flat by the ground plane
+z = 0 (a small fillet rounds the rim), so that it rests stably on its belly. The back is flat
+(z = 0.066 m) over the 8 cm the seed's ball slides along under force control: on a domed back the
+seed's admittance law (k_f = 0.05 (m/s)/N) cannot follow the slope at the circle's 0.17 m/s without
+losing the force setpoint. No
 third-party geometry is used. The pipeline:
 
 1. sample the implicit function on a grid and extract its zero level set (marching cubes,
@@ -23,7 +27,7 @@ Deterministic: no randomness anywhere; two runs on one machine give byte-identic
 and so give a slightly different (equally valid) mesh: that is why the outputs are committed.
 
 The mesh is stored in a local frame centred on the duck (bounding box centred at x = y = 0,
-bottom at z = 0, beak towards +x); the prefab places it at (-0.30, 0, 0) in the world.
+bottom at z = 0, beak towards -x); the prefab places it at (-0.30, 0, 0) in the world.
 
 Regenerate (the outputs are committed; users never need the tools group):
 
@@ -84,13 +88,13 @@ MIN_DIHEDRAL = 15.0  # degrees; asserted lower bound on every dihedral angle (up
 # name: centre, semi-axes, pitch (degrees, rotation about +y: positive tips the +x end down),
 # blend radius of the smooth union with the parts before it. Mirror pairs have y = +-.
 PARTS = [
-    ("body", (-0.006, 0.000, 0.030), (0.048, 0.040, 0.046), 0.0, 0.0),
-    ("tail", (-0.051, 0.000, 0.046), (0.022, 0.017, 0.012), 32.0, 0.010),
-    ("wing_left", (-0.014, 0.030, 0.040), (0.034, 0.012, 0.021), 12.0, 0.006),
-    ("wing_right", (-0.014, -0.030, 0.040), (0.034, 0.012, 0.021), 12.0, 0.006),
-    ("head", (0.046, 0.000, 0.027), (0.025, 0.026, 0.026), 0.0, 0.007),
-    ("beak", (0.069, 0.000, 0.014), (0.017, 0.018, 0.008), -8.0, 0.006),
+    ("head", (-0.038, 0.000, 0.028), (0.024, 0.025, 0.025), 0.0, 0.0),
+    ("beak", (-0.063, 0.000, 0.014), (0.016, 0.017, 0.007), 8.0, 0.006),
+    ("wing_left", (0.029, 0.030, 0.036), (0.034, 0.012, 0.020), -6.0, 0.006),
+    ("wing_right", (0.029, -0.030, 0.036), (0.034, 0.012, 0.020), -6.0, 0.006),
 ]
+# the body: a rounded box whose flat back (z = 0.066) the seed's ball slides along under force control
+BODY_CENTRE, BODY_HALF, BODY_ROUNDING, BODY_BLEND = (0.027, 0.0, 0.026), (0.052, 0.036, 0.040), 0.014, 0.008
 GROUND_FILLET = 0.005  # m, blend radius of the cut with the ground plane
 
 
@@ -120,11 +124,18 @@ def smooth_max(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
     return -smooth_min(-a, -b, k)
 
 
+def sd_round_box(p: np.ndarray, centre, half, rounding: float) -> np.ndarray:
+    """Signed distance to a box with rounded edges (exact)."""
+    q = np.abs(p - np.asarray(centre)) - np.asarray(half) + rounding
+    outside = np.linalg.norm(np.maximum(q, 0.0), axis=-1)
+    inside = np.minimum(np.max(q, axis=-1), 0.0)
+    return outside + inside - rounding
+
+
 def duck_sdf(p: np.ndarray) -> np.ndarray:
-    f = None
+    f = sd_round_box(p, BODY_CENTRE, BODY_HALF, BODY_ROUNDING)
     for _name, centre, radii, pitch, blend in PARTS:
-        d = sd_ellipsoid(p, centre, radii, pitch)
-        f = d if f is None else smooth_min(f, d, blend)
+        f = smooth_min(f, sd_ellipsoid(p, centre, radii, pitch), blend or BODY_BLEND)
     return smooth_max(f, -p[..., 2], GROUND_FILLET)  # keep z >= 0: flat belly on the ground
 
 

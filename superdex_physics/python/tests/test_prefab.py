@@ -151,10 +151,16 @@ def test_duck_lamp_prefab_loads_as_a_pinned_soft_actor(scene):
     assert len(inst.actors) == 1
     duck = scene.get_actor(inst.actors[0])
     assert duck.get_type() == sdp.ActorType.SOFT and duck.get_name() == "duck_lamp/duck_lamp"
+    import h5py
+
+    with h5py.File(resolve_asset("prefabs/duck_lamp/duck_lamp_body.mochi.h5"), "r") as f:
+        nodes, tets = f["mesh/coordinates"][()], f["mesh/connectivity"][()]
+    a, b, c, d = (nodes[tets[:, k]] for k in range(4))
+    volume = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a).sum() / 6
     x0 = duck.get_node_positions_world()
-    assert x0.shape == (1210, 3)
-    assert np.mean(x0[:, 0]) == pytest.approx(-0.30, abs=0.02)
-    assert duck.get_mass() == pytest.approx(1100 * 428e-6, rel=0.05)
+    assert x0.shape == nodes.shape
+    np.testing.assert_allclose(x0, nodes + [-0.30, 0, 0], atol=1e-6)
+    assert duck.get_mass() == pytest.approx(1100 * volume, rel=1e-5)
     bottom = np.flatnonzero(x0[:, 2] <= 1e-3)
     for _ in range(10):
         scene.step(0.02)

@@ -6,9 +6,9 @@ Newton problem).
   from the sphere and the sphere's contact force both equal the sphere's weight within 1 %
   (momentum balance of the sphere), and the node contact forces add up to it.
 - The duck-lamp prefab pressed by a sphere on a vertical slider carrying a known downward force: the
-  reaction equals the applied force plus the sphere's weight within 2 % at rest, and the surface
-  dents under the sphere by Hertz's indentation within 50 % (curved surface, 7 mm elements) while
-  the far ends of the duck hardly move.
+  reaction equals the applied force plus the sphere's weight within 2 % at rest, the sphere sinks
+  into the surface by Hertz's indentation within 50 % (finite body, 7 mm elements), the nodes under
+  it sink, and the far ends of the duck hardly move.
 - A rigid box dropped on a soft block bounces no higher than it fell (energy does not rise).
 """
 
@@ -85,19 +85,22 @@ def test_duck_reacts_to_a_pressing_sphere_and_dents(scene):
     reaction = ball.get_contact_force_world()
     assert reaction[2] == pytest.approx(applied, rel=0.02)
     np.testing.assert_allclose(duck.get_contact_force_from_actor_world(ball), -reaction, rtol=1e-5, atol=1e-5)
-    # a dent under the ball, not a sunk duck
+    # a dent under the ball, not a sunk duck: the ball's bottom sits below the settled surface by
+    # Hertz's indentation of a rigid sphere into an elastic half-space, (9 F^2 / (16 E*^2 R))^(1/3),
+    # E* = E / (1 - nu^2), within +-50 % (a finite body, 7 mm elements)
     x = duck.get_node_positions_world()
     sink = rest[:, 2] - x[:, 2]
-    under = np.linalg.norm(rest[:, :2] - np.array([-0.30, 0.0]), axis=1) < 0.008
-    under &= rest[:, 2] > top - 0.004
-    assert under.any()
-    # Hertz: a rigid sphere pressed into an elastic half-space sinks by (9 F^2 / (16 E*^2 R))^(1/3),
-    # E* = E / (1 - nu^2); the duck's back is curved and meshed at about 7 mm, so within +-50 %
+    xf = sdp.DynamicArrayTransformRT(2)
+    slider.get_articulated_link_transforms(xf)
+    indentation = top - (float(xf[1].translation[2]) - radius)
     E_star = 1e5 / (1 - 0.45**2)
     hertz = (9 * applied**2 / (16 * E_star**2 * radius)) ** (1 / 3)
-    assert 0.5 * hertz < sink[under].max() < 1.5 * hertz, "the surface under the ball dents by about a millimetre"
+    assert 0.5 * hertz < indentation < 1.5 * hertz, f"indentation {indentation * 1000:.2f} mm, Hertz {hertz * 1000:.2f} mm"
+    under = np.linalg.norm(rest[:, :2] - np.array([-0.30, 0.0]), axis=1) < 0.008
+    under &= rest[:, 2] > top - 0.004
+    assert under.any() and sink[under].max() > 0.2 * hertz, "the surface nodes under the ball sink"
     far = np.abs(rest[:, 0] + 0.30) > 0.05
-    assert np.abs(sink[far]).max() < 0.2 * sink[under].max(), "away from the ball the duck keeps its shape"
+    assert np.abs(sink[far]).max() < 0.3 * indentation, "away from the ball the duck keeps its shape"
 
 
 def test_box_dropped_on_soft_block_does_not_gain_energy(scene):

@@ -77,7 +77,9 @@ def test_components_declared_in_the_bot_file(scene):
     servos = [sdr.get_python_actuator(ctx, bot.find_actuators_by_name(n)[0]) for n in ("servo_1", "servo_2")]
     assert [s.actor.get_handle() for s in servos] == [links[1], links[2]]
     # inline JSON params reach the factory
-    assert servos[0].params == {"k_p": 4.0, "k_i": 20.0, "effort_limit": 6.0, "profile_accel": 20.0}
+    declared = json.loads(resolve_asset(EXAMPLE_BOT).read_text())["links"]
+    assert servos[0].params == json.loads(declared[1]["actuators"][0]["params"])
+    assert servos[1].params == json.loads(declared[2]["actuators"][0]["params"])
     assert servos[1].params["effort_limit"] == 3.0
     assert bot.find_actuators_by_type("MY_VELOCITY_SERVO_ACTUATOR") == bot.get_actuator_handles()
     assert ctx.find_sensors_by_type("MY_CONTACT_FORCE_SENSOR") == [sensor_handle]

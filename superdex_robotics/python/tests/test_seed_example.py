@@ -7,7 +7,9 @@ The recording (docs/recording_format.md) is the evidence:
 - in free space (before the first contact) the ball tracks the moving circle target with RMS
   error under 5 mm (the target is the seed's circle, computed here independently);
 - the ball presses on the duck once per 3 s period, and the contact force on it exceeds the
-  controller's 0.5 N entry threshold each time;
+  controller's 0.5 N entry threshold each time; from 0.3 s after that until the ball lifts off,
+  the force stays within 0.5 +- 0.1 N, and it lifts off when the target has risen above it by
+  the 5 mm exit margin;
 - in the same run, in-process: the sensor's reading after each step equals the total contact
   force the solver applied to the ball in that step (the recording's contact list) to 1e-6 N.
 """
@@ -93,16 +95,55 @@ def test_free_space_tracking(run):
     assert np.sqrt(np.mean(error**2)) < 5e-3
 
 
+def presses(t, fz):
+    """Contact episodes of the ball as (first contact, force-mode entry, lift-off) frame indices:
+    a press starts with contact after at least 1 s without any, force mode is entered when the
+    force first exceeds the 0.5 N threshold, and the press ends at the first frame without contact
+    after that."""
+    out = []
+    i = 1
+    while i < len(t):
+        if fz[i] > 0 and fz[i - 1] <= 0 and (not out or t[i] - t[out[-1][2]] > 1.0):
+            entry = i + int(np.argmax(fz[i:] > 0.5))
+            end = entry + int(np.argmax(fz[entry:] <= 0))
+            out.append((i, entry, end))
+            i = end
+        i += 1
+    return out
+
+
 def test_presses_on_the_duck_every_period(run):
     t, xz, fz = ball_track(run[1])
-    starts = [t[i] for i in range(1, len(t)) if fz[i] > 0 and fz[i - 1] <= 0]
-    # contact episodes (ignoring re-contacts within one press) start once per period
-    presses = [s for k, s in enumerate(starts) if k == 0 or s - starts[k - 1] > 1.0]
-    assert len(presses) == 4
-    np.testing.assert_allclose(np.diff(presses), PERIOD, atol=0.1)
-    for p in presses:
-        during = (t >= p) & (t < p + 0.5)
-        assert fz[during].max() > 0.5, "the press exceeds the force-mode entry threshold"
+    found = presses(t, fz)
+    assert len(found) == 4
+    np.testing.assert_allclose(np.diff([t[start] for start, _, _ in found]), PERIOD, atol=0.1)
+    for start, entry, end in found:
+        assert fz[entry] > 0.5 and t[entry] - t[start] < 0.2, "the press exceeds the force-mode entry threshold"
+
+
+def regulated_window(t, xz, fz, entry, end):
+    """Frames of a press from 0.3 s after force-mode entry until force mode is left, and the frame
+    where it is left: when the rising target is above the ball by the 5 mm exit margin (the
+    controller's rule), one frame of slack for the recording's sampling."""
+    target_z = np.array([circle_target(ti)[1] for ti in t])
+    rising = np.flatnonzero((target_z > xz[:, 1] + 0.005) & (np.arange(len(t)) >= entry))
+    exit_frame = int(rising[0])
+    window = np.arange(entry, exit_frame - 1)
+    return window[t[window] >= t[entry] + 0.3], exit_frame
+
+
+def test_force_is_regulated_while_pressing(run):
+    """Each press: from 0.3 s after the force first exceeds the 0.5 N threshold (force mode
+    entered) until the target has risen above the ball by the 5 mm exit margin, f_z stays within
+    0.5 +- 0.1 N, and contact lasts that long (force mode is left by the margin, not by losing
+    contact); the ball lifts off right after."""
+    t, xz, fz = ball_track(run[1])
+    for start, entry, end in presses(t, fz):
+        regulated, exit_frame = regulated_window(t, xz, fz, entry, end)
+        assert len(regulated) > 10, "force mode lasts beyond the transient"
+        assert np.abs(fz[regulated] - 0.5).max() <= 0.1
+        assert exit_frame <= end, "contact held until the exit margin was reached"
+        assert t[end] - t[exit_frame] < 0.1, "the ball lifts off once force mode is left"
 
 
 def test_sensor_reads_the_contact_force_the_solver_applied(monkeypatch, tmp_path):
