@@ -123,32 +123,31 @@ ActorHandle Scene::create_soft_actor(const std::string& name, ShapeHandle tet_me
   return h;
 }
 
-std::vector<Vec3> Scene::node_positions(ActorHandle h) const {
-  const SceneData& s = scene_data(handle_);
+namespace {
+
+// The soft actor behind a handle; throws naming the API call `what` otherwise.
+SoftBody& soft_actor(const SceneData& s, ActorHandle h, const char* what) {
   auto it = s.actors.find(h);
   if (it == s.actors.end() || !it->second.soft)
-    throw Error("get_node_positions_world: actor " + std::to_string(h) + " is not a soft actor of scene '" + s.name + "'");
-  const VecX& x = it->second.soft->state.x;
+    throw Error(std::string(what) + ": actor " + std::to_string(h) + " is not a soft actor of scene '" + s.name + "'");
+  return *it->second.soft;
+}
+
+}  // namespace
+
+std::vector<Vec3> Scene::node_positions(ActorHandle h) const {
+  const VecX& x = soft_actor(scene_data(handle_), h, "get_node_positions_world").state.x;
   std::vector<Vec3> out(x.size() / 3);
   for (size_t i = 0; i < out.size(); ++i) out[i] = x.segment<3>(3 * i);
   return out;
 }
 
 real Scene::elastic_energy(ActorHandle h) const {
-  const SceneData& s = scene_data(handle_);
-  auto it = s.actors.find(h);
-  if (it == s.actors.end() || !it->second.soft) throw Error("get_elastic_energy: actor " + std::to_string(h) + " is not a soft actor");
-  return soft_elastic_energy(*it->second.soft, it->second.soft->state.x);
+  const SoftBody& b = soft_actor(scene_data(handle_), h, "get_elastic_energy");
+  return soft_elastic_energy(b, b.state.x);
 }
 
 namespace {
-
-SoftBody& soft_actor(SceneData& s, ActorHandle h, const char* what) {
-  auto it = s.actors.find(h);
-  if (it == s.actors.end() || !it->second.soft)
-    throw Error(std::string(what) + ": actor " + std::to_string(h) + " is not a soft actor of scene '" + s.name + "'");
-  return *it->second.soft;
-}
 
 void check_nodes(const SoftBody& b, const std::vector<int>& nodes, const char* what) {
   const int n = static_cast<int>(b.model.pinned.size());

@@ -9,10 +9,6 @@
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 
-#include "articulation_step.h"
-#include "collision_detection.h"
-#include "contact_block.h"
-#include "newton_solver.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
 
@@ -20,8 +16,6 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
-
-using SparseMat = Eigen::SparseMatrix<real>;
 
 // Positions of the four nodes of tetrahedron t.
 void gather(const std::array<int, 4>& tet, const VecX& x, Vec3* out) {

@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "collision_geometry.h"
 #include "fem_elasticity.h"
 #include "sparse_cholesky.h"
 #include "spatial.h"
@@ -69,7 +68,6 @@ struct SoftBody {
   SoftState state;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
   std::unique_ptr<SoftPattern> pattern;  // built on first use
-  int last_iterations = 0;
 };
 
 // Builds a soft body from a registered tet mesh placed at X_WL; throws naming `where`.

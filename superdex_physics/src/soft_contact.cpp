@@ -67,17 +67,21 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           if (!box.overlaps(bounds)) continue;
         }
         const ContactMaterial material = combine_materials(soft.model.contact, col.material);
-        for (int i : soft.model.surface_nodes) {
-          if (soft.model.pinned[i]) continue;
-          const Vec3 p = x.segment<3>(3 * i);
+        auto add = [&](const std::array<int, 3>& nodes, const std::array<real, 3>& weights, const Vec3& p_W, const Vec3& n_W,
+                       real phi) {
+          SoftContact c;
+          c.soft = static_cast<int>(k), c.nodes = nodes, c.weights = weights, c.body = static_cast<int>(b), c.link = col.link;
+          c.p_W = p_W, c.n_W = n_W, c.phi = phi, c.material = material;
+          out.push_back(c);
+        };
+        // a point of the soft surface (weights over its nodes) against the collider's distance field
+        auto against_field = [&](const std::array<int, 3>& nodes, const std::array<real, 3>& weights, const Vec3& p) {
           Vec3 g_S;
           const real phi = shape_signed_distance(col.shape, X_WS.R.transpose() * (p - X_WS.p), &g_S);
-          if (!(phi < reach)) continue;
-          SoftContact c;
-          c.soft = static_cast<int>(k), c.nodes = {i, -1, -1}, c.body = static_cast<int>(b), c.link = col.link;
-          c.p_W = p, c.n_W = X_WS.R * g_S, c.phi = phi, c.material = material;
-          out.push_back(c);
-        }
+          if (phi < reach) add(nodes, weights, p, X_WS.R * g_S, phi);
+        };
+        for (int i : soft.model.surface_nodes)
+          if (!soft.model.pinned[i]) against_field({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i));
         // points inside the surface triangles (barycentric quadrature points) against bounded
         // colliders: a body smaller than a few elements is then held by the faces it rests on,
         // not only by the nearest nodes, and its contact force does not jump from node to node
@@ -86,16 +90,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           for (const auto& face : soft.model.surface_faces) {
             if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
             const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
-            for (const auto& w : kFacePoints) {
-              const Vec3 p = w[0] * a0 + w[1] * a1 + w[2] * a2;
-              Vec3 g_S;
-              const real phi = shape_signed_distance(col.shape, X_WS.R.transpose() * (p - X_WS.p), &g_S);
-              if (!(phi < reach)) continue;
-              SoftContact c;
-              c.soft = static_cast<int>(k), c.nodes = face, c.weights = w, c.body = static_cast<int>(b), c.link = col.link;
-              c.p_W = p, c.n_W = X_WS.R * g_S, c.phi = phi, c.material = material;
-              out.push_back(c);
-            }
+            for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
           }
         // the collider's samples against the deformed surface triangles
         if (col.samples_S.empty()) continue;
@@ -122,11 +117,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           const double det = d00 * d11 - d01 * d01;
           if (!(det > 0)) continue;
           const double w1 = (d11 * d20 - d01 * d21) / det, w2 = (d00 * d21 - d01 * d20) / det;
-          SoftContact c;
-          c.soft = static_cast<int>(k), c.nodes = face, c.body = static_cast<int>(b), c.link = col.link;
-          c.weights = {static_cast<real>(1 - w1 - w2), static_cast<real>(w1), static_cast<real>(w2)};
-          c.p_W = p, c.n_W = (-n_out).cast<real>(), c.phi = phi, c.material = material;
-          out.push_back(c);
+          add(face, {static_cast<real>(1 - w1 - w2), static_cast<real>(w1), static_cast<real>(w2)}, p, (-n_out).cast<real>(), phi);
         }
       }
     }

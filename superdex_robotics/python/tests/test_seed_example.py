@@ -121,7 +121,7 @@ def test_presses_on_the_duck_every_period(run):
         assert fz[entry] > 0.5 and t[entry] - t[start] < 0.2, "the press exceeds the force-mode entry threshold"
 
 
-def regulated_window(t, xz, fz, entry, end):
+def regulated_window(t, xz, entry):
     """Frames of a press from 0.3 s after force-mode entry until force mode is left, and the frame
     where it is left: when the rising target is above the ball by the 5 mm exit margin (the
     controller's rule), one frame of slack for the recording's sampling."""
@@ -139,7 +139,7 @@ def test_force_is_regulated_while_pressing(run):
     contact); the ball lifts off right after."""
     t, xz, fz = ball_track(run[1])
     for start, entry, end in presses(t, fz):
-        regulated, exit_frame = regulated_window(t, xz, fz, entry, end)
+        regulated, exit_frame = regulated_window(t, xz, entry)
         assert len(regulated) > 10, "force mode lasts beyond the transient"
         assert np.abs(fz[regulated] - 0.5).max() <= 0.1
         assert exit_frame <= end, "contact held until the exit margin was reached"
