@@ -287,3 +287,18 @@ def test_bad_arrays_and_arguments(engine, tmp_path):
     (tmp_path / "text.mochi.h5").write_text("not hdf5")
     with pytest.raises(sdp.Error, match=r"text\.mochi\.h5: not an HDF5 file"):
         sdp.load_shape_from_file(tmp_path / "text.mochi.h5")
+
+
+def test_missing_hdf5_groups_name_the_file_and_group(engine, tmp_path):
+    """A .mochi.h5 with no shape group, and one whose material/ group lacks its type, are refused
+    naming the file and what is missing."""
+    with h5py.File(tmp_path / "nomesh.mochi.h5", "w") as f:
+        f.create_group("material").attrs["type"] = "NeoHookean"
+    with pytest.raises(sdp.Error, match=r"nomesh\.mochi\.h5: no shape: expected a mesh/, box/, sphere/ or plane/ group"):
+        sdp.load_shape_from_file(str(tmp_path / "nomesh.mochi.h5"))
+    with h5py.File(tmp_path / "notype.mochi.h5", "w") as f:
+        f["mesh/coordinates"] = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+        f["mesh/connectivity"] = np.array([[0, 1, 2, 3]], dtype=np.int32)
+        f.create_group("material")
+    with pytest.raises(sdp.Error, match=r"notype\.mochi\.h5: material/type: missing attribute"):
+        sdp.load_shape_from_file(str(tmp_path / "notype.mochi.h5"))
