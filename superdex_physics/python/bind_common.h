@@ -86,6 +86,7 @@ Transform read_transform(nb::handle obj, const std::string& arg);
 
 void export_types(nb::module_& m);
 void export_engine(nb::module_& m);
+void export_debug_server(nb::module_& m);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
 void export_robotics(nb::module_& m);

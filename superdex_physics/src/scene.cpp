@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "island_solver.h"
+#include "debug_link.h"
 #include "recording_internal.h"
 #include "soft_contact.h"
 #include "soft_body.h"
@@ -244,6 +245,16 @@ void Scene::cancel_callback(const std::string& name) {
   if (scene_data(handle_).callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
 }
 
+int Scene::add_signal_source(SignalSource source) {
+  if (!source) throw Error("add_signal_source: no function given");
+  SceneData& s = scene_data(handle_);
+  const int id = s.next_signal_source++;
+  s.signal_sources[id] = std::move(source);
+  return id;
+}
+
+void Scene::remove_signal_source(int id) { scene_data(handle_).signal_sources.erase(id); }
+
 namespace {
 
 // Runs the pre- or post-step callbacks by priority, then name. Copies them first so that a
@@ -260,10 +271,12 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
 
 void Scene::step(real dt) {
   if (!std::isfinite(dt) || dt <= 0) throw Error("step: dt must be a positive finite number of seconds, got " + std::to_string(dt));
+  debug_before_step(*this);
   run_callbacks(*this, scene_data(handle_), false, dt);
   step_dynamics(dt);
   run_callbacks(*this, scene_data(handle_), true, dt);
   record_step(scene_data(handle_));
+  debug_after_step(*this, scene_data(handle_));
 }
 
 void Scene::step_dynamics(real dt) {

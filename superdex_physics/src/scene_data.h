@@ -81,6 +81,8 @@ struct SceneData {
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
   std::map<std::string, StepCallbackRecord> callbacks;
+  std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
+  int next_signal_source = 1;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;

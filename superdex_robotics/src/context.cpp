@@ -45,8 +45,44 @@ Context::Context(bool register_builtins) {
 
 Context::~Context() {
   // the scene may outlive the context: no callback may point into it afterwards
-  for (auto& [h, b] : bots_)
+  for (auto& [h, b] : bots_) {
     if (b.pipeline) stop_pipeline(b, true);
+    remove_signal_source(b);
+  }
+}
+
+void Context::remove_signal_source(BotRecord& b) {
+  if (b.signal_source && physics::scene_exists(b.scene.handle())) b.scene.remove_signal_source(b.signal_source);
+  b.signal_source = 0;
+}
+
+void Context::append_bot_signals(BotHandle handle, std::vector<physics::NamedSignal>& out) const {
+  const auto it = bots_.find(handle);
+  if (it == bots_.end()) return;
+  const BotRecord& b = it->second;
+  const std::string bot_name = b.prefab.name();
+  // each sensor's reading, by the sensor's name
+  for (ComponentHandle h : b.sensors) {
+    const ComponentRecord& rec = component(ComponentKind::Sensor, h);
+    const auto* sensor = dynamic_cast<const SensorComponent*>(rec.impl.get());
+    if (!sensor) continue;
+    VecX reading;
+    try {
+      reading = sensor->signal();
+    } catch (const std::exception&) {
+      continue;  // a sensor that cannot report now is left out of this frame, not the user's step
+    }
+    out.push_back({bot_name + "." + rec.name, std::vector<double>(reading.data(), reading.data() + reading.size())});
+  }
+  // each actuator's effort: the generalized force on its link's DOF (N m or N)
+  const VecX tau = b.scene.external_forces(b.articulation);
+  for (ComponentHandle h : b.actuators) {
+    const ComponentRecord& rec = component(ComponentKind::Actuator, h);
+    if (!b.scene.has_actor(rec.actor)) continue;
+    const physics::DofInfo dofs = joint_dofs_of_link(b.scene, rec.actor, rec.name);
+    if (dofs.size() != 1 || dofs.offset >= tau.size()) continue;
+    out.push_back({bot_name + "." + rec.name + ".effort", {static_cast<double>(tau[dofs.offset])}});
+  }
 }
 
 void Context::register_type(ComponentKind kind, const std::string& type_name, ComponentFactory factory,
@@ -219,6 +255,7 @@ BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<
     destroy_bot(b.handle);
     throw;
   }
+  b.signal_source = scene.add_signal_source([this, handle](std::vector<physics::NamedSignal>& out) { append_bot_signals(handle, out); });
   return b.handle;
 }
 
@@ -231,6 +268,7 @@ void Context::destroy_bot(BotHandle handle) {
   // the pipeline first (its callbacks point at the components), then the components (they
   // may hold the actor), then the articulation
   if (b.pipeline) stop_pipeline(b, false);
+  remove_signal_source(b);
   for (auto& map : components_) {
     std::erase_if(map, [&](const auto& kv) { return kv.second.bot == handle; });
     for (auto& [h, c] : map)

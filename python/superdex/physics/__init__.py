@@ -42,6 +42,10 @@ start_recording = _m.start_recording
 stop_recording = _m.stop_recording
 is_recording = _m.is_recording
 recorded_time = _m.recorded_time
+get_debug_server = _m.get_debug_server
+DebugServer = _m.DebugServer
+CoordinateSpace = _m.CoordinateSpace
+CoordinateSpaceAxes = _m.CoordinateSpaceAxes
 
 from superdex.physics import debugger, paths, prefab  # noqa: E402  (submodules, after the native names)
 

@@ -82,12 +82,17 @@ def test_debugger_records_headless_for_a_duration(scene, tmp_path, monkeypatch, 
     assert [round(l["t"], 6) for l in read(path) if l["type"] == "frame"] == [0.01, 0.11, 0.21, 0.31, 0.41]
 
 
-def test_debugger_without_a_recording_says_so(engine, monkeypatch, capsys):
+def test_debugger_without_a_page_prints_the_url_and_gives_up(engine, monkeypatch, capsys, tmp_path):
     monkeypatch.delenv("SUPERDEX_DEBUGGER_RECORD", raising=False)
     monkeypatch.delenv("SUPERDEX_DEBUGGER_DURATION", raising=False)
-    assert not sdp.debugger.attach()
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_BROWSER", "0")
+    (tmp_path / "index.html").write_text("<!doctype html>")
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_UI", str(tmp_path))
+    assert not sdp.debugger.attach(timeout_seconds=0.3)
     assert not sdp.debugger.is_attached()
-    assert "SUPERDEX_DEBUGGER_RECORD" in capsys.readouterr().err
+    assert not sdp.get_debug_server().has_started()
+    out, err = capsys.readouterr()
+    assert "open http://127.0.0.1:" in out and "no page connected within 0.3 s" in err
     monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "soon")
     with pytest.raises(sdp.Error, match="SUPERDEX_DEBUGGER_DURATION: expected a number of seconds"):
         sdp.debugger.attach()

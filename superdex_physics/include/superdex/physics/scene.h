@@ -32,6 +32,15 @@ enum class QueryType {
 };
 const char* query_type_name(QueryType type);
 
+/// A named signal for the debugger's plots and recordings: one value or a vector (SI units).
+struct NamedSignal {
+  std::string name;
+  std::vector<double> values;
+};
+/// Appends signals when a debugger frame or recorded frame is built (on the stepping thread,
+/// after the step's post-step callbacks).
+using SignalSource = std::function<void(std::vector<NamedSignal>& out)>;
+
 /// One contact of the last step seen from actor a.
 struct ContactPointInfo {
   ActorHandle actor_a = 0, actor_b = 0;  ///< link or rigid actors
@@ -237,6 +246,12 @@ class Scene {
   void register_post_step_callback(const std::string& name, StepCallback fn, int priority = 100);
   /// Removes a callback; throws if no callback has that name.
   void cancel_callback(const std::string& name);
+
+  /// Adds a source of named signals shown by the debugger and written to recordings (frames
+  /// already carry joint velocities and efforts and contact forces); returns its id.
+  int add_signal_source(SignalSource source);
+  /// Removes a signal source; no effect for an unknown id.
+  void remove_signal_source(int id);
 
   /// The scene's evolving state (time, every body's positions, velocities and held forces) as
   /// bytes; restoring it into a scene with the same actors replays bitwise identically.

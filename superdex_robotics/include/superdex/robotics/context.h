@@ -102,6 +102,7 @@ struct BotRecord {
   std::vector<ComponentHandle> controllers, sensors, actuators;  ///< creation order
   PipelineMode pipeline_mode = PipelineMode::Automatic;
   std::shared_ptr<BotPipeline> pipeline;  ///< set while the pipeline is active
+  int signal_source = 0;  ///< the scene's signal source of its sensors and actuators (debugger plots)
 };
 
 class Context {
@@ -171,6 +172,9 @@ class Context {
 
   std::map<std::string, ComponentType> factories_[3];
   std::map<ComponentHandle, ComponentRecord> components_[3];
+  // the debugger's signals of a bot: sensor readings and actuator efforts
+  void append_bot_signals(BotHandle handle, std::vector<physics::NamedSignal>& out) const;
+  void remove_signal_source(BotRecord& b);
   std::map<BotHandle, BotRecord> bots_;
 };
 

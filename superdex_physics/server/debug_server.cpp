@@ -1,0 +1,369 @@
+// The debug server (superdex/physics/debug_server.h): its thread, the play state the pages set,
+// and the stepping thread's side (gating, real-time pacing, frames).
+
+#include "superdex/physics/debug_server.h"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "http_session.h"
+#include "request_policy.h"
+#include "server_core.h"
+#include "superdex/physics/error.h"
+#include "websocket_session.h"
+
+#ifndef SUPERDEX_DEBUGGER_UI_DIR
+#define SUPERDEX_DEBUGGER_UI_DIR ""
+#endif
+
+namespace superdex::physics {
+
+using debug::ServerCore;
+using debug::WebSocketSession;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+namespace asio = boost::asio;
+using tcp = asio::ip::tcp;
+
+namespace debug {
+
+std::string ServerCore::session_message() const {
+  return json{{"type", "session"}, {"mode", replay ? "replay" : "live"}, {"version", 1},
+              {"axes", axes == CoordinateAxes::FLU ? "FLU" : "RUB"}, {"source", replay_source}}
+      .dump();
+}
+
+std::string ServerCore::status_message() const {
+  std::lock_guard lock(control_mutex);
+  return json{{"type", "status"}, {"state", play.paused ? "paused" : "playing"}, {"speed", play.real_time ? "realtime" : "fast"},
+              {"t", latest_time.load()}, {"step", latest_step.load()}}
+      .dump();
+}
+
+void ServerCore::on_open(const std::shared_ptr<WebSocketSession>& session) {
+  sessions.insert(session);
+  ++connections;
+  if (replay) return;
+  // a page that attaches sees the simulation play in real time, described from scratch
+  {
+    std::lock_guard lock(control_mutex);
+    play = DebugPlayState{};
+    ++play_epoch;
+  }
+  control_changed.notify_all();
+  resync = true;
+  session->send(std::make_shared<const std::string>(status_message()));
+}
+
+void ServerCore::on_close(const std::shared_ptr<WebSocketSession>& session) {
+  if (!sessions.erase(session)) return;
+  --connections;
+  update_backlog();
+  if (connections > 0 || replay) return;
+  // nobody is watching: never leave the simulation paused
+  {
+    std::lock_guard lock(control_mutex);
+    play = DebugPlayState{};
+    ++play_epoch;
+  }
+  control_changed.notify_all();
+}
+
+void ServerCore::on_message(WebSocketSession& from, const std::string& text) {
+  if (replay) return;
+  const json message = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!message.is_object()) return;
+  if (message.value("type", json()) == "ack") {
+    from.acknowledge();
+    update_backlog();
+    return;
+  }
+  if (message.value("type", json()) != "control") return;
+  const json action_value = message.value("action", json());
+  if (!action_value.is_string()) return;
+  const std::string action = action_value.get<std::string>();
+  {
+    std::lock_guard lock(control_mutex);
+    if (action == "pause") play.paused = true;
+    else if (action == "play") play = {false, true};
+    else if (action == "fast") play = {false, false};
+    else if (action == "step") {
+      play.paused = true;
+      step_tokens = 1;
+    } else if (action == "restore") {
+      play.paused = true;
+      step_tokens = 0;
+      ++restores;
+    } else return;
+    ++play_epoch;
+  }
+  control_changed.notify_all();
+  send_all(std::make_shared<const std::string>(status_message()));
+}
+
+void ServerCore::send_all(const std::shared_ptr<const std::string>& message) {
+  for (const auto& s : sessions) s->send(message);
+  update_backlog();
+}
+
+void ServerCore::send_frame_all(const std::shared_ptr<const std::string>& message) {
+  for (const auto& s : sessions) s->send_frame(message);
+  update_backlog();
+}
+
+void ServerCore::update_backlog() {
+  int worst = 0;
+  for (const auto& s : sessions) worst = std::max(worst, s->backlog());
+  max_backlog = worst;
+}
+
+}  // namespace debug
+
+struct DebugServer::Impl {
+  std::unique_ptr<ServerCore> core;
+  std::unique_ptr<tcp::acceptor> acceptor;
+  std::unique_ptr<asio::steady_timer> status_timer;
+  std::thread thread;
+  std::string ui_dir = SUPERDEX_DEBUGGER_UI_DIR;
+  CoordinateAxes axes = CoordinateAxes::FLU;
+  // stepping thread's side
+  Clock::time_point last_frame{};
+  struct Anchor {
+    Clock::time_point wall;
+    double sim = 0;
+    std::uint64_t epoch = 0;
+  };
+  std::map<std::uint64_t, Anchor> anchors;
+  int quiet_ticks = 0;  // status ticks without progress (server thread)
+
+  void accept() {
+    acceptor->async_accept([this](boost::system::error_code ec, tcp::socket socket) {
+      if (ec) return;  // closed by stop()
+      std::make_shared<debug::HttpSession>(std::move(socket), *core)->run();
+      accept();
+    });
+  }
+
+  // status at least once a second (and when time moved), on the server thread
+  void tick_status(double last_t) {
+    status_timer->expires_after(std::chrono::milliseconds(250));
+    status_timer->async_wait([this, last_t](boost::system::error_code ec) {
+      if (ec) return;
+      const double t = core->latest_time.load();
+      if (core->connections > 0 && !core->replay && (t != last_t || ++quiet_ticks >= 4)) {
+        quiet_ticks = 0;
+        core->send_all(std::make_shared<const std::string>(core->status_message()));
+      }
+      tick_status(t);
+    });
+  }
+
+  int launch(int port, std::unique_ptr<ServerCore> new_core) {
+    if (core) throw Error("debug server: already started on port " + std::to_string(core->port));
+    if (port < 0 || port > 65535) throw Error("debug server: port must be in 0..65535, got " + std::to_string(port));
+    if (!std::filesystem::is_regular_file(std::filesystem::path(ui_dir) / "index.html"))
+      throw Error("debug server: the debugger UI is not built (no index.html in '" + ui_dir +
+                  "'); build it with `npm run build` in superdex_debugger/ or set the UI directory");
+    new_core->ui_dir = ui_dir;
+    new_core->axes = axes;
+    new_core->token = debug::random_token();
+    auto new_acceptor = std::make_unique<tcp::acceptor>(new_core->io);
+    boost::system::error_code ec;
+    const tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port));
+    new_acceptor->open(endpoint.protocol(), ec);
+    if (!ec) new_acceptor->set_option(asio::socket_base::reuse_address(true), ec);
+    if (!ec) new_acceptor->bind(endpoint, ec);
+    if (!ec) new_acceptor->listen(asio::socket_base::max_listen_connections, ec);
+    if (ec) throw Error("debug server: cannot listen on 127.0.0.1:" + std::to_string(port) + ": " + ec.message());
+    new_core->port = new_acceptor->local_endpoint().port();
+    new_core->running = true;
+    core = std::move(new_core);
+    acceptor = std::move(new_acceptor);
+    status_timer = std::make_unique<asio::steady_timer>(core->io);
+    anchors.clear();
+    accept();
+    tick_status(-1);
+    thread = std::thread([this] { core->io.run(); });
+    return core->port;
+  }
+
+  void shutdown() {
+    if (!core) return;
+    {
+      std::lock_guard lock(core->control_mutex);
+      core->running = false;
+      core->play = DebugPlayState{};
+    }
+    core->control_changed.notify_all();
+    asio::post(core->io, [this] {
+      boost::system::error_code ignored;
+      acceptor->close(ignored);
+      status_timer->cancel();
+      for (auto s : std::set(core->sessions)) s->close();
+    });
+    // pages get a moment to receive the close; then the loop is stopped
+    auto guard = std::thread([this] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      core->io.stop();
+    });
+    thread.join();
+    guard.join();
+    core->sessions.clear();
+    status_timer.reset();
+    acceptor.reset();
+    core.reset();
+  }
+};
+
+DebugServer::DebugServer() : impl_(std::make_unique<Impl>()) {}
+
+DebugServer::~DebugServer() { impl_->shutdown(); }
+
+int DebugServer::start(int port) { return impl_->launch(port, std::make_unique<ServerCore>()); }
+
+int DebugServer::start_replay(const std::string& path, int port) {
+  std::ifstream in(path);
+  if (!in) throw Error("debug server: cannot read the recording '" + path + "'");
+  auto lines = std::make_shared<std::vector<std::string>>();
+  std::size_t frames = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    if (lines->empty()) {
+      const json header = json::parse(line, nullptr, false);
+      if (!header.is_object() || header.value("format", json()) != "superdex-recording")
+        throw Error("debug server: '" + path + "' is not a SuperDex recording (its first line is not a recording header)");
+    }
+    if (line.find("\"type\":\"frame\"") != std::string::npos) ++frames;
+    lines->push_back(std::move(line));
+  }
+  if (lines->empty()) throw Error("debug server: the recording '" + path + "' is empty");
+  auto core = std::make_unique<ServerCore>();
+  core->replay = true;
+  core->replay_source = std::filesystem::path(path).filename().string();
+  core->replay_lines = std::move(lines);
+  core->replay_frames = frames;
+  return impl_->launch(port, std::move(core));
+}
+
+void DebugServer::stop() { impl_->shutdown(); }
+
+bool DebugServer::has_started() const { return impl_->core != nullptr; }
+
+bool DebugServer::has_connection() const { return impl_->core && impl_->core->connections > 0; }
+
+int DebugServer::port() const { return impl_->core ? impl_->core->port : 0; }
+
+std::string DebugServer::url() const {
+  if (!impl_->core) return {};
+  return "http://127.0.0.1:" + std::to_string(impl_->core->port) + "/" + impl_->core->token + "/";
+}
+
+void DebugServer::set_ui_directory(const std::string& path) {
+  if (impl_->core) throw Error("debug server: set the UI directory before start()");
+  impl_->ui_dir = path;
+}
+
+std::string DebugServer::ui_directory() const { return impl_->ui_dir; }
+
+void DebugServer::set_coordinate_axes(CoordinateAxes axes) {
+  impl_->axes = axes;
+  if (impl_->core) impl_->core->axes = axes;
+}
+
+CoordinateAxes DebugServer::coordinate_axes() const { return impl_->axes; }
+
+DebugPlayState DebugServer::play_state() const {
+  if (!impl_->core) return {};
+  std::lock_guard lock(impl_->core->control_mutex);
+  return impl_->core->play;
+}
+
+bool DebugServer::wait_for_connection(double timeout_seconds) const {
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds));
+  while (impl_->core && !(impl_->core->connections > 0)) {
+    if (Clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return has_connection();
+}
+
+void DebugServer::gate_step(std::uint64_t& restores_seen, const std::function<void()>& restore) {
+  ServerCore* core = impl_->core.get();
+  if (!core || core->replay) return;
+  std::unique_lock lock(core->control_mutex);
+  for (;;) {
+    if (core->restores != restores_seen) {
+      restores_seen = core->restores;
+      lock.unlock();
+      restore();
+      lock.lock();
+      continue;
+    }
+    if (!core->running || !core->play.paused) return;
+    if (core->step_tokens > 0) {
+      --core->step_tokens;
+      return;
+    }
+    core->control_changed.wait(lock);
+  }
+}
+
+void DebugServer::pace(std::uint64_t scene_key, double t) {
+  ServerCore* core = impl_->core.get();
+  if (!core || core->replay || core->connections == 0) return;
+  std::unique_lock lock(core->control_mutex);
+  if (core->play.paused || !core->play.real_time) return;
+  auto& anchor = impl_->anchors[scene_key];
+  const auto now = Clock::now();
+  const auto due = anchor.wall + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t - anchor.sim));
+  // a new play state, or a simulation slower than the wall clock: start pacing from here
+  if (anchor.epoch != core->play_epoch || anchor.wall == Clock::time_point{} || now - due > std::chrono::milliseconds(250)) {
+    anchor = {now, t, core->play_epoch};
+    return;
+  }
+  const std::uint64_t epoch = core->play_epoch;
+  core->control_changed.wait_until(lock, due, [&] { return core->play_epoch != epoch || !core->running; });
+}
+
+bool DebugServer::wants_frame() const {
+  ServerCore* core = impl_->core.get();
+  if (!core || core->replay || core->connections == 0) return false;
+  if (core->resync) return true;
+  const auto since = Clock::now() - impl_->last_frame;
+  // a page that stopped acknowledging still gets a frame now and then
+  return since >= std::chrono::microseconds(16667) && (core->max_backlog < 2 || since >= std::chrono::milliseconds(500));
+}
+
+bool DebugServer::take_resync() {
+  ServerCore* core = impl_->core.get();
+  return core && core->resync.exchange(false);
+}
+
+void DebugServer::broadcast(std::string lines) {
+  ServerCore* core = impl_->core.get();
+  if (!core || core->connections == 0) return;
+  impl_->last_frame = Clock::now();
+  // counted now so that wants_frame() sees the backlog before the server thread does
+  ++core->max_backlog;
+  auto message = std::make_shared<const std::string>(std::move(lines));
+  asio::post(core->io, [core, message] { core->send_frame_all(message); });
+}
+
+void DebugServer::report_progress(double t, std::int64_t step) {
+  if (!impl_->core) return;
+  impl_->core->latest_time = t;
+  impl_->core->latest_step = step;
+}
+
+DebugServer& get_debug_server() {
+  static DebugServer server;
+  return server;
+}
+
+}  // namespace superdex::physics

@@ -1,0 +1,70 @@
+#pragma once
+// State shared by the debug server's thread (sessions) and the stepping thread (debug_server.cpp).
+
+#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <condition_variable>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "superdex/physics/debug_server.h"
+
+namespace superdex::physics::debug {
+
+class WebSocketSession;
+
+struct ServerCore {
+  boost::asio::io_context io;
+  std::string token;
+  int port = 0;
+  std::filesystem::path ui_dir;
+  CoordinateAxes axes = CoordinateAxes::FLU;
+  // replay mode: the recording's lines, sent to every connection
+  bool replay = false;
+  std::string replay_source;
+  std::shared_ptr<const std::vector<std::string>> replay_lines;
+  std::size_t replay_frames = 0;
+
+  // pages connected over the WebSocket (touched on the server thread only)
+  std::set<std::shared_ptr<WebSocketSession>> sessions;
+  std::atomic<int> connections{0};
+  // the largest number of frames one page has not taken yet (see WebSocketSession::backlog)
+  std::atomic<int> max_backlog{0};
+  std::atomic<bool> resync{false};
+
+  // play state set by the pages, waited on by the stepping thread
+  mutable std::mutex control_mutex;
+  std::condition_variable control_changed;
+  DebugPlayState play;
+  int step_tokens = 0;                 // steps allowed while paused
+  std::uint64_t restores = 0;          // restore requests so far
+  std::uint64_t play_epoch = 0;        // changes whenever play state changes (re-anchors pacing)
+  bool running = false;
+
+  // progress reported by the stepping thread, shown by the page
+  std::atomic<double> latest_time{0};
+  std::atomic<std::int64_t> latest_step{0};
+
+  /// The `session` message for a new connection.
+  std::string session_message() const;
+  /// The `status` message of the current state.
+  std::string status_message() const;
+  /// A page connected (server thread).
+  void on_open(const std::shared_ptr<WebSocketSession>& session);
+  /// A page's connection ended (server thread).
+  void on_close(const std::shared_ptr<WebSocketSession>& session);
+  /// A text message from a page (server thread); malformed ones are dropped.
+  void on_message(WebSocketSession& from, const std::string& text);
+  /// Sends to every page (server thread).
+  void send_all(const std::shared_ptr<const std::string>& message);
+  /// Sends a frame to every page; each page acknowledges it (server thread).
+  void send_frame_all(const std::shared_ptr<const std::string>& message);
+  /// Recomputes max_backlog (server thread).
+  void update_backlog();
+};
+
+}  // namespace superdex::physics::debug

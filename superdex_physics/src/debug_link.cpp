@@ -1,0 +1,92 @@
+// The step's hooks into the debug server (debug_link.h).
+
+#include "debug_link.h"
+
+#include <iostream>
+#include <map>
+#include <mutex>
+
+#include "scene_messages.h"
+#include "superdex/physics/debug_server.h"
+#include "superdex/physics/error.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+struct SceneLink {
+  std::vector<std::uint8_t> initial_state;  // captured at its first step with the server running
+  std::uint64_t restores_seen = 0;
+};
+
+struct LinkState {
+  std::mutex mutex;
+  std::string session_url;  // identifies the server run the states belong to
+  std::map<SceneHandle, SceneLink> scenes;
+  StreamState stream;  // what the pages have been told
+};
+
+LinkState& link_state() {
+  static LinkState state;
+  return state;
+}
+
+// Sends the scene's frame (with any descriptions the pages lack) to the pages.
+void send_frame(DebugServer& server, const SceneData& s, LinkState& state) {
+  if (server.take_resync()) state.stream = StreamState{};
+  std::string lines;
+  append_frame_lines(s, state.stream, lines);
+  server.broadcast(std::move(lines));
+}
+
+}  // namespace
+
+void debug_before_step(Scene& scene) {
+  DebugServer& server = get_debug_server();
+  if (!server.has_started()) return;
+  LinkState& state = link_state();
+  SceneLink* link;
+  {
+    std::lock_guard lock(state.mutex);
+    // a new server run starts from the scenes' states at that time
+    if (state.session_url != server.url()) {
+      state.session_url = server.url();
+      state.scenes.clear();
+      state.stream = StreamState{};
+    }
+    auto [it, added] = state.scenes.try_emplace(scene.handle());
+    link = &it->second;
+    if (added) {
+      link->initial_state = scene.capture_state();
+      link->restores_seen = 0;
+    }
+  }
+  server.gate_step(link->restores_seen, [&] {
+    try {
+      scene.restore_state(link->initial_state);
+    } catch (const Error& e) {
+      // actors were added or removed since: the first state no longer fits this scene
+      std::cerr << "superdex.debugger: cannot restore scene '" << scene.name() << "': " << e.what() << '\n';
+      return;
+    }
+    const SceneData& s = scene_data(scene.handle());
+    server.report_progress(s.time, s.step_count);
+    std::lock_guard lock(state.mutex);
+    send_frame(server, s, state);
+  });
+}
+
+void debug_after_step(Scene& scene, const SceneData& s) {
+  DebugServer& server = get_debug_server();
+  if (!server.has_started()) return;
+  server.report_progress(s.time, s.step_count);
+  server.pace(s.handle, s.time);
+  if (!server.wants_frame()) return;
+  LinkState& state = link_state();
+  std::lock_guard lock(state.mutex);
+  send_frame(server, s, state);
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
