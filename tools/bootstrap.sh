@@ -9,6 +9,8 @@ APT_PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libhdf5-dev libtbb-dev
   libsuitesparse-dev libopenblas-dev
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
+  # the debugger page: Node.js and npm build it; chromium runs its tests (playwright-core)
+  nodejs npm chromium
 )
 
 missing=()

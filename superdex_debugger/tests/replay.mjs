@@ -1,0 +1,107 @@
+// Replay check of the debugger page against the recording it replays.
+//
+//   node tests/replay.mjs URL RECORDING.jsonl [--screenshot PATH] [--link-handle H] [--timeout S]
+//
+// Opens URL (1400x900), waits for window.superdex.replayEnded(), then compares the stored frames
+// of the first scene with the file's `frame` lines of that scene: the count, and links[H] of the
+// frames at indices 0, middle and last (max abs difference). Prints one JSON object as the last
+// line of stdout; exits 0 unless the browser could not run.
+import fs from 'node:fs';
+import { canvasStats, isNonBlank, launchBrowser, parseArgs, report, waitFor } from './lib.mjs';
+
+const { pos, opt } = parseArgs(process.argv.slice(2));
+const [url, recording] = pos;
+const timeoutMs = Number(opt.timeout ?? 60) * 1000;
+const out = { ok: false, url, recording };
+
+if (!url || !recording) {
+  report({ ...out, error: 'usage: replay.mjs URL RECORDING.jsonl [--screenshot PATH] [--link-handle H]' });
+  process.exit(2);
+}
+
+// The file's frames, per scene, in order.
+const fileFrames = [];
+let firstScene = null;
+for (const line of fs.readFileSync(recording, 'utf8').split('\n')) {
+  if (!line.trim()) continue;
+  let o;
+  try {
+    o = JSON.parse(line);
+  } catch {
+    continue;
+  }
+  if (o?.type !== 'frame') continue;
+  firstScene ??= o.scene;
+  fileFrames.push(o);
+}
+const sceneFrames = fileFrames.filter((f) => f.scene === firstScene);
+out.fileFrames = fileFrames.length;
+out.fileFramesFirstScene = sceneFrames.length;
+
+let browser;
+try {
+  browser = await launchBrowser();
+} catch (e) {
+  report({ ...out, error: `browser: ${e.message}` });
+  process.exit(1);
+}
+const errors = [];
+try {
+  const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+  page.on('pageerror', (e) => errors.push(String(e.message ?? e)));
+  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  await page.goto(url);
+  out.hook = Boolean(await waitFor(page, () => typeof window.superdex === 'object', null, 10000));
+  out.connected = Boolean(await waitFor(page, () => window.superdex.connected(), null, 10000));
+  out.replayEnded = Boolean(await waitFor(page, () => window.superdex.replayEnded(), null, timeoutMs));
+  out.sessionMode = await page.evaluate(() => window.superdex.session()?.mode ?? null);
+  out.endFrames = await page.evaluate(() => window.superdex.replayTotal());
+  out.frameCount = await page.evaluate(() => window.superdex.frameCount());
+  // The page keeps at most 20000 frames per scene: the newest ones.
+  const kept = sceneFrames.slice(-20000);
+  out.expectedFrameCount = kept.length;
+  out.frameCountMatches = out.frameCount === kept.length;
+
+  const h = opt['link-handle'] ?? Object.keys(kept[0]?.links ?? {}).at(-1);
+  out.linkHandle = h === undefined ? null : Number(h);
+  const idx = [...new Set([0, Math.floor((kept.length - 1) / 2), kept.length - 1])].filter((k) => k >= 0);
+  out.indices = idx;
+  let maxDiff = 0;
+  let compared = 0;
+  const diffs = [];
+  for (const k of idx) {
+    const got = await page.evaluate(([k, h]) => window.superdex.frame(k)?.links?.[h] ?? null, [k, String(h)]);
+    const want = kept[k]?.links?.[String(h)] ?? null;
+    let d;
+    if (!got || !want || got.length !== want.length) d = Infinity;
+    else d = Math.max(...want.map((v, i) => Math.abs(v - got[i])));
+    diffs.push({ k, diff: Number.isFinite(d) ? d : null, t: kept[k]?.t ?? null });
+    maxDiff = Math.max(maxDiff, d);
+    compared++;
+  }
+  out.linkDiffs = diffs;
+  out.maxAbsDiff = Number.isFinite(maxDiff) ? maxDiff : null;
+  out.linksMatch = compared > 0 && Number.isFinite(maxDiff) && maxDiff <= 1e-9;
+
+  // Seeking shows the chosen frame.
+  const mid = idx[Math.floor(idx.length / 2)] ?? 0;
+  await page.evaluate((k) => window.superdex.seek(k), mid);
+  out.seekWorks = Boolean(await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, mid, 3000));
+
+  out.actorNames = await page.evaluate(() => window.superdex.actorNames());
+  out.canvas = await canvasStats(page);
+  out.canvasNonBlank = isNonBlank(out.canvas);
+  if (opt.screenshot) {
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: opt.screenshot });
+    out.screenshot = opt.screenshot;
+  }
+  await page.close();
+  out.ok = out.replayEnded && out.frameCountMatches && out.linksMatch;
+} catch (e) {
+  out.error = String(e?.message ?? e);
+} finally {
+  out.pageErrors = errors;
+  await browser.close().catch(() => {});
+}
+report(out);

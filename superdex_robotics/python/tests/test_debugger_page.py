@@ -1,0 +1,127 @@
+"""The debugger page in a real browser (playwright-core driving Debian's chromium, headless),
+attached to the seed example as a user runs it, and replaying a recording of it:
+
+- live: the seed scene loads in the page, the 3D canvas is not blank, the actor tree lists the
+  arm's links, a chart shows the force sensor's signal, pause stops simulated time, step advances
+  exactly one step, play resumes; closing the page makes `is_attached()` false, so the seed's
+  loop ends and the script exits cleanly;
+- replay (`python -m superdex view FILE`): the page holds as many frames as the file, and the
+  ball's pose at frame k equals the recorded one.
+
+The node scripts (superdex_debugger/tests/*.mjs) print one JSON object of measurements; the
+assertions are here. SUPERDEX_UPDATE_SCREENSHOTS=1 writes the screenshots to docs/.
+"""
+
+import json
+import os
+import queue
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[3]
+EXAMPLE = REPO / "superdex_robotics" / "examples" / "advanced" / "example_custom_components.py"
+UI = REPO / "superdex_debugger"
+LINKS = ["base_link", "link_1", "link_2", "ball"]
+
+
+@pytest.fixture(scope="module", autouse=True)
+def browser_tools():
+    missing = [what for what, ok in [("node", shutil.which("node")), ("chromium", shutil.which("chromium")),
+                                     ("the built page", (UI / "dist" / "index.html").is_file()),
+                                     ("playwright-core", (UI / "node_modules" / "playwright-core").is_dir())] if not ok]
+    assert not missing, f"missing {', '.join(missing)}: run tools/bootstrap.sh and the build (tools/dev.sh test does both)"
+
+
+def screenshot_path(tmp_path, name):
+    return REPO / "docs" / name if os.environ.get("SUPERDEX_UPDATE_SCREENSHOTS") == "1" else tmp_path / name
+
+
+def headless_env(**extra):
+    env = {k: v for k, v in os.environ.items() if not k.startswith("SUPERDEX_DEBUGGER_")}
+    env.update(SUPERDEX_DEBUGGER_BROWSER="0", **extra)
+    return env
+
+
+def start_and_read_url(cmd, env, marker):
+    """Starts `cmd`; returns the process, the URL from the stdout line containing `marker`, and a
+    queue receiving its further stdout lines."""
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO)
+    lines = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(l) for l in proc.stdout], daemon=True).start()
+    while True:
+        try:
+            line = lines.get(timeout=300)
+        except queue.Empty:
+            proc.kill()
+            pytest.fail(f"{cmd} printed no URL")
+        if marker in line:
+            url = next(word for word in line.split() if word.startswith("http://127.0.0.1:"))
+            return proc, url, lines
+
+
+def run_node(script, *args):
+    result = subprocess.run(["node", str(UI / "tests" / script), *map(str, args)], capture_output=True, text=True,
+                            timeout=600, cwd=UI)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def test_the_page_attaches_to_the_seed_example_and_controls_it(tmp_path):
+    # the seed waits for the page up to SUPERDEX_DEBUGGER_WAIT (a browser starting on a busy machine)
+    proc, url, _ = start_and_read_url([sys.executable, str(EXAMPLE)], headless_env(SUPERDEX_DEBUGGER_WAIT="120"),
+                                      "superdex.debugger: open")
+    try:
+        shot = screenshot_path(tmp_path, "debugger_live.png")
+        r = run_node("live.mjs", url, "--screenshot", shot, "--links", ",".join(LINKS), "--signal", "force_sensor",
+                     "--timeout", 120)
+        # closing the page ends the seed's `while debugger.is_attached()` loop
+        _, stderr = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    details = json.dumps({k: v for k, v in r.items() if k not in ("signalNames",)}, indent=1)
+    assert r["connected"] and r["sessionMode"] == "live", details
+    assert r["canvasNonBlank"], details
+    assert r["treeHasLinks"], details
+    assert r["signalPlotted"] and "force_sensor" in r["signalName"], details
+    assert r["pauseHolds"] and r["tPaused0"] == r["tPaused1"], details
+    assert r["stepAdvancesOne"] and r["stepAfter"] == r["stepBefore"] + 1, details
+    assert r["playResumes"] and r["tPlay1"] > r["tPlay0"], details
+    assert not r.get("pageErrors"), details
+    assert shot.stat().st_size > 10_000
+    assert proc.returncode == 0, stderr
+    assert stderr == "", stderr
+
+
+def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
+    recording = tmp_path / "seed.jsonl"
+    env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_DURATION="0.6",
+                       SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
+    subprocess.run([sys.executable, str(EXAMPLE)], env=env, check=True, capture_output=True, timeout=900, cwd=REPO)
+    lines = [json.loads(l) for l in recording.read_text().splitlines()]
+    frames = [l for l in lines if l["type"] == "frame"]
+    (arm,) = [l for l in lines if l["type"] == "actor" and l["name"] == "example_bot_2dof"]
+    ball = arm["links"][3]["handle"]
+    assert len(frames) >= 25
+
+    proc, url, _ = start_and_read_url([sys.executable, "-m", "superdex", "view", str(recording), "--no-browser"],
+                                      headless_env(), "superdex view: replaying")
+    try:
+        shot = screenshot_path(tmp_path, "debugger_replay.png")
+        r = run_node("replay.mjs", url, recording, "--link-handle", ball, "--screenshot", shot)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+    details = json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
+    assert r["replayEnded"] and r["sessionMode"] == "replay", details
+    assert r["frameCount"] == len(frames) == r["endFrames"], details
+    assert r["linkHandle"] == ball and r["linksMatch"] and r["maxAbsDiff"] == 0, details
+    assert set(LINKS) <= set(r["actorNames"]), details
+    assert r["canvasNonBlank"], details
+    assert proc.returncode == 0
