@@ -26,10 +26,13 @@ PY
 case "${1:-}" in
   demo)
     shift
-    # the seed example; without a display its debugger records the run (3 simulated seconds,
-    # one period of its circle, unless SUPERDEX_DEBUGGER_DURATION says otherwise)
-    export SUPERDEX_DEBUGGER_RECORD="${SUPERDEX_DEBUGGER_RECORD:-$PWD/build/seed_example.jsonl}"
-    export SUPERDEX_DEBUGGER_DURATION="${SUPERDEX_DEBUGGER_DURATION:-3}"
+    # the seed example: with a display it opens the debugger page and runs until the page is
+    # closed; without one it records the run (3 simulated seconds, one period of its circle,
+    # unless SUPERDEX_DEBUGGER_DURATION says otherwise) for `superdex view`
+    if [[ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]]; then
+      export SUPERDEX_DEBUGGER_RECORD="${SUPERDEX_DEBUGGER_RECORD:-$PWD/build/seed_example.jsonl}"
+      export SUPERDEX_DEBUGGER_DURATION="${SUPERDEX_DEBUGGER_DURATION:-3}"
+    fi
     exec uv run python superdex_robotics/examples/advanced/example_custom_components.py "$@"
     ;;
   test)
