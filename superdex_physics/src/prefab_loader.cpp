@@ -279,6 +279,16 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
     const std::string path = "links[" + std::to_string(i) + "].shape";
     if (link.shape && scale != 1) link.shape = scaled_primitive(*link.shape, scale), link.link_from_shape.translation *= scale;
     if (link.center_of_mass && scale != 1) *link.center_of_mass *= scale;
+    // the render model (.glb, for the debugger), relative to the file
+    if (!link.render_model.empty()) {
+      fs::path model_path(link.render_model);
+      if (model_path.is_relative()) model_path = fs::path(base_dir) / model_path;
+      const std::string field = "links[" + std::to_string(i) + "].renderModel";
+      if (!fs::is_regular_file(model_path)) fail(source, field, "render model '" + model_path.string() + "' does not exist");
+      if (model_path.extension() != ".glb") fail(source, field, "render models are binary glTF (.glb) files, got '" + model_path.string() + "'");
+      link.render_model = model_path.lexically_normal().string();
+      if (scale != 1) link.render_model_scale *= scale;
+    }
     if (link.shape_file.empty()) continue;
     fs::path shape_path(link.shape_file);
     if (shape_path.is_relative()) shape_path = fs::path(base_dir) / shape_path;

@@ -3,7 +3,14 @@
 #include "scene_messages.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "base64.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -52,6 +59,27 @@ json shape_json(const ShapeGeometry& shape) {
       shape);
 }
 
+// A link's render model (.glb) embedded in base64, so that recordings replay without the files;
+// files are read once per path.
+json render_model_json(const LinkDesc& link) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const std::string>> encoded;
+  std::shared_ptr<const std::string> glb;
+  {
+    std::lock_guard lock(mutex);
+    auto& cached = encoded[link.render_model];
+    if (!cached) {
+      std::ifstream in(link.render_model, std::ios::binary);
+      std::ostringstream bytes;
+      bytes << in.rdbuf();
+      cached = std::make_shared<const std::string>(in ? base64_encode(bytes.str()) : std::string());
+    }
+    glb = cached;
+  }
+  if (glb->empty()) return nullptr;
+  return {{"name", std::filesystem::path(link.render_model).filename().string()}, {"scale", vec(link.render_model_scale)}, {"glb", *glb}};
+}
+
 json articulation_json(const SceneData& s, const Articulation& a) {
   json links = json::array();
   for (int l = 0; l < a.model.num_links; ++l) {
@@ -63,6 +91,10 @@ json articulation_json(const SceneData& s, const Articulation& a) {
                      {"mass", round7(a.model.inertia[l].mass)},
                      {"joint", {{"type", joint_type_name(joint.type)}, {"dofs", joint.nv}, {"offset", joint.v_offset}}},
                      {"colliders", colliders}});
+    if (l < static_cast<int>(a.model.desc.links.size()) && !a.model.desc.links[l].render_model.empty()) {
+      json model = render_model_json(a.model.desc.links[l]);
+      if (!model.is_null()) links.back()["renderModel"] = std::move(model);
+    }
   }
   return {{"type", "actor"}, {"scene", s.handle}, {"handle", a.handle}, {"name", a.model.name},
           {"kind", a.is_rigid ? (a.is_static ? "static" : "rigid") : "articulated"}, {"numDofs", a.model.nv}, {"links", links}};

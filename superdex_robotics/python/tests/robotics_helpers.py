@@ -22,7 +22,13 @@ def scene():
 
 
 def example_bot_json() -> dict:
-    return json.loads(Path(resolve_asset(EXAMPLE_BOT)).read_text())
+    """The example bot's JSON, its render model paths made absolute (the copy lives elsewhere)."""
+    path = Path(resolve_asset(EXAMPLE_BOT))
+    doc = json.loads(path.read_text())
+    for link in doc["links"]:
+        if "renderModel" in link:
+            link["renderModel"] = str(path.parent / link["renderModel"])
+    return doc
 
 
 def write_bot(folder: Path, doc: dict, name: str = "bot.superdex_bot") -> Path:
@@ -34,4 +40,5 @@ def write_bot(folder: Path, doc: dict, name: str = "bot.superdex_bot") -> Path:
 def copy_example_bot(folder: Path) -> Path:
     dst = folder / "example_bot_2dof.superdex_bot"
     shutil.copy(resolve_asset(EXAMPLE_BOT), dst)
+    shutil.copytree(Path(resolve_asset(EXAMPLE_BOT)).parent / "models", folder / "models", dirs_exist_ok=True)
     return dst

@@ -9,6 +9,7 @@ of API.md: a class without reset() is refused naming the class, a factory's exce
 becomes sdp.Error with its message, an unregistered type is skipped with a warning.
 """
 
+import base64
 import json
 
 import numpy as np
@@ -16,7 +17,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from robotics_helpers import EXAMPLE_BOT, example_bot_json, scene, write_bot  # noqa: F401
+from robotics_helpers import EXAMPLE_BOT, copy_example_bot, example_bot_json, scene, write_bot  # noqa: F401
 from superdex.physics.paths import resolve_asset
 
 
@@ -225,3 +226,24 @@ def test_example_bot_has_no_self_contact_on_its_path(scene, pose):
         scene.step(0.004)
     assert all(link.get_contact_points_world() == [] for link in links)
     np.testing.assert_allclose(arm.get_articulated_joint_velocities(), 0, atol=1e-9)
+
+
+def test_render_models_travel_in_recordings_byte_for_byte(scene, tmp_path):
+    """The bot's render model (.glb, relative to the bot file) is embedded in the recording's actor
+    line, base64 of the file's bytes, with its scale: a replay needs no asset files."""
+    path = copy_example_bot(tmp_path)
+    recording = tmp_path / "run.jsonl"
+    sdp.start_recording(str(recording), 0.0)
+    with pytest.warns(UserWarning, match="not registered"):
+        bot = sdr.create_bot(scene, sdr.load_bot_prefab_from_file(str(path)), sdr.create_context())
+    scene.step(0.01)
+    sdp.stop_recording()
+    (actor,) = [l for l in map(json.loads, recording.read_text().splitlines()) if l["type"] == "actor"]
+    models = {link["name"]: link.get("renderModel") for link in actor["links"]}
+    assert models["base_link"] is None and models["link_1"] is None
+    ball = models["ball"]
+    assert ball["name"] == "ball.glb" and ball["scale"] == [1, 1, 1]
+    glb = base64.b64decode(ball["glb"], validate=True)
+    assert glb == (tmp_path / "models" / "ball.glb").read_bytes()
+    assert glb[:4] == b"glTF"
+    sdr.destroy_bot(scene, bot)

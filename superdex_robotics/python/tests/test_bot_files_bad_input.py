@@ -6,7 +6,8 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from robotics_helpers import example_bot_json, scene, write_bot  # noqa: F401
+from robotics_helpers import EXAMPLE_BOT, example_bot_json, scene, write_bot  # noqa: F401
+from superdex.physics.paths import resolve_asset
 
 
 def edit(doc, fn):
@@ -33,6 +34,8 @@ CASES = [
     ("duplicate actuator name", lambda d: d["links"][2]["actuators"][0].update({"name": "servo_1"}), r"links\[2\]\.actuators\[0\]\.name: duplicate name 'servo_1'"),
     ("params not a string", lambda d: d["links"][1]["actuators"][0].update({"params": 5}), r"links\[1\]\.actuators\[0\]\.params: expected a string"),
     ("missing shape file", lambda d: d["links"][3].update({"shape": "meshes/nothing.obj"}), r"links\[3\]\.shape: shape file .*nothing\.obj' does not exist"),
+    ("missing render model", lambda d: d["links"][3].update({"renderModel": "models/nothing.glb"}), r"links\[3\]\.renderModel: render model .*nothing\.glb' does not exist"),
+    ("render model not glTF", lambda d: d["links"][3].update({"renderModel": str(resolve_asset(EXAMPLE_BOT))}), r"links\[3\]\.renderModel: render models are binary glTF \(\.glb\) files"),
     ("bad default pose", lambda d: d.update({"defaultPose": [0.0]}), r"defaultPose: expected 2 values"),
     ("no name", lambda d: d.pop("name"), r"name: required"),
 ]
