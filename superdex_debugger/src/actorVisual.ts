@@ -2,9 +2,33 @@ import * as THREE from 'three';
 import { GROUND_COLOR } from './colors';
 import { applyPose, isPose } from './pose';
 import type { ActorMsg, FrameMsg } from './protocol';
+import { instantiateRenderModel, renderModelSpec } from './renderModels';
 import { shapeGeometry } from './shapes';
 
 const WHITE = new THREE.Color('#ffffff');
+
+/** Opacity of the colliders drawn over a render model. */
+const GHOST_OPACITY = 0.3;
+
+/** A material that the selection lights up, with what it looked like unselected. */
+interface Glowable {
+  /** Link handle (soft bodies: the actor handle). */
+  key: number;
+  material: THREE.Material;
+  /** Materials with an emissive colour (Phong, standard, ...). */
+  emissive?: THREE.Color;
+  emissiveMap?: THREE.Texture | null;
+  /** Unlit materials: their colour is lightened instead. */
+  color?: THREE.Color;
+}
+
+/** A link's collider meshes, and its render model once loaded. */
+interface LinkParts {
+  colliders: THREE.Mesh[];
+  /** Material of the colliders drawn over the loaded model. */
+  ghost?: THREE.MeshPhongMaterial;
+  model?: THREE.Object3D;
+}
 
 /** What a click on a mesh selects. */
 export interface PickInfo {
@@ -16,13 +40,23 @@ export interface PickInfo {
  * The three.js objects of one actor: a group per link placed at world_from_link, holding the
  * link's colliders at link_from_shape and an axes helper; or, for a soft body, one mesh whose
  * vertices are the soft nodes (world frame, m).
+ *
+ * A link with a `renderModel` shows the glTF model (in the link frame, scaled) instead of its
+ * colliders once the model has loaded; until then, or if it cannot be loaded, the colliders.
+ * With `setCollidersOverModels(true)` the colliders are also drawn, semi-transparent, over it.
  */
 export class ActorVisual {
   readonly root = new THREE.Group();
   readonly color: THREE.Color;
+  /** Called when something changed asynchronously (a render model was added). */
+  onChange: () => void = () => {};
   private readonly linkGroups = new Map<number, THREE.Group>();
-  /** One material per link handle (soft bodies: keyed by the actor handle). */
-  private readonly materials = new Map<number, THREE.MeshPhongMaterial>();
+  private readonly parts = new Map<number, LinkParts>();
+  /** Materials lit up by the selection. */
+  private readonly glow: Glowable[] = [];
+  private highlight: { actorSelected: boolean; link?: number } = { actorSelected: false };
+  private collidersOverModels = false;
+  private disposed = false;
   private readonly axes: THREE.AxesHelper[] = [];
   private readonly disposables: { dispose(): void }[] = [];
   private soft?: { geometry: THREE.BufferGeometry; nodes: number };
@@ -41,7 +75,7 @@ export class ActorVisual {
   private material(key: number, color: THREE.Color | string, opts: THREE.MeshPhongMaterialParameters = {}) {
     // Double-sided: mesh colliders do not always have a consistent winding.
     const m = new THREE.MeshPhongMaterial({ color, shininess: 40, specular: '#2a2a2a', side: THREE.DoubleSide, ...opts });
-    this.materials.set(key, m);
+    this.glow.push({ key, material: m, emissive: m.emissive.clone() });
     this.disposables.push(m);
     return m;
   }
@@ -53,6 +87,8 @@ export class ActorVisual {
       this.linkGroups.set(link.handle, group);
       this.root.add(group);
       const mat = this.material(link.handle, this.color);
+      const parts: LinkParts = { colliders: [] };
+      this.parts.set(link.handle, parts);
       let groundMat: THREE.MeshLambertMaterial | undefined;
       for (const col of link.colliders ?? []) {
         const sg = shapeGeometry(col.shape);
@@ -76,7 +112,16 @@ export class ActorVisual {
         mesh.userData.pick = { actor: this.desc.handle, link: link.handle } satisfies PickInfo;
         mesh.userData.isPlane = sg.isPlane;
         if (!sg.isPlane) this.solid.push(mesh);
+        parts.colliders.push(mesh);
         group.add(mesh);
+      }
+      const spec = renderModelSpec(link.renderModel);
+      if (spec) {
+        instantiateRenderModel(spec).then(
+          (model) => model && this.addModel(link.handle, model),
+          // Not expected (failures resolve to null); never let it reach the console as an error.
+          (e) => console.warn('superdex: render model', e),
+        );
       }
       const ax = new THREE.AxesHelper(1);
       ax.scale.setScalar(0.05);
@@ -88,6 +133,76 @@ export class ActorVisual {
       this.disposables.push(ax.geometry, ax.material as THREE.Material);
       group.add(ax);
     }
+  }
+
+  /** Shows a loaded render model in its link group, in place of the colliders. */
+  private addModel(handle: number, model: THREE.Object3D): void {
+    const group = this.linkGroups.get(handle);
+    const parts = this.parts.get(handle);
+    if (this.disposed || !group || !parts) {
+      disposeInstance(model);
+      return;
+    }
+    const pick = { actor: this.desc.handle, link: handle } satisfies PickInfo;
+    model.traverse((o) => {
+      const mesh = o as THREE.Mesh;
+      if (!mesh.isMesh) return;
+      mesh.userData.pick = pick;
+      for (const m of Array.isArray(mesh.material) ? mesh.material : [mesh.material]) {
+        const em = (m as THREE.MeshStandardMaterial).emissive;
+        const col = (m as THREE.MeshBasicMaterial).color;
+        if (em?.isColor) this.glow.push({ key: handle, material: m, emissive: em.clone(), emissiveMap: (m as THREE.MeshStandardMaterial).emissiveMap });
+        else if (col?.isColor) this.glow.push({ key: handle, material: m, color: col.clone() });
+      }
+    });
+    parts.model = model;
+    // The colliders, when drawn over the model: see-through, no shadows.
+    parts.ghost = new THREE.MeshPhongMaterial({
+      color: this.color,
+      transparent: true,
+      opacity: GHOST_OPACITY,
+      depthWrite: false,
+      shininess: 20,
+      side: THREE.DoubleSide,
+    });
+    this.glow.push({ key: handle, material: parts.ghost, emissive: parts.ghost.emissive.clone() });
+    this.disposables.push(parts.ghost);
+    for (const c of parts.colliders) {
+      c.material = parts.ghost;
+      c.castShadow = false;
+      c.receiveShadow = false;
+    }
+    this.solid.push(model);
+    group.add(model);
+    this.updateColliderVisibility();
+    this.applyHighlight();
+    this.onChange();
+  }
+
+  /** Colliders of links with a loaded render model are drawn only when asked for. */
+  private updateColliderVisibility(): void {
+    for (const p of this.parts.values()) {
+      if (!p.model) continue;
+      for (const c of p.colliders) c.visible = this.collidersOverModels;
+    }
+  }
+
+  /** Also draws the colliders of links that show a render model (semi-transparent, over it). */
+  setCollidersOverModels(v: boolean): void {
+    this.collidersOverModels = v;
+    this.updateColliderVisibility();
+  }
+
+  /** Links whose render model has loaded and is shown. */
+  renderModelCount(): number {
+    let n = 0;
+    for (const p of this.parts.values()) if (p.model) n++;
+    return n;
+  }
+
+  /** True if some link of the actor declares a render model (loaded or not). */
+  get hasRenderModels(): boolean {
+    return (this.desc.links ?? []).some((l) => renderModelSpec(l.renderModel) !== null);
   }
 
   private buildSoft(): void {
@@ -136,10 +251,29 @@ export class ActorVisual {
 
   /** Highlights the whole actor when selected, and one of its links more strongly (a light glow). */
   setHighlight(actorSelected: boolean, link?: number): void {
+    this.highlight = { actorSelected, link };
+    this.applyHighlight();
+  }
+
+  private applyHighlight(): void {
+    const { actorSelected, link } = this.highlight;
     const glow = this.color.clone().lerp(WHITE, 0.45);
-    for (const [key, m] of this.materials) {
-      const k = !actorSelected ? 0 : link === undefined ? 0.2 : key === link ? 0.38 : 0;
-      m.emissive.copy(glow).multiplyScalar(k);
+    for (const g of this.glow) {
+      const k = !actorSelected ? 0 : link === undefined ? 0.2 : g.key === link ? 0.38 : 0;
+      const m = g.material as THREE.MeshStandardMaterial;
+      if (g.emissive) {
+        m.emissive.copy(glow).multiplyScalar(k).add(g.emissive);
+        // The emissive colour multiplies an emissive texture: drop it while lit up.
+        if (g.emissiveMap) {
+          const map = k > 0 ? null : g.emissiveMap;
+          if (m.emissiveMap !== map) {
+            m.emissiveMap = map;
+            m.needsUpdate = true;
+          }
+        }
+      } else if (g.color) {
+        m.color.copy(g.color).lerp(WHITE, k);
+      }
     }
   }
 
@@ -164,7 +298,18 @@ export class ActorVisual {
   }
 
   dispose(): void {
+    this.disposed = true;
     this.root.removeFromParent();
     for (const d of this.disposables) d.dispose();
+    for (const p of this.parts.values()) if (p.model) disposeInstance(p.model);
   }
+}
+
+/** Disposes the per-instance materials of a render model (geometries and textures are shared with the cached template). */
+function disposeInstance(model: THREE.Object3D): void {
+  model.traverse((o) => {
+    const mesh = o as THREE.Mesh;
+    if (!mesh.isMesh) return;
+    for (const m of Array.isArray(mesh.material) ? mesh.material : [mesh.material]) m.dispose();
+  });
 }

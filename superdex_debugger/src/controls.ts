@@ -8,6 +8,8 @@ export interface ToolbarHandlers {
   control(action: ControlAction): void;
   setFramesVisible(v: boolean): void;
   setContactsVisible(v: boolean): void;
+  /** Also draw the colliders of links shown with a render model. */
+  setCollidersVisible(v: boolean): void;
   /** Force arrow scale, m/N. */
   setForceScale(mPerN: number): void;
 }
@@ -25,6 +27,7 @@ export class Toolbar {
   private readonly live: HTMLElement;
   private readonly status: HTMLElement;
   private readonly buttons = new Map<ControlAction, HTMLButtonElement>();
+  private readonly collidersToggle: HTMLElement;
 
   constructor(el: HTMLElement, h: ToolbarHandlers) {
     el.innerHTML = `
@@ -41,6 +44,7 @@ export class Toolbar {
       <div class="status" data-id="status" hidden></div>
       <div class="spacer"></div>
       <div class="group toggles">
+        <label class="toggle" data-id="colliders-toggle" title="Also draw the colliders of links shown with a render model" hidden><input type="checkbox" data-id="colliders"><span>Colliders</span></label>
         <label class="toggle"><input type="checkbox" data-id="frames"><span>Frames</span></label>
         <label class="toggle"><input type="checkbox" data-id="contacts" checked><span>Contacts</span></label>
         <label class="scale" title="Force arrow length per newton">
@@ -53,12 +57,14 @@ export class Toolbar {
     this.mode = q('mode');
     this.live = q('live');
     this.status = q('status');
+    this.collidersToggle = q('colliders-toggle');
     for (const b of this.live.querySelectorAll<HTMLButtonElement>('button')) {
       const action = b.dataset.action as ControlAction;
       this.buttons.set(action, b);
       b.addEventListener('click', () => h.control(action));
     }
     q<HTMLInputElement>('frames').addEventListener('change', (e) => h.setFramesVisible((e.target as HTMLInputElement).checked));
+    q<HTMLInputElement>('colliders').addEventListener('change', (e) => h.setCollidersVisible((e.target as HTMLInputElement).checked));
     q<HTMLInputElement>('contacts').addEventListener('change', (e) => h.setContactsVisible((e.target as HTMLInputElement).checked));
     const fs = q<HTMLInputElement>('fscale');
     const fsLabel = q('fscale-label');
@@ -69,6 +75,11 @@ export class Toolbar {
     };
     fs.addEventListener('input', onScale);
     onScale();
+  }
+
+  /** The Colliders toggle is offered while the shown scene has render models (it starts off). */
+  setHasRenderModels(v: boolean): void {
+    this.collidersToggle.hidden = !v;
   }
 
   setConnection(s: ConnectionState): void {

@@ -58,6 +58,7 @@ class App {
       control: (a) => this.control(a),
       setFramesVisible: (v) => this.view.setFramesVisible(v),
       setContactsVisible: (v) => this.view.setContactsVisible(v),
+      setCollidersVisible: (v) => this.view.setCollidersVisible(v),
       setForceScale: (s) => this.view.setForceScale(s),
     });
     this.view.onPick = (p) => {
@@ -194,6 +195,7 @@ class App {
       }
       const scene = this.scene();
       if (scene) this.view.setActors([...scene.actors.values()], (a) => this.colorOf(a));
+      this.toolbar.setHasRenderModels(this.view.hasRenderModels());
       // A destroyed actor cannot stay selected.
       const sel = this.selection;
       if (sel?.actor !== undefined && !scene?.actors.has(sel.actor)) this.select({ scene: sel.scene });
@@ -278,6 +280,7 @@ class App {
       replayEnded: () => this.store.end !== null,
       replayTotal: () => this.store.end?.frames ?? null,
       scenes: () => [...this.store.scenes.keys()],
+      renderModelCount: () => this.view.renderModelCount(),
     });
   }
 }

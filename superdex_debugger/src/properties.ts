@@ -1,6 +1,7 @@
 import { contactForceOn } from './contactForces';
 import { esc, num, vec } from './format';
 import { isPose } from './pose';
+import { renderModelSpec } from './renderModels';
 import type { ActorMsg, FrameMsg, LinkDesc } from './protocol';
 import type { Selection } from './selection';
 import type { DebugStore, SceneState } from './store';
@@ -125,6 +126,8 @@ export class PropertiesPanel {
       ['mass', typeof l.mass === 'number' ? num(l.mass, 4) : '–', typeof l.mass === 'number' ? 'kg' : undefined],
     ];
     if (l.joint) rows.push(['joint', `${esc(l.joint.type)} (${l.joint.dofs} dof @ ${l.joint.offset})`]);
+    const rm = renderModelSpec(l.renderModel);
+    if (rm) rows.push(['render model', `${esc(rm.name || '(unnamed)')}${rm.scale.every((v) => v === 1) ? '' : ` (scale ${vec(rm.scale)})`}`]);
     const pose: Row[] = [];
     const p = frame?.links?.[String(l.handle)];
     if (isPose(p)) {

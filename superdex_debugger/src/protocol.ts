@@ -74,6 +74,19 @@ export interface Joint {
   offset: number;
 }
 
+/**
+ * A glTF model drawn for a link instead of its colliders. The model is in the link frame:
+ * scaled by `scale`, then placed at the link's world pose (not at a collider's linkFromShape).
+ */
+export interface RenderModel {
+  /** File name, for display (e.g. "ball.glb"). */
+  name?: string;
+  /** Scale along the link's x, y, z applied to the model. */
+  scale?: Vec3;
+  /** The whole .glb file, base64. */
+  glb: string;
+}
+
 /** A link of a rigid, articulated or static actor. */
 export interface LinkDesc {
   handle: number;
@@ -84,6 +97,8 @@ export interface LinkDesc {
   /** Link mass, kg (optional). */
   mass?: number;
   joint?: Joint;
+  /** Optional glTF model of the link (never on soft actors). */
+  renderModel?: RenderModel;
 }
 
 export type ActorKind = 'static' | 'rigid' | 'articulated' | 'soft';

@@ -47,6 +47,8 @@ export class SceneView {
   private fullQuality = true;
   private fitted = false;
   private framesVisible = false;
+  /** Also draw the colliders of links shown with a render model. */
+  private collidersOverModels = false;
   private selection: { actor?: number; link?: number } = {};
   private lastFrame: FrameMsg | undefined;
   /** Radius of the fitted scene, m: sets the size of grid cells, frames and contact markers. */
@@ -158,6 +160,9 @@ export class SceneView {
       v?.dispose();
       const nv = new ActorVisual(a, colorOf(a));
       nv.setFramesVisible(this.framesVisible);
+      nv.setCollidersOverModels(this.collidersOverModels);
+      // Render models load asynchronously.
+      nv.onChange = () => this.requestRender();
       nv.setFrameSize(this.radius * 0.25);
       nv.applyFrame(this.lastFrame);
       this.visuals.set(a.handle, nv);
@@ -205,6 +210,26 @@ export class SceneView {
     this.framesVisible = v;
     for (const a of this.visuals.values()) a.setFramesVisible(v);
     this.requestRender();
+  }
+
+  /** Draws the colliders of links that have a render model too (semi-transparent, over the model). */
+  setCollidersVisible(v: boolean): void {
+    this.collidersOverModels = v;
+    for (const a of this.visuals.values()) a.setCollidersOverModels(v);
+    this.requestRender();
+  }
+
+  /** Links of the shown actors whose render model has loaded and is in the scene. */
+  renderModelCount(): number {
+    let n = 0;
+    for (const v of this.visuals.values()) n += v.renderModelCount();
+    return n;
+  }
+
+  /** True if a shown actor has a link with a render model (loaded or not). */
+  hasRenderModels(): boolean {
+    for (const v of this.visuals.values()) if (v.hasRenderModels) return true;
+    return false;
   }
 
   setContactsVisible(v: boolean): void {
@@ -296,10 +321,17 @@ export class SceneView {
       const ndc = new THREE.Vector2(((e.clientX - rect.left) / rect.width) * 2 - 1, -((e.clientY - rect.top) / rect.height) * 2 + 1);
       const ray = new THREE.Raycaster();
       ray.setFromCamera(ndc, this.camera);
-      const hit = ray.intersectObject(this.actorsRoot, true).find((h) => h.object.userData.pick);
+      // The raycaster also hits hidden objects (colliders under a render model): skip them.
+      const hit = ray.intersectObject(this.actorsRoot, true).find((h) => h.object.userData.pick && shown(h.object));
       this.onPick(hit ? (hit.object.userData.pick as PickInfo) : null);
     });
   }
+}
+
+/** True if the object and all its ancestors are visible. */
+function shown(o: THREE.Object3D | null): boolean {
+  for (; o; o = o.parent) if (!o.visible) return false;
+  return true;
 }
 
 /** True when WebGL runs on a CPU rasterizer. */

@@ -33,6 +33,8 @@ export interface SuperdexHook {
   replayTotal(): number | null;
   /** Scene handles in order of appearance. */
   scenes(): number[];
+  /** Links of the shown scene whose glTF render model has loaded and is in the 3D view. */
+  renderModelCount(): number;
 }
 
 declare global {
