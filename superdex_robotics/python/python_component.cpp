@@ -73,6 +73,17 @@ class PythonSensor final : public PythonAdapter<robotics::SensorComponent> {
     if (fn.is_none()) throw Error("sensor class '" + class_name(obj_) + "' has neither signal() nor compute_signal()");
     return read_vector(fn(), class_name(obj_) + ".signal()");
   }
+  // the reading the user's code last obtained (kept by superdex.robotics' registration wrapper)
+  std::optional<VecX> latest_reading() const override {
+    nb::gil_scoped_acquire gil;
+    nb::object kept = nb::getattr(obj_, "_superdex_latest_reading", nb::none());
+    if (kept.is_none()) return std::nullopt;
+    try {
+      return read_vector(kept, class_name(obj_) + " reading");
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  }
 };
 
 class PythonController final : public PythonAdapter<robotics::ControllerComponent> {

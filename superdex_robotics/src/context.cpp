@@ -66,13 +66,14 @@ void Context::append_bot_signals(BotHandle handle, std::vector<physics::NamedSig
     const ComponentRecord& rec = component(ComponentKind::Sensor, h);
     const auto* sensor = dynamic_cast<const SensorComponent*>(rec.impl.get());
     if (!sensor) continue;
-    VecX reading;
+    std::optional<VecX> reading;
     try {
-      reading = sensor->signal();
+      reading = sensor->latest_reading();
     } catch (const std::exception&) {
       continue;  // a sensor that cannot report now is left out of this frame, not the user's step
     }
-    out.push_back({bot_name + "." + rec.name, std::vector<double>(reading.data(), reading.data() + reading.size())});
+    if (!reading) continue;
+    out.push_back({bot_name + "." + rec.name, std::vector<double>(reading->data(), reading->data() + reading->size())});
   }
   // each actuator's effort: the generalized force on its link's DOF (N m or N)
   const VecX tau = b.scene.external_forces(b.articulation);

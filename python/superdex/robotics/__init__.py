@@ -1,5 +1,7 @@
 """superdex.robotics: bot files, the component framework and the robotics context (API.md)."""
 
+import contextlib
+import functools
 import os
 
 from superdex._native import module as _m
@@ -19,7 +21,42 @@ EFFORT_UNBOUNDED = _r.EFFORT_UNBOUNDED
 
 create_context = _r.create_context
 register_python_controller = _r.register_python_controller
-register_python_sensor = _r.register_python_sensor
+
+
+def _keep_readings(sensor):
+    """Wraps the sensor's signal()/compute_signal() on the instance so that each reading the user's
+    code obtains is also kept for the debugger's plots: the debugger never calls the sensor itself
+    (a sample can have side effects, such as drawing noise)."""
+    for name in ("signal", "compute_signal"):
+        method = getattr(sensor, name, None)
+        if not callable(method):
+            continue
+
+        @functools.wraps(method)
+        def keeping(*args, _method=method, **kwargs):
+            value = _method(*args, **kwargs)
+            with contextlib.suppress(AttributeError, TypeError):
+                sensor._superdex_latest_reading = value
+            return value
+
+        try:
+            setattr(sensor, name, keeping)
+        except (AttributeError, TypeError):  # __slots__ or a read-only attribute: no plot
+            return sensor
+    return sensor
+
+
+def register_python_sensor(ctx, type_name, factory):
+    """Registers a Python sensor type: `factory(actor_or_None, param_args)` makes one (API.md)."""
+    if not callable(factory):
+        return _r.register_python_sensor(ctx, type_name, factory)  # the native error names the argument
+
+    @functools.wraps(factory, updated=())
+    def making(actor, param_args):
+        return _keep_readings(factory(actor, param_args))
+
+    return _r.register_python_sensor(ctx, type_name, making)
+
 register_python_actuator = _r.register_python_actuator
 get_python_controller = _r.get_python_controller
 get_python_sensor = _r.get_python_sensor

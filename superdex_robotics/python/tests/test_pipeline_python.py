@@ -276,3 +276,58 @@ def test_configure_reaches_python_components(scene):
     assert sdr.get_python_controller(ctx, handle).configured == {"gain": 3.0}
     with pytest.raises(sdp.Error, match="class 'PipelineServo' has no configure"):
         ctx.configure_actuator(bot.get_actuator_handles()[0], {"k_p": 1.0})
+
+
+def test_the_debugger_plots_readings_without_sampling_the_sensor(scene, tmp_path):
+    """Recorded (and live) frames carry each sensor's latest reading, the one the user's loop
+    obtained, and each actuator's effort; the debugger never calls the sensor itself, so a sensor
+    with side effects (here: a counter) behaves the same with and without a recording."""
+    import json
+
+    class CountingSensor:
+        def __init__(self, actor, param_args):
+            self.calls = 0
+
+        def reset(self):
+            pass
+
+        def compute_signal(self):
+            self.calls += 1
+            return np.array([float(self.calls), -1.0])
+
+    class ConstantServo:
+        def __init__(self, actor, param_args):
+            pass
+
+        def reset(self):
+            pass
+
+    ctx = sdr.create_context()
+    sdr.register_python_sensor(ctx, "MY_CONTACT_FORCE_SENSOR", CountingSensor)
+    sdr.register_python_actuator(ctx, "MY_VELOCITY_SERVO_ACTUATOR", ConstantServo)
+    bot = example_bot(scene, ctx)
+    arm = bot.get_articulated_actor()
+    (sensor_handle,) = bot.get_sensor_handles()
+    sensor = sdr.get_python_sensor(ctx, sensor_handle)
+    ref = weakref.ref(sensor)
+    recording = tmp_path / "run.jsonl"
+    sdp.start_recording(str(recording), 0.0)
+    returned = []
+    for k in range(6):
+        arm.set_external_forces_on_dofs(dof_indices=[0, 1], force_values=np.array([0.1 * k, -0.2 * k]))
+        scene.step(0.002)
+        returned.append(sensor.compute_signal().tolist())
+    sdp.stop_recording()
+    assert sensor.calls == 6, "only the user's loop sampled the sensor"
+    frames = [l for l in map(json.loads, recording.read_text().splitlines()) if l["type"] == "frame"]
+    signals = [f["signals"] for f in frames]
+    name = bot.get_name() + ".force_sensor"
+    assert name not in signals[0], "no reading before the loop obtained one"
+    # frame k is written at the end of step k, before the loop reads the sensor again
+    assert [s[name] for s in signals[1:]] == returned[:-1]
+    np.testing.assert_allclose([s[bot.get_name() + ".servo_1.effort"] for s in signals], [0.1 * k for k in range(6)], atol=1e-6)
+    np.testing.assert_allclose([s[bot.get_name() + ".servo_2.effort"] for s in signals], [-0.2 * k for k in range(6)], atol=1e-6)
+    sdr.destroy_bot(scene, bot)
+    del sensor, ctx, bot
+    gc.collect()
+    assert ref() is None, "the reading wrapper keeps no sensor alive"

@@ -96,6 +96,9 @@ class SensorComponent : public Component {
   /// The latest reading (its layout is documented by each sensor type); zeros before the
   /// first update.
   virtual VecX signal() const = 0;
+  /// The latest reading for the debugger's plots, obtained without side effects (no new
+  /// sample is taken); nullopt when there is none yet.
+  virtual std::optional<VecX> latest_reading() const { return signal(); }
 };
 
 /// A controller the pipeline runs before each step (at its rate).
