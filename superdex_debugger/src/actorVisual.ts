@@ -8,7 +8,7 @@ import { shapeGeometry } from './shapes';
 const WHITE = new THREE.Color('#ffffff');
 
 /** Opacity of the colliders drawn over a render model. */
-const GHOST_OPACITY = 0.3;
+const GHOST_OPACITY = 0.25;
 
 /** A material that the selection lights up, with what it looked like unselected. */
 interface Glowable {
@@ -20,12 +20,20 @@ interface Glowable {
   emissiveMap?: THREE.Texture | null;
   /** Unlit materials: their colour is lightened instead. */
   color?: THREE.Color;
+  /** Scales the glow (render models keep more of their own colours). */
+  strength: number;
 }
+
+/** Glow of render-model materials relative to the colliders'. */
+const MODEL_GLOW = 0.35;
+
+/** Strength of the environment map given to render models' physically based materials. */
+const MODEL_ENV_INTENSITY = 0.5;
 
 /** A link's collider meshes, and its render model once loaded. */
 interface LinkParts {
   colliders: THREE.Mesh[];
-  /** Material of the colliders drawn over the loaded model. */
+  /** Material of the (non-plane) colliders drawn over the loaded model. */
   ghost?: THREE.MeshPhongMaterial;
   model?: THREE.Object3D;
 }
@@ -50,6 +58,8 @@ export class ActorVisual {
   readonly color: THREE.Color;
   /** Called when something changed asynchronously (a render model was added). */
   onChange: () => void = () => {};
+  /** Environment map for render models' physically based materials that have none. */
+  modelEnvironment: (() => THREE.Texture | null) | null = null;
   private readonly linkGroups = new Map<number, THREE.Group>();
   private readonly parts = new Map<number, LinkParts>();
   /** Materials lit up by the selection. */
@@ -75,7 +85,7 @@ export class ActorVisual {
   private material(key: number, color: THREE.Color | string, opts: THREE.MeshPhongMaterialParameters = {}) {
     // Double-sided: mesh colliders do not always have a consistent winding.
     const m = new THREE.MeshPhongMaterial({ color, shininess: 40, specular: '#2a2a2a', side: THREE.DoubleSide, ...opts });
-    this.glow.push({ key, material: m, emissive: m.emissive.clone() });
+    this.glow.push({ key, material: m, emissive: m.emissive.clone(), strength: 1 });
     this.disposables.push(m);
     return m;
   }
@@ -149,28 +159,45 @@ export class ActorVisual {
       if (!mesh.isMesh) return;
       mesh.userData.pick = pick;
       for (const m of Array.isArray(mesh.material) ? mesh.material : [mesh.material]) {
+        const std = m as THREE.MeshStandardMaterial;
+        if (std.isMeshStandardMaterial && !std.envMap) {
+          const env = this.modelEnvironment?.() ?? null;
+          if (env) {
+            std.envMap = env;
+            std.envMapIntensity *= MODEL_ENV_INTENSITY;
+          }
+        }
         const em = (m as THREE.MeshStandardMaterial).emissive;
         const col = (m as THREE.MeshBasicMaterial).color;
-        if (em?.isColor) this.glow.push({ key: handle, material: m, emissive: em.clone(), emissiveMap: (m as THREE.MeshStandardMaterial).emissiveMap });
-        else if (col?.isColor) this.glow.push({ key: handle, material: m, color: col.clone() });
+        if (em?.isColor) this.glow.push({ key: handle, material: m, emissive: em.clone(), emissiveMap: (m as THREE.MeshStandardMaterial).emissiveMap, strength: MODEL_GLOW });
+        else if (col?.isColor) this.glow.push({ key: handle, material: m, color: col.clone(), strength: MODEL_GLOW });
       }
     });
     parts.model = model;
-    // The colliders, when drawn over the model: see-through, no shadows.
-    parts.ghost = new THREE.MeshPhongMaterial({
-      color: this.color,
-      transparent: true,
-      opacity: GHOST_OPACITY,
-      depthWrite: false,
-      shininess: 20,
-      side: THREE.DoubleSide,
-    });
-    this.glow.push({ key: handle, material: parts.ghost, emissive: parts.ghost.emissive.clone() });
-    this.disposables.push(parts.ghost);
+    // The colliders, when drawn over the model: see-through, drawn after it and in front of it
+    // (a collider is often inside its model), no shadows.
+    // Planes keep the depth test: drawn in front of everything they would cover the view.
+    const ghost = (depthTest: boolean) => {
+      const m = new THREE.MeshPhongMaterial({
+        color: this.color,
+        transparent: true,
+        opacity: GHOST_OPACITY,
+        depthWrite: false,
+        depthTest,
+        shininess: 20,
+        side: THREE.DoubleSide,
+      });
+      this.glow.push({ key: handle, material: m, emissive: m.emissive.clone(), strength: 1 });
+      this.disposables.push(m);
+      return m;
+    };
+    let planeGhost: THREE.MeshPhongMaterial | undefined;
     for (const c of parts.colliders) {
-      c.material = parts.ghost;
+      if (c.userData.isPlane) c.material = planeGhost ??= ghost(true);
+      else c.material = parts.ghost ??= ghost(false);
       c.castShadow = false;
       c.receiveShadow = false;
+      c.renderOrder = 5;
     }
     this.solid.push(model);
     group.add(model);
@@ -259,7 +286,7 @@ export class ActorVisual {
     const { actorSelected, link } = this.highlight;
     const glow = this.color.clone().lerp(WHITE, 0.45);
     for (const g of this.glow) {
-      const k = !actorSelected ? 0 : link === undefined ? 0.2 : g.key === link ? 0.38 : 0;
+      const k = (!actorSelected ? 0 : link === undefined ? 0.2 : g.key === link ? 0.38 : 0) * g.strength;
       const m = g.material as THREE.MeshStandardMaterial;
       if (g.emissive) {
         m.emissive.copy(glow).multiplyScalar(k).add(g.emissive);

@@ -2,8 +2,12 @@ import { SignalChart } from './chart';
 import { esc } from './format';
 import type { SceneState } from './store';
 
-/** Signals plotted by default: sensor readings, actuator efforts, joint velocities. */
-const DEFAULT_PATTERN = /force_sensor|\.effort|\.velocity/;
+/**
+ * Signals plotted by default, most wanted first: sensor readings, actuator efforts, joint
+ * velocities (kinds from the `signals` messages; by name for recordings without them).
+ */
+const DEFAULT_KINDS = ['sensor', 'actuator', 'velocity'];
+const FALLBACK_PATTERN = /sensor|\.effort|\.velocity/;
 /** At most this many signals are selected automatically. */
 const MAX_DEFAULT = 6;
 /** Minimum time between two data refreshes of the charts, ms (the cursor moves every frame). */
@@ -80,11 +84,29 @@ export class PlotsPanel {
     this.syncCharts();
   }
 
-  /** New signal names: checks matching ones while fewer than MAX_DEFAULT are checked by default. */
-  addNames(names: string[]): void {
-    for (const n of names) {
-      if (this.touched.has(n) || this.checked.size >= MAX_DEFAULT) continue;
-      if (DEFAULT_PATTERN.test(n)) this.checked.add(n);
+  /**
+   * New signal names or kinds: the default selection is chosen again among the names the user has
+   * not toggled, the most wanted kinds first, at most MAX_DEFAULT.
+   */
+  addNames(_names: string[]): void {
+    const scene = this.scene;
+    if (scene) {
+      const rank = (name: string): number => {
+        const kind = scene.signalKinds.get(name);
+        if (kind !== undefined) {
+          const i = DEFAULT_KINDS.indexOf(kind);
+          return i < 0 ? Infinity : i;
+        }
+        return FALLBACK_PATTERN.test(name) ? DEFAULT_KINDS.length : Infinity;
+      };
+      const names = new Set([...scene.signals.series.keys(), ...scene.signalKinds.keys()]);
+      const candidates = [...names]
+        .filter((n) => !this.touched.has(n) && rank(n) < Infinity)
+        .sort((a, b) => rank(a) - rank(b) || a.localeCompare(b));
+      const chosenByUser = [...this.checked].filter((n) => this.touched.has(n));
+      this.checked.clear();
+      for (const n of chosenByUser) this.checked.add(n);
+      for (const n of candidates.slice(0, Math.max(0, MAX_DEFAULT - chosenByUser.length))) this.checked.add(n);
     }
     this.listDirty = true;
     this.syncCharts();

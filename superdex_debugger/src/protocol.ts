@@ -170,6 +170,14 @@ export interface EndMsg {
   frames: number;
 }
 
+/** Kinds of signals seen for the first time in a scene (sent before the frame that has them). */
+export interface SignalsMsg {
+  type: 'signals';
+  scene: number;
+  /** Signal name -> "sensor", "actuator", "velocity", "effort", "contact" or "user". */
+  kinds: Record<string, string>;
+}
+
 /** Live only: state of the stepping loop. */
 export interface StatusMsg {
   type: 'status';
@@ -189,6 +197,7 @@ export type ServerMsg =
   | DestroyMsg
   | FrameMsg
   | EndMsg
+  | SignalsMsg
   | StatusMsg;
 
 export type ControlAction = 'pause' | 'play' | 'fast' | 'step' | 'restore';

@@ -1,5 +1,6 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { RoomEnvironment } from 'three/examples/jsm/environments/RoomEnvironment.js';
 import { ActorVisual, type PickInfo } from './actorVisual';
 import { ContactsView } from './contactsView';
 import type { ActorMsg, Axes, FrameMsg } from './protocol';
@@ -49,6 +50,7 @@ export class SceneView {
   private framesVisible = false;
   /** Also draw the colliders of links shown with a render model. */
   private collidersOverModels = false;
+  private envMap: THREE.Texture | null = null;
   private selection: { actor?: number; link?: number } = {};
   private lastFrame: FrameMsg | undefined;
   /** Radius of the fitted scene, m: sets the size of grid cells, frames and contact markers. */
@@ -163,6 +165,7 @@ export class SceneView {
       nv.setCollidersOverModels(this.collidersOverModels);
       // Render models load asynchronously.
       nv.onChange = () => this.requestRender();
+      nv.modelEnvironment = () => this.modelEnvironment();
       nv.setFrameSize(this.radius * 0.25);
       nv.applyFrame(this.lastFrame);
       this.visuals.set(a.handle, nv);
@@ -217,6 +220,22 @@ export class SceneView {
     this.collidersOverModels = v;
     for (const a of this.visuals.values()) a.setCollidersOverModels(v);
     this.requestRender();
+  }
+
+  /**
+   * The environment map of render models' physically based materials (without one, metallic
+   * surfaces reflect only the two lights and look black), made when the first model is shown.
+   * Not the scene's environment: that would also light the colliders' Phong and Lambert materials.
+   */
+  private modelEnvironment(): THREE.Texture {
+    if (!this.envMap) {
+      const pmrem = new THREE.PMREMGenerator(this.renderer);
+      const room = new RoomEnvironment();
+      this.envMap = pmrem.fromScene(room, 0.04).texture;
+      room.dispose();
+      pmrem.dispose();
+    }
+    return this.envMap;
   }
 
   /** Links of the shown actors whose render model has loaded and is in the scene. */

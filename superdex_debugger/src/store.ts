@@ -29,6 +29,8 @@ export interface SceneState {
   /** Absolute index of the first frame since simulated time last went backwards (a restore). */
   epochStart: number;
   signals: SignalStore;
+  /** What each signal measures ("sensor", "actuator", "velocity", "effort", "contact", "user"). */
+  signalKinds: Map<string, string>;
 }
 
 interface StoreEvents extends Record<string, unknown> {
@@ -94,6 +96,18 @@ export class DebugStore extends Emitter<StoreEvents> {
       case 'frame':
         if (isNum(m.scene) && isNum(m.t)) this.addFrame(m as unknown as FrameMsg);
         break;
+      case 'signals':
+        if (isNum(m.scene) && m.kinds && typeof m.kinds === 'object') {
+          const s = this.sceneFor(m.scene);
+          const names: string[] = [];
+          for (const [name, kind] of Object.entries(m.kinds as Record<string, unknown>)) {
+            if (typeof kind !== 'string') continue;
+            s.signalKinds.set(name, kind);
+            names.push(name);
+          }
+          if (names.length) this.emit('signals', { scene: s, names });
+        }
+        break;
     }
   }
 
@@ -109,6 +123,7 @@ export class DebugStore extends Emitter<StoreEvents> {
         frames: new Ring<FrameMsg>(MAX_FRAMES_PER_SCENE),
         epochStart: 0,
         signals: new SignalStore(MAX_FRAMES_PER_SCENE),
+        signalKinds: new Map(),
       };
       this.scenes.set(handle, s);
     }

@@ -5,7 +5,9 @@
 // Opens URL (1400x900), waits for window.superdex.replayEnded(), then compares the stored frames
 // of the first scene with the file's `frame` lines of that scene: the count, and links[H] of the
 // frames at indices 0, middle and last (max abs difference). Prints one JSON object as the last
-// line of stdout; exits 0 unless the browser could not run.
+// line of stdout; exits 0 unless the browser could not run. `renderModelCount` is the page's count
+// of links drawn with their glTF render model (waits up to 5 s for `renderModelsDeclared`, the
+// links of the first scene's actors that have a `renderModel` in the file).
 import fs from 'node:fs';
 import { canvasStats, isNonBlank, launchBrowser, parseArgs, report, waitFor } from './lib.mjs';
 
@@ -19,9 +21,10 @@ if (!url || !recording) {
   process.exit(2);
 }
 
-// The file's frames, per scene, in order.
+// The file's frames, per scene, in order; links with a render model per actor still present.
 const fileFrames = [];
 let firstScene = null;
+const modelLinks = new Map();
 for (const line of fs.readFileSync(recording, 'utf8').split('\n')) {
   if (!line.trim()) continue;
   let o;
@@ -30,6 +33,10 @@ for (const line of fs.readFileSync(recording, 'utf8').split('\n')) {
   } catch {
     continue;
   }
+  if (o?.type === 'actor') {
+    const n = Array.isArray(o.links) ? o.links.filter((l) => typeof l?.renderModel?.glb === 'string' && l.renderModel.glb.length > 0).length : 0;
+    modelLinks.set(`${o.scene}:${o.handle}`, { scene: o.scene, n });
+  } else if (o?.type === 'destroy') modelLinks.delete(`${o.scene}:${o.handle}`);
   if (o?.type !== 'frame') continue;
   firstScene ??= o.scene;
   fileFrames.push(o);
@@ -37,6 +44,7 @@ for (const line of fs.readFileSync(recording, 'utf8').split('\n')) {
 const sceneFrames = fileFrames.filter((f) => f.scene === firstScene);
 out.fileFrames = fileFrames.length;
 out.fileFramesFirstScene = sceneFrames.length;
+out.renderModelsDeclared = [...modelLinks.values()].filter((m) => m.scene === firstScene).reduce((a, m) => a + m.n, 0);
 
 let browser;
 try {
@@ -89,6 +97,10 @@ try {
   out.seekWorks = Boolean(await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, mid, 3000));
 
   out.actorNames = await page.evaluate(() => window.superdex.actorNames());
+  // Render models load asynchronously; a model that cannot be loaded is not counted.
+  const modelCount = () => (typeof window.superdex.renderModelCount === 'function' ? window.superdex.renderModelCount() : null);
+  if (out.renderModelsDeclared > 0) await waitFor(page, (n) => window.superdex.renderModelCount?.() >= n, out.renderModelsDeclared, 5000);
+  out.renderModelCount = await page.evaluate(modelCount);
   out.canvas = await canvasStats(page);
   out.canvasNonBlank = isNonBlank(out.canvas);
   if (opt.screenshot) {

@@ -110,47 +110,38 @@ json soft_json(const SceneData& s, const SoftBody& b) {
 
 // Named signals of the frame: joint velocities and efforts of one-DOF joints, contact force
 // totals on moving links and soft bodies, then the scene's signal sources.
-json signals_json(const SceneData& s) {
-  json signals = json::object();
+std::vector<NamedSignal> frame_signals(const SceneData& s) {
+  std::vector<NamedSignal> out;
   std::map<ActorHandle, Vec3> contact_force;
   for (const ContactRecord& c : s.contacts) {
     // (Eigen vectors are not zeroed by their default constructor)
     contact_force.try_emplace(c.actor_a, Vec3::Zero()).first->second += c.force;
     contact_force.try_emplace(c.actor_b, Vec3::Zero()).first->second -= c.force;
   }
-  const auto force_of = [&](ActorHandle h) {
+  const auto force_of = [&](const std::string& name, ActorHandle h) {
     auto it = contact_force.find(h);
-    return it == contact_force.end() ? Vec3(Vec3::Zero()) : it->second;
+    const Vec3 f = it == contact_force.end() ? Vec3(Vec3::Zero()) : it->second;
+    out.push_back({name + ".contact_force", {double(f.x()), double(f.y()), double(f.z())}, "contact"});
   };
   for (const auto& a : s.articulations) {
     if (a->is_static) continue;
     if (a->is_rigid) {
-      signals[a->model.name + ".contact_force"] = vec(force_of(a->handle));
+      force_of(a->model.name, a->handle);
       continue;
     }
     for (int l = 0; l < a->model.num_links; ++l) {
       const std::string prefix = a->model.name + "." + a->model.link_names[l];
       const JointModel& joint = a->model.joints[l];
       if (joint.nv == 1) {
-        signals[prefix + ".velocity"] = round7(a->state.v[joint.v_offset]);
-        signals[prefix + ".effort"] = round7(a->state.tau_external[joint.v_offset]);
+        out.push_back({prefix + ".velocity", {double(a->state.v[joint.v_offset])}, "velocity"});
+        out.push_back({prefix + ".effort", {double(a->state.tau_external[joint.v_offset])}, "effort"});
       }
-      signals[prefix + ".contact_force"] = vec(force_of(a->link_handles[l]));
+      force_of(prefix, a->link_handles[l]);
     }
   }
-  for (const auto& b : s.soft_bodies) signals[b->model.name + ".contact_force"] = vec(force_of(b->handle));
-  std::vector<NamedSignal> named;
-  for (const auto& [id, source] : s.signal_sources) source(named);
-  for (const NamedSignal& n : named) {
-    if (n.values.size() == 1) {
-      signals[n.name] = round7(n.values[0]);
-      continue;
-    }
-    json v = json::array();
-    for (double x : n.values) v.push_back(round7(x));
-    signals[n.name] = std::move(v);
-  }
-  return signals;
+  for (const auto& b : s.soft_bodies) force_of(b->model.name, b->handle);
+  for (const auto& [id, source] : s.signal_sources) source(out);
+  return out;
 }
 
 }  // namespace
@@ -187,6 +178,21 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
     line({{"type", "destroy"}, {"scene", s.handle}, {"handle", *it}});
     it = seen.erase(it);
   }
+  // the kinds of signals this consumer has not been told of
+  const std::vector<NamedSignal> named = frame_signals(s);
+  json new_kinds = json::object(), signals = json::object();
+  auto& kinds_sent = state.signal_kinds[s.handle];
+  for (const NamedSignal& n : named) {
+    if (kinds_sent.insert(n.name).second) new_kinds[n.name] = n.kind.empty() ? "user" : n.kind;
+    if (n.values.size() == 1) {
+      signals[n.name] = round7(n.values[0]);
+      continue;
+    }
+    json v = json::array();
+    for (double x : n.values) v.push_back(round7(x));
+    signals[n.name] = std::move(v);
+  }
+  if (!new_kinds.empty()) line({{"type", "signals"}, {"scene", s.handle}, {"kinds", new_kinds}});
   // the frame: link poses, joint coordinates, soft node positions, contacts, signals
   json links = json::object(), joints = json::object(), soft = json::object(), contacts = json::array();
   for (const auto& a : s.articulations) {
@@ -198,7 +204,7 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
   for (const ContactRecord& c : s.contacts)
     contacts.push_back({{"a", c.actor_a}, {"b", c.actor_b}, {"p", vec(c.position)}, {"n", vec(c.normal)}, {"f", vec(c.force)}});
   line({{"type", "frame"}, {"scene", s.handle}, {"step", s.step_count}, {"t", s.time}, {"links", links}, {"joints", joints},
-        {"soft", soft}, {"contacts", contacts}, {"signals", signals_json(s)}});
+        {"soft", soft}, {"contacts", contacts}, {"signals", signals}});
   state.last_frame[s.handle] = s.time;
 }
 

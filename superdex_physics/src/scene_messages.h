@@ -16,6 +16,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 struct StreamState {
   std::map<SceneHandle, double> last_frame;           // per scene: time of its last frame
   std::map<SceneHandle, std::set<ActorHandle>> seen;  // per scene: actors already described
+  std::map<SceneHandle, std::set<std::string>> signal_kinds;  // per scene: signals whose kind was sent
 };
 
 // The recording's first line.

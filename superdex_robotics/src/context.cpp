@@ -73,7 +73,7 @@ void Context::append_bot_signals(BotHandle handle, std::vector<physics::NamedSig
       continue;  // a sensor that cannot report now is left out of this frame, not the user's step
     }
     if (!reading) continue;
-    out.push_back({bot_name + "." + rec.name, std::vector<double>(reading->data(), reading->data() + reading->size())});
+    out.push_back({bot_name + "." + rec.name, std::vector<double>(reading->data(), reading->data() + reading->size()), "sensor"});
   }
   // each actuator's effort: the generalized force on its link's DOF (N m or N)
   const VecX tau = b.scene.external_forces(b.articulation);
@@ -82,7 +82,7 @@ void Context::append_bot_signals(BotHandle handle, std::vector<physics::NamedSig
     if (!b.scene.has_actor(rec.actor)) continue;
     const physics::DofInfo dofs = joint_dofs_of_link(b.scene, rec.actor, rec.name);
     if (dofs.size() != 1 || dofs.offset >= tau.size()) continue;
-    out.push_back({bot_name + "." + rec.name + ".effort", {static_cast<double>(tau[dofs.offset])}});
+    out.push_back({bot_name + "." + rec.name + ".effort", {static_cast<double>(tau[dofs.offset])}, "actuator"});
   }
 }
 

@@ -5,8 +5,8 @@ attached to the seed example as a user runs it, and replaying a recording of it:
   arm's links, a chart shows the force sensor's signal, pause stops simulated time, step advances
   exactly one step, play resumes; closing the page makes `is_attached()` false, so the seed's
   loop ends and the script exits cleanly;
-- replay (`python -m superdex view FILE`): the page holds as many frames as the file, and the
-  ball's pose at frame k equals the recorded one.
+- replay (`python -m superdex view FILE`): the page holds as many frames as the file, the ball's
+  pose at frame k equals the recorded one, and the ball's render model (.glb) is drawn.
 
 The node scripts (superdex_debugger/tests/*.mjs) print one JSON object of measurements; the
 assertions are here. SUPERDEX_UPDATE_SCREENSHOTS=1 writes the screenshots to docs/.
@@ -123,5 +123,7 @@ def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
     assert r["frameCount"] == len(frames) == r["endFrames"], details
     assert r["linkHandle"] == ball and r["linksMatch"] and r["maxAbsDiff"] == 0, details
     assert set(LINKS) <= set(r["actorNames"]), details
+    # the ball's render model (a .glb embedded in the recording) is drawn in its place
+    assert r["renderModelsDeclared"] == 1 and r["renderModelCount"] == 1, details
     assert r["canvasNonBlank"], details
     assert proc.returncode == 0

@@ -319,9 +319,20 @@ def test_the_debugger_plots_readings_without_sampling_the_sensor(scene, tmp_path
         returned.append(sensor.compute_signal().tolist())
     sdp.stop_recording()
     assert sensor.calls == 6, "only the user's loop sampled the sensor"
-    frames = [l for l in map(json.loads, recording.read_text().splitlines()) if l["type"] == "frame"]
+    lines = list(map(json.loads, recording.read_text().splitlines()))
+    frames = [l for l in lines if l["type"] == "frame"]
     signals = [f["signals"] for f in frames]
     name = bot.get_name() + ".force_sensor"
+    # each signal's kind is told once, before the first frame that has it
+    kinds = {}
+    for l in lines:
+        if l["type"] == "signals":
+            assert not set(l["kinds"]) & set(kinds), "a kind is sent once"
+            kinds.update(l["kinds"])
+        if l["type"] == "frame":
+            assert set(l["signals"]) <= set(kinds)
+    assert kinds[name] == "sensor" and kinds[bot.get_name() + ".servo_1.effort"] == "actuator"
+    assert kinds[bot.get_name() + ".link_1.velocity"] == "velocity" and kinds[bot.get_name() + ".ball.contact_force"] == "contact"
     assert name not in signals[0], "no reading before the loop obtained one"
     # frame k is written at the end of step k, before the loop reads the sensor again
     assert [s[name] for s in signals[1:]] == returned[:-1]

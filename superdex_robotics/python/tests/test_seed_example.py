@@ -148,8 +148,11 @@ def test_force_is_regulated_while_pressing(run):
 
 def test_sensor_reads_the_contact_force_the_solver_applied(monkeypatch, tmp_path):
     """In-process through the first press: after each step, the sensor's compute_signal() equals the
-    sum of the forces of the solver's contact records on the ball in that step."""
+    sum of the forces of the solver's contact records on the ball in that step. After main()'s
+    destroy_bot and shutdown no component object is alive and the engine holds nothing."""
+    import gc
     import importlib.util
+    import weakref
 
     import superdex.physics as sdp
 
@@ -174,9 +177,22 @@ def test_sensor_reads_the_contact_force_the_solver_applied(monkeypatch, tmp_path
         original_init(self, actor, param_args)
         actor.register_query(sdp.QueryType.CONTACT_POINTS)
 
+    # every component object the example makes, watched through weak references
+    components = []
+    for cls in (example.MyVelocityForceController, example.MyContactForceSensor, example.MyVelocityServoActuator):
+        made = init if cls is example.MyContactForceSensor else cls.__init__
+
+        def watched(self, *args, _made=made):
+            _made(self, *args)
+            components.append(weakref.ref(self))
+
+        monkeypatch.setattr(cls, "__init__", watched)
     monkeypatch.setattr(example.MyContactForceSensor, "compute_signal", compute_signal)
-    monkeypatch.setattr(example.MyContactForceSensor, "__init__", init)
     example.main()
+    gc.collect()
+    assert len(components) == 4, "a controller, a sensor and two servos were made"
+    assert [ref() for ref in components] == [None] * 4, "destroy_bot and shutdown released every component"
+    assert not sdp.is_initialized()
     assert len(compared) == round(2.3 * example.CONTROL_RATE_HZ)
     readings = np.array([c[0] for c in compared])
     applied = np.array([c[1] for c in compared])

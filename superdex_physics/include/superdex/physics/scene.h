@@ -36,6 +36,9 @@ const char* query_type_name(QueryType type);
 struct NamedSignal {
   std::string name;
   std::vector<double> values;
+  /// What it measures, for the debugger's choice of default plots: "sensor", "actuator",
+  /// "velocity", "effort", "contact" or "user" (empty).
+  std::string kind;
 };
 /// Appends signals when a debugger frame or recorded frame is built (on the stepping thread,
 /// after the step's post-step callbacks).
