@@ -82,11 +82,52 @@ def test_falling_boxes_settle_into_a_standing_stack():
 
 
 # --------------------------------------------------------------------------------------------
+# soft_duck_drop.py
+
+
+def duck_weight_from_files() -> float:
+    """m g with m = density x volume of the tetrahedra, read from the prefab and the mesh file."""
+    prefab_path = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+    (entry,) = json.loads(prefab_path.read_text())["actors"]["soft"]
+    with h5py.File(prefab_path.parent / entry["shape"].removeprefix("./"), "r") as f:
+        nodes = f["mesh/coordinates"][()]
+        tets = f["mesh/connectivity"][()].astype(np.int64)
+    a, b, c, d = (nodes[tets[:, k]] for k in range(4))
+    volume = np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)).sum() / 6.0
+    return entry["material"]["density"] * volume * G
+
+
+def test_soft_duck_comes_to_rest_on_the_ground():
+    """The duck, released 3 cm up, has landed and come to rest by 0.32 s: all numbers finite, every
+    node slower than 5 mm/s, its lowest node on the ground within the contact's compliance (1 mm;
+    it was 30 mm up), its shape kept (it sank by no more than 3 mm at the top and its footprint
+    did not spread by more than 3 mm), and the ground's contact force equals its weight, from the
+    mesh volume and the material density, within 2 % (and the duck's own contact force the
+    opposite)."""
+    ex = load_example("soft_duck_drop")
+    result = ex.run(seconds=0.32, dt=0.004, height=0.03)
+    released, final = result["released_nodes"], result["final_nodes"]
+    assert np.isfinite(final).all() and np.isfinite(result["final_node_velocities"]).all()
+    assert released[:, 2].min() == pytest.approx(0.03, abs=1e-6)
+    assert np.linalg.norm(result["final_node_velocities"], axis=1).max() < 5e-3
+    assert abs(final[:, 2].min()) < 1e-3
+    rigid_drop = released - [0, 0, 0.03]
+    assert abs(final[:, 2].max() - rigid_drop[:, 2].max()) < 3e-3
+    spread = np.abs(final[:, :2]).max(axis=0) - np.abs(rigid_drop[:, :2]).max(axis=0)
+    assert np.abs(spread).max() < 3e-3
+    weight = duck_weight_from_files()
+    assert result["mass"] * G == pytest.approx(weight, rel=1e-3), "the engine's mass is the mesh's"
+    np.testing.assert_allclose(result["ground_force"], [0, 0, -weight], atol=0.02 * weight)
+    np.testing.assert_allclose(result["duck_contact_force"], -result["ground_force"], rtol=1e-4, atol=1e-4)
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 
 @pytest.mark.parametrize("name, args", [
     ("falling_and_stacking", ["--seconds", "0.5"]),
+    ("soft_duck_drop", ["--seconds", "0.02"]),
     ("double_pendulum", ["--seconds", "0.5"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
