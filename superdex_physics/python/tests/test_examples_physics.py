@@ -264,6 +264,56 @@ def test_cart_pendulum_conserves_energy_and_horizontal_momentum(pendulum):
 
 
 # --------------------------------------------------------------------------------------------
+# contact_filtering.py
+
+
+def test_filtered_pairs_never_touch_and_unfiltered_pairs_do():
+    """After every step, the solver's contact records (CONTACT_POINTS) hold no contact between a
+    filtered pair (ball-pedestal by actor pair, layer-1 balls and the layer-2 shelf by layers) and
+    no force between them; the filtered balls fall through and rest on the ground (z = r within
+    1 mm) carrying their weight from it. The unfiltered twins touch what they were dropped on: they
+    rest on top of it (pedestal top + r, shelf top + r, within 1 mm), carried by it (its contact
+    force on them is their weight within 1 %), and they have contact records with it."""
+    ex = load_example("contact_filtering")
+    filtered = [(ball, target) for ball, target, f in ex.DROPS if f]
+    unfiltered = [(ball, target) for ball, target, f in ex.DROPS if not f]
+    seen = {pair: 0 for pair in filtered + unfiltered}  # steps with contact records between the pair
+    final = {}
+    steps = []
+
+    def on_step(scene, actors):
+        steps.append(scene.get_total_simulation_time())
+        if len(steps) == 1:  # the balls are still high up; the records are there from the next step on
+            for actor in actors.values():
+                actor.register_query(sdp.QueryType.CONTACT_POINTS)
+            return
+        for ball, target in filtered + unfiltered:
+            other = actors[target].get_handle()
+            records = [c for c in actors[ball].get_contact_points_world() if other in (c.actor_a, c.actor_b)]
+            seen[(ball, target)] += len(records) > 0
+            if (ball, target) in filtered:
+                assert np.linalg.norm(actors[ball].get_contact_force_from_actor_world(actors[target])) == 0.0
+        for ball, target in filtered + unfiltered:
+            final[ball] = (np.array(actors[ball].get_contact_force_from_actor_world(actors[target]), dtype=np.float64),
+                           np.array(actors[ball].get_contact_force_from_actor_world(actors["ground"]), dtype=np.float64))
+
+    result = ex.run(seconds=1.5, dt=0.005, on_step=on_step)
+    weight = ex.BALL_MASS * G
+    for ball, target in filtered:
+        assert seen[(ball, target)] == 0, f"{ball} touched {target}"
+        assert result["positions"][ball][2] == pytest.approx(ex.RADIUS, abs=1e-3), f"{ball} fell to the ground"
+        np.testing.assert_allclose(final[ball][1], [0, 0, weight], atol=0.01 * weight)
+    for ball, target in unfiltered:
+        assert seen[(ball, target)] > 50, f"{ball} should rest on {target}"
+        assert result["positions"][ball][2] == pytest.approx(ex.REST_HEIGHT[target], abs=1e-3), f"{ball} on {target}"
+        np.testing.assert_allclose(final[ball][0], [0, 0, weight], atol=0.01 * weight)
+        np.testing.assert_allclose(final[ball][1], 0.0, atol=1e-9)
+    # the ghost ball lies inside its pedestal, which still rests on the ground
+    np.testing.assert_allclose(result["positions"]["ghost_pedestal"], [0, -0.3, ex.PEDESTAL_HALF], atol=1e-3)
+    assert np.linalg.norm(result["positions"]["ghost_ball"] - result["positions"]["ghost_pedestal"]) < ex.PEDESTAL_HALF
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 
@@ -271,6 +321,7 @@ def test_cart_pendulum_conserves_energy_and_horizontal_momentum(pendulum):
     ("falling_and_stacking", ["--seconds", "0.5"]),
     ("soft_duck_drop", ["--seconds", "0.02"]),
     ("double_pendulum_on_rail", ["--seconds", "0.5"]),
+    ("contact_filtering", ["--seconds", "0.5"]),
     ("double_pendulum", ["--seconds", "0.5"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
