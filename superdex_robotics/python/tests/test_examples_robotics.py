@@ -52,6 +52,75 @@ def quaternion_matrix(q) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------------------------
+# the URDF arm, read here with ElementTree: forward kinematics and mass properties in numpy
+
+
+def rpy_matrix(r, p, y) -> np.ndarray:
+    """URDF fixed-axis roll-pitch-yaw: Rz(y) Ry(p) Rx(r)."""
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return Rz @ Ry @ Rx
+
+
+def axis_angle_matrix(axis, angle) -> np.ndarray:
+    k = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+
+
+def homogeneous(R, p) -> np.ndarray:
+    T = np.eye(4)
+    T[:3, :3], T[:3, 3] = R, p
+    return T
+
+
+def numbers(element, attribute, default):
+    return [float(v) for v in (element.get(attribute) if element is not None and element.get(attribute) else default).split()]
+
+
+class UrdfChain:
+    """A serial URDF (every link has at most one child), parsed with ElementTree."""
+
+    def __init__(self, path: Path):
+        root = ET.parse(path).getroot()
+        self.name = root.get("name")
+        self.links = {link.get("name"): link for link in root.findall("link")}
+        joints = root.findall("joint")
+        children = {j.find("child").get("link") for j in joints}
+        (self.root_link,) = [name for name in self.links if name not in children]
+        by_parent = {j.find("parent").get("link"): j for j in joints}
+        self.link_order, self.joints = [self.root_link], []
+        while self.link_order[-1] in by_parent:
+            joint = by_parent[self.link_order[-1]]
+            self.joints.append(joint)
+            self.link_order.append(joint.find("child").get("link"))
+        self.moving = [j for j in self.joints if j.get("type") != "fixed"]
+
+    def link_transforms(self, q) -> list[np.ndarray]:
+        """World-from-link 4 x 4 transforms in link order, the root link at the world origin."""
+        transforms, i = [np.eye(4)], 0
+        for joint in self.joints:
+            origin = joint.find("origin")
+            T = transforms[-1] @ homogeneous(rpy_matrix(*numbers(origin, "rpy", "0 0 0")), numbers(origin, "xyz", "0 0 0"))
+            if joint.get("type") != "fixed":
+                T = T @ homogeneous(axis_angle_matrix(numbers(joint.find("axis"), "xyz", "1 0 0"), q[i]), np.zeros(3))
+                i += 1
+            transforms.append(T)
+        return transforms
+
+    def mass_and_com(self, link_name):
+        inertial = self.links[link_name].find("inertial")
+        return float(inertial.find("mass").get("value")), np.array(numbers(inertial.find("origin"), "xyz", "0 0 0"))
+
+
+@pytest.fixture(scope="module")
+def arm_chain():
+    return UrdfChain(ARM_URDF)
+
+
+# --------------------------------------------------------------------------------------------
 # basic/example_bot_loading.py
 
 
@@ -134,11 +203,58 @@ def test_bot_loading_of_another_file_with_built_in_components(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------
+# basic/example_urdf_loading.py
+
+
+def test_urdf_loading_names_dofs_and_forward_kinematics(arm_chain):
+    """Link and joint names and the DOF count equal the URDF's (read here; the root gets a welded
+    joint '<root>_root'); at the zero pose the tool is 0.1 + 0.12 + 0.35 + 0.3 + 0.1 = 0.97 m up;
+    at the example's pose and at random poses every link's world pose equals the chain of the
+    URDF's joint origins and axes multiplied here (homogeneous transforms, URDF rpy convention), to
+    1e-5 m and 1e-5 (rotation matrices), 1e-9 in double precision."""
+    ex = load_example("basic/example_urdf_loading.py")
+    tol = float_or_double(1e-9, 1e-5)
+    rng = np.random.default_rng(3)
+    poses = [None, [0.0, 0.0, 0.0, 0.0]] + [rng.uniform(-1.8, 1.8, 4).tolist() for _ in range(3)]
+    for pose in poses:
+        result = ex.run(pose=pose)
+        assert result["name"] == arm_chain.name
+        assert result["link_names"] == arm_chain.link_order
+        assert result["joint_names"] == [f"{arm_chain.root_link}_root"] + [j.get("name") for j in arm_chain.joints]
+        assert result["num_dofs"] == len(arm_chain.moving) == 4
+        q = ex.DEFAULT_POSE if pose is None else pose
+        np.testing.assert_allclose(result["pose"], q, atol=1e-6)
+        for (p, quat), T in zip(result["link_poses"], arm_chain.link_transforms(q)):
+            np.testing.assert_allclose(p, T[:3, 3], atol=tol)
+            np.testing.assert_allclose(quaternion_matrix(quat), T[:3, :3], atol=tol)
+        if pose == [0.0, 0.0, 0.0, 0.0]:
+            np.testing.assert_allclose(result["link_poses"][-1][0], [0, 0, 0.97], atol=1e-6)
+
+
+def test_urdf_forward_kinematics_against_pinocchio():
+    """The tool's world pose at the example's default pose and random poses equals Pinocchio's
+    frame placement for the same URDF (pin.buildModelFromUrdf; both order the DOFs depth-first)."""
+    ex = load_example("basic/example_urdf_loading.py")
+    model = pin.buildModelFromUrdf(str(ARM_URDF))
+    data = model.createData()
+    tool = model.getFrameId("tool")
+    tol = float_or_double(1e-9, 1e-5)
+    rng = np.random.default_rng(4)
+    for q in [ex.DEFAULT_POSE] + [rng.uniform(-1.8, 1.8, 4).tolist() for _ in range(2)]:
+        result = ex.run(pose=q)
+        pin.framesForwardKinematics(model, data, np.array(q))
+        p, quat = result["link_poses"][-1]
+        np.testing.assert_allclose(p, data.oMf[tool].translation, atol=tol)
+        np.testing.assert_allclose(quaternion_matrix(quat), data.oMf[tool].rotation, atol=tol)
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 
 @pytest.mark.parametrize("relative, args", [
     ("basic/example_bot_loading.py", ["--seconds", "0.2"]),
+    ("basic/example_urdf_loading.py", ["--seconds", "0.2"]),
 ])
 def test_runs_as_a_script(relative, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr (the bot-loading example's
