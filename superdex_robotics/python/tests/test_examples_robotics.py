@@ -249,12 +249,39 @@ def test_urdf_forward_kinematics_against_pinocchio():
 
 
 # --------------------------------------------------------------------------------------------
+# control/example_jsc_control.py
+
+
+def test_jsc_reaches_each_target_pose_without_overshoot():
+    """BASIC_JSC_PD moves the arm through three target poses, 2 s each. For every move and joint:
+    within 1.2 s the joint is within 2 % of the move from its target; at the end of the 2 s it is
+    within 0.1 mrad of it and the arm is still (< 1 mrad/s); at no time does it go past its target
+    by more than 1 % of the move (+ 0.1 mrad)."""
+    ex = load_example("control/example_jsc_control.py")
+    result = ex.run(seconds_per_pose=2.0)
+    n, dt = result["steps_per_pose"], ex.CONTROL_DT
+    start = np.array(ex.START_POSE, dtype=np.float64)
+    for k, target in enumerate(np.array(ex.TARGET_POSES, dtype=np.float64)):
+        q, v = result["q"][k * n:(k + 1) * n], result["v"][k * n:(k + 1) * n]
+        move = target - start
+        for j in range(len(target)):
+            past = (q[:, j] - target[j]) * np.sign(move[j])
+            assert past.max() <= 0.01 * abs(move[j]) + 1e-4, f"move {k + 1}, joint {j}: overshoot {past.max():.2e} rad"
+            close = np.flatnonzero(np.abs(q[:, j] - target[j]) <= 0.02 * abs(move[j]))
+            assert close.size and (close[0] + 1) * dt <= 1.2, f"move {k + 1}, joint {j}: slow"
+        np.testing.assert_allclose(q[-1], target, atol=1e-4)
+        assert np.abs(v[-1]).max() < 1e-3
+        start = q[-1]
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 
 @pytest.mark.parametrize("relative, args", [
     ("basic/example_bot_loading.py", ["--seconds", "0.2"]),
     ("basic/example_urdf_loading.py", ["--seconds", "0.2"]),
+    ("control/example_jsc_control.py", ["--seconds-per-pose", "0.3"]),
 ])
 def test_runs_as_a_script(relative, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr (the bot-loading example's
