@@ -309,6 +309,51 @@ def test_osc_tool_tracks_the_circle(arm_chain):
 
 
 # --------------------------------------------------------------------------------------------
+# control/example_cpp_pipeline.py
+
+
+def test_cpp_pipeline_reaches_holds_and_senses(arm_chain):
+    """Only C++ components run (BASIC_OSC_PD, DC_MOTOR x 4, JOINT_STATE, FORCE_TORQUE, IMU). After
+    3 s, from the JOINT_STATE sensor's angles and the URDF chain multiplied here:
+    - the tool is at the target within 1 mm, and the arm is still (|v| < 1e-3 rad/s);
+    - FORCE_TORQUE at the base reads the statics of the arm at rest: force (0, 0, m g) with m the
+      URDF's total mass, torque about the base origin sum_i c_i x (0, 0, m_i g) with the centres
+      of mass c_i from the URDF's inertial origins, within 1e-3 of m g (N) and m g x 1 m (N m);
+    - the IMU on the tool reads R_tool^T (0, 0, g) and no rotation;
+    - the motors deliver the gravity torques of that pose, from Pinocchio's
+      computeGeneralizedGravity on the same URDF, within 2e-3 N m."""
+    ex = load_example("control/example_cpp_pipeline.py")
+    result = ex.run(seconds=3.0)
+    n = result["num_dofs"]
+    q, v = result["joint_state"][:n], result["joint_state"][n:]
+    transforms = arm_chain.link_transforms(q)
+    np.testing.assert_allclose(transforms[-1][:3, 3], ex.TARGET, atol=1e-3)
+    np.testing.assert_allclose(result["tool_position"], transforms[-1][:3, 3], atol=float_or_double(1e-9, 1e-5))
+    assert np.abs(v).max() < 1e-3
+
+    masses, moment = 0.0, np.zeros(3)
+    for name, T in zip(arm_chain.link_order, transforms):
+        m, com_local = arm_chain.mass_and_com(name)
+        masses += m
+        moment += np.cross(T[:3, :3] @ com_local + T[:3, 3], [0, 0, m * G])
+    weight = masses * G
+    assert masses == pytest.approx(result["total_mass"])
+    np.testing.assert_allclose(result["base_ft"][:3], [0, 0, weight], atol=1e-3 * weight)
+    np.testing.assert_allclose(result["base_ft"][3:], moment, atol=1e-3 * weight)
+    assert np.linalg.norm(result["base_ft"][3:5]) > 1.0, "the arm reaches out: its weight has a moment"
+
+    R_tool = transforms[-1][:3, :3]
+    np.testing.assert_allclose(result["tool_imu"][:3], R_tool.T @ [0, 0, G], atol=float_or_double(1e-6, 2e-3))
+    np.testing.assert_allclose(result["tool_imu"][3:], 0, atol=1e-3)
+
+    model = pin.buildModelFromUrdf(str(ARM_URDF))
+    model.gravity.linear = np.array([0, 0, -G])
+    gravity = pin.computeGeneralizedGravity(model, model.createData(), q)
+    np.testing.assert_allclose(result["efforts"], gravity, atol=2e-3)
+    assert np.abs(gravity).max() > 1.0
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 
@@ -317,6 +362,7 @@ def test_osc_tool_tracks_the_circle(arm_chain):
     ("basic/example_urdf_loading.py", ["--seconds", "0.2"]),
     ("control/example_jsc_control.py", ["--seconds-per-pose", "0.3"]),
     ("control/example_osc_control.py", ["--laps", "0.1"]),
+    ("control/example_cpp_pipeline.py", ["--seconds", "0.3"]),
 ])
 def test_runs_as_a_script(relative, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr (the bot-loading example's
