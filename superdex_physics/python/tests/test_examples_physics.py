@@ -325,18 +325,16 @@ def test_filtered_pairs_never_touch_and_unfiltered_pairs_do():
     ("double_pendulum", ["--seconds", "0.5"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
-    """python <example> [--debugger] exits 0 with nothing on stderr and prints its summary; with
-    --debugger and SUPERDEX_DEBUGGER_RECORD it records the run (header and frames up to the end)."""
+    """python <example> --debugger exits 0 with nothing on stderr and prints its summary; with
+    SUPERDEX_DEBUGGER_RECORD the debugger records the run (header, frames up to the end)."""
     recording = tmp_path / "run.jsonl"
-    debugger = ["--debugger"] if name != "double_pendulum" else []
     env = dict(os.environ, SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0")
-    proc = subprocess.run([sys.executable, str(EXAMPLES / f"{name}.py"), *args, *debugger], env=env,
+    proc = subprocess.run([sys.executable, str(EXAMPLES / f"{name}.py"), *args, "--debugger"], env=env,
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     assert len(proc.stdout.splitlines()) >= 3
-    if debugger:
-        lines = [json.loads(line) for line in recording.read_text().splitlines()]
-        assert lines[0]["type"] == "header"
-        frames = [line for line in lines if line["type"] == "frame"]
-        assert frames and frames[-1]["t"] == pytest.approx(float(args[1]), abs=1e-4)
+    lines = [json.loads(line) for line in recording.read_text().splitlines()]
+    assert lines[0]["type"] == "header"
+    frames = [line for line in lines if line["type"] == "frame"]
+    assert frames and frames[-1]["t"] == pytest.approx(float(args[1]), abs=1e-4)
