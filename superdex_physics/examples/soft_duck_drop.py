@@ -79,7 +79,7 @@ def run(seconds: float = 0.4, dt: float = 0.004, height: float = 0.03, debugger:
                 on_step(scene, duck)
             if k % every == 0 or k == steps:
                 history.append((scene.get_total_simulation_time(), nodes[:, 2].min(), nodes[:, 2].mean(),
-                                np.linalg.norm(velocities, axis=1).max(), -float(ground.get_contact_force_world()[2])))
+                                np.linalg.norm(velocities, axis=1).max(), 0.0 - float(ground.get_contact_force_world()[2])))
         return {
             "mass": duck.get_mass(),
             "released_nodes": released,

@@ -11,13 +11,13 @@ Python only hands it a new target pose every few seconds with context.configure_
 reads the joints.
 
 Choosing the gains. The PD efforts are applied explicitly (computed before each step), and the
-links of this arm differ a lot in inertia: the base yaw sees about 0.003 kg m^2 with the arm upright
-and 0.2 with it stretched out, the wrist 0.002. One gain for all joints would be too soft for some
-and unstable for others. With gravity compensated, joint i alone behaves like
+joints of this arm move very different inertias: the base yaw about 0.003 kg m^2 with the arm
+upright and 0.46 with it stretched out sideways, the shoulder about 0.4, the wrist 0.002. One gain
+for all joints would be too soft for some and unstable for others. With gravity compensated, joint i alone behaves like
 M_ii qdd_i = kp_i e_i - kd_i v_i, so kp_i = M_ii w^2 and kd_i = 2 zeta M_ii w give every joint the
 same natural frequency w and damping ratio zeta. The inertia changes as the arm moves, so before
-each move the gains are set for the larger of M_ii at the start and at the target pose (a joint
-then moves a little faster and better damped than planned, never less damped). The mass matrix at
+each move the gains are set for the larger of M_ii at the start and at the target pose (where
+the inertia is smaller, the joint moves a little faster and is better damped than planned). The mass matrix at
 the target comes from a probe: a second copy of the arm in a scene that is never stepped, posed
 with set_articulated_pose_from_joints. zeta = 1.5 leaves room for the coupling between the joints
 (the diagonal gains ignore M's off-diagonal terms): no joint overshoots its target.
