@@ -1,6 +1,9 @@
 """A double pendulum released from horizontal, falling under gravity; prints its state.
 
 Run: uv run python superdex_physics/examples/double_pendulum.py [--seconds 3] [--dt 0.001]
+
+Add --debugger to watch it in the scene debugger; without a display, also set
+SUPERDEX_DEBUGGER_RECORD=pendulum.jsonl to record the run to a file (superdex.physics.debugger).
 """
 
 import argparse
@@ -39,6 +42,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=3.0)
     parser.add_argument("--dt", type=float, default=0.001)
     parser.add_argument("--print-every", type=float, default=0.25, help="seconds between printed lines")
+    parser.add_argument("--debugger", action="store_true", help="attach the scene debugger (or record, see above)")
     args = parser.parse_args()
 
     sdp.initialize(num_worker_threads=0)
@@ -52,6 +56,8 @@ def main() -> None:
     q = np.zeros(n, dtype=np.float64 if sdp.uses_double_precision() else np.float32)
     v = np.zeros_like(q)
     xforms = sdp.DynamicArrayTransformRT(len(links))
+    if args.debugger:
+        sdp.debugger.attach()
     steps = int(round(args.seconds / args.dt))
     every = max(1, int(round(args.print_every / args.dt)))
     print(f"{'t [s]':>7} {'q1 [rad]':>9} {'q2 [rad]':>9} {'v1 [rad/s]':>10} {'v2 [rad/s]':>10}   elbow position [m]")
@@ -66,6 +72,8 @@ def main() -> None:
         if k < steps:
             scene.step(args.dt)
     print(f"tip link '{tip_link.get_name()}' at {np.array(tip_link.get_root_transform().translation).round(4)}")
+    if args.debugger:
+        sdp.debugger.detach()
     sdp.shutdown()
 
 

@@ -1,0 +1,340 @@
+"""The physics examples (superdex_physics/examples/), run as a user would and checked against
+independent references: statics of a resting stack, the duck's weight from its mesh file, an RK4
+integration of the cart-double-pendulum's equations of motion derived here, and what contact
+filters promise.
+
+Each example is imported from its file and its run() called in-process (it initializes and shuts
+down the engine itself); the numbers compared are engine state read through the public API, the
+references are computed here. test_runs_as_a_script runs each one as a subprocess, headless,
+recording to a file through the debugger, and checks that it exits cleanly with nothing on stderr.
+"""
+
+import importlib.util
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+import superdex.physics as sdp
+
+REPO = Path(__file__).resolve().parents[3]
+EXAMPLES = REPO / "superdex_physics" / "examples"
+G = 9.81
+
+
+def load_example(name: str):
+    spec = importlib.util.spec_from_file_location(f"example_{name}", EXAMPLES / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def float_or_double(double: float, single: float) -> float:
+    return double if sdp.uses_double_precision() else single
+
+
+def yaw_of(q) -> float:
+    """Rotation angle about z of a quaternion [x, y, z, w] that turns about z only."""
+    x, y, z, w = q
+    return 2.0 * math.atan2(z, w)
+
+
+# --------------------------------------------------------------------------------------------
+# falling_and_stacking.py
+
+
+def test_falling_boxes_settle_into_a_standing_stack():
+    """After 3 s the five cubes stand where a rigid stack would put them: cube i at height
+    (2 i + 1) h (within 1 mm: contact compliance sinks the stack by well under that), at the x, y
+    and yaw they were released with (within 1 mm and 0.01 rad: they fell straight), at rest
+    (|v| < 1 mm/s, |w| < 0.01 rad/s); the balls rest on the ground at z = r. Statics: each cube
+    carries the weight of the cubes above it from the one on top of it, and the ground carries the
+    total weight, within 1 %, with no horizontal force."""
+    ex = load_example("falling_and_stacking")
+    result = ex.run(seconds=3.0, dt=0.005)
+    h, n = ex.HALF, ex.NUM_BOXES
+    for i, (start, end) in enumerate(zip(result["initial"], result["final"])):
+        if i < n:
+            assert end["position"][2] == pytest.approx((2 * i + 1) * h, abs=1e-3), end["name"]
+            np.testing.assert_allclose(end["position"][:2], ex.SHIFTS[i], atol=1e-3, err_msg=end["name"])
+            assert yaw_of(end["rotation"]) == pytest.approx(i * math.radians(15), abs=0.01), end["name"]
+            assert abs(end["rotation"][0]) < 1e-3 and abs(end["rotation"][1]) < 1e-3, "no tilt"
+        else:
+            ball = ex.BALL_STARTS[i - n]
+            np.testing.assert_allclose(end["position"], [ball[0], ball[1], ex.BALL_RADIUS], atol=1e-3, err_msg=end["name"])
+        assert np.linalg.norm(end["linear_velocity"]) < 1e-3, end["name"]
+        assert np.linalg.norm(end["angular_velocity"]) < 1e-2, end["name"]
+    # they did fall: every body started higher than where it rests
+    assert all(s["position"][2] > e["position"][2] + 0.005 for s, e in zip(result["initial"], result["final"]))
+
+    box_weight = ex.BOX_MASS * G
+    for i, force in enumerate(result["force_from_box_above"]):
+        above = (n - 1 - i) * box_weight
+        np.testing.assert_allclose(force, [0, 0, -above], atol=0.01 * above)
+    total_weight = (n * ex.BOX_MASS + len(ex.BALL_STARTS) * ex.BALL_MASS) * G
+    np.testing.assert_allclose(result["ground_force"], [0, 0, -total_weight], atol=0.01 * total_weight)
+
+
+# --------------------------------------------------------------------------------------------
+# soft_duck_drop.py
+
+
+def duck_weight_from_files() -> float:
+    """m g with m = density x volume of the tetrahedra, read from the prefab and the mesh file."""
+    prefab_path = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+    (entry,) = json.loads(prefab_path.read_text())["actors"]["soft"]
+    with h5py.File(prefab_path.parent / entry["shape"].removeprefix("./"), "r") as f:
+        nodes = f["mesh/coordinates"][()]
+        tets = f["mesh/connectivity"][()].astype(np.int64)
+    a, b, c, d = (nodes[tets[:, k]] for k in range(4))
+    volume = np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)).sum() / 6.0
+    return entry["material"]["density"] * volume * G
+
+
+def test_soft_duck_comes_to_rest_on_the_ground():
+    """The duck, released 3 cm up, has landed and come to rest by 0.32 s: all numbers finite, every
+    node slower than 5 mm/s, its lowest node on the ground within the contact's compliance (1 mm;
+    it was 30 mm up), its shape kept (it sank by no more than 3 mm at the top and its footprint
+    did not spread by more than 3 mm), and the ground's contact force equals its weight, from the
+    mesh volume and the material density, within 2 % (and the duck's own contact force the
+    opposite)."""
+    ex = load_example("soft_duck_drop")
+    result = ex.run(seconds=0.32, dt=0.004, height=0.03)
+    released, final = result["released_nodes"], result["final_nodes"]
+    assert np.isfinite(final).all() and np.isfinite(result["final_node_velocities"]).all()
+    assert released[:, 2].min() == pytest.approx(0.03, abs=1e-6)
+    assert np.linalg.norm(result["final_node_velocities"], axis=1).max() < 5e-3
+    assert abs(final[:, 2].min()) < 1e-3
+    rigid_drop = released - [0, 0, 0.03]
+    assert abs(final[:, 2].max() - rigid_drop[:, 2].max()) < 3e-3
+    spread = np.abs(final[:, :2]).max(axis=0) - np.abs(rigid_drop[:, :2]).max(axis=0)
+    assert np.abs(spread).max() < 3e-3
+    weight = duck_weight_from_files()
+    assert result["mass"] * G == pytest.approx(weight, rel=1e-3), "the engine's mass is the mesh's"
+    np.testing.assert_allclose(result["ground_force"], [0, 0, -weight], atol=0.02 * weight)
+    np.testing.assert_allclose(result["duck_contact_force"], -result["ground_force"], rtol=1e-4, atol=1e-4)
+
+
+# --------------------------------------------------------------------------------------------
+# double_pendulum_on_rail.py
+
+
+class CartDoublePendulum:
+    """The cart-double-pendulum's equations of motion, derived here independently of the engine.
+
+    Coordinates q = (x, t1, t2): cart position along X, shoulder angle, elbow angle (relative), both
+    about +Y; at zero angle the rods hang along -Z, and a rotation t about +Y takes -Z to
+    (-sin t, 0, -cos t). Rod i is uniform, mass m_i, length L_i, centre a_i = L_i / 2 from its
+    joint, inertia I_i about its centre (about Y). In the X-Z plane, with p = t1 + t2:
+
+        c1 = (x - a1 sin t1,                 -a1 cos t1)
+        c2 = (x - L1 sin t1 - a2 sin p,      -L1 cos t1 - a2 cos p)
+
+    so the centre velocities are J_i qdot with
+        J1 = [[1, -a1 cos t1, 0], [0, a1 sin t1, 0]]
+        J2 = [[1, -L1 cos t1 - a2 cos p, -a2 cos p], [0, L1 sin t1 + a2 sin p, a2 sin p]]
+    and the rods turn at w1 = t1dot, w2 = t1dot + t2dot. Kinetic energy
+    T = 1/2 qdot^T M qdot with M = mc e0 e0^T + sum_i (m_i J_i^T J_i + I_i W_i^T W_i), W1 = [0, 1, 0],
+    W2 = [0, 1, 1]. Lagrange's equations (equivalently Kane's: project each body's Newton
+    equation on its J_i) give M qddot = sum_i J_i^T (m_i g_vec - m_i Jdot_i qdot), with the
+    velocity-product accelerations Jdot_i qdot:
+        Jdot1 qdot = (a1 sin t1 w1^2, a1 cos t1 w1^2)
+        Jdot2 qdot = (L1 sin t1 w1^2 + a2 sin p w2^2, L1 cos t1 w1^2 + a2 cos p w2^2)
+    Energy E = T + g (m1 c1_z + m2 c2_z); x is cyclic, so p_x = (M qdot)[0] is conserved.
+    """
+
+    def __init__(self, cart_mass, rods, rod_inertia):
+        (_, self.m1, self.L1), (_, self.m2, self.L2) = rods
+        self.mc = cart_mass
+        self.a1, self.a2 = self.L1 / 2, self.L2 / 2
+        # inertia about the rod's centre, about Y (the joint axis), from the example's tensor
+        self.I1 = rod_inertia(self.m1, self.L1)[3]
+        self.I2 = rod_inertia(self.m2, self.L2)[3]
+
+    def terms(self, q, v):
+        _, t1, t2 = q
+        s1, c1, sp, cp = math.sin(t1), math.cos(t1), math.sin(t1 + t2), math.cos(t1 + t2)
+        J1 = np.array([[1, -self.a1 * c1, 0], [0, self.a1 * s1, 0]])
+        J2 = np.array([[1, -self.L1 * c1 - self.a2 * cp, -self.a2 * cp], [0, self.L1 * s1 + self.a2 * sp, self.a2 * sp]])
+        W1, W2 = np.array([0.0, 1, 0]), np.array([0.0, 1, 1])
+        M = np.zeros((3, 3))
+        M[0, 0] = self.mc
+        M += self.m1 * J1.T @ J1 + self.m2 * J2.T @ J2 + self.I1 * np.outer(W1, W1) + self.I2 * np.outer(W2, W2)
+        w1, w2 = v[1], v[1] + v[2]
+        b1 = np.array([self.a1 * s1 * w1**2, self.a1 * c1 * w1**2])
+        b2 = np.array([self.L1 * s1 * w1**2 + self.a2 * sp * w2**2, self.L1 * c1 * w1**2 + self.a2 * cp * w2**2])
+        gravity = np.array([0.0, -G])
+        force = J1.T @ (self.m1 * gravity - self.m1 * b1) + J2.T @ (self.m2 * gravity - self.m2 * b2)
+        z1, z2 = -self.a1 * c1, -self.L1 * c1 - self.a2 * cp
+        energy = 0.5 * v @ M @ v + G * (self.m1 * z1 + self.m2 * z2)
+        return M, force, energy
+
+    def energy(self, q, v):
+        return self.terms(q, v)[2]
+
+    def momentum_x(self, q, v):
+        return float((self.terms(q, v)[0] @ v)[0])
+
+    def rk4(self, q0, seconds, dt, substeps=10):
+        """Positions after every dt (RK4 with dt / substeps)."""
+        def f(y):
+            M, force, _ = self.terms(y[:3], y[3:])
+            return np.concatenate([y[3:], np.linalg.solve(M, force)])
+
+        y, h, out = np.concatenate([q0, np.zeros(3)]), dt / substeps, []
+        for _ in range(int(round(seconds / dt))):
+            for _ in range(substeps):
+                k1 = f(y)
+                k2 = f(y + h / 2 * k1)
+                k3 = f(y + h / 2 * k2)
+                k4 = f(y + h * k3)
+                y = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            out.append(y[:3].copy())
+        return np.array(out)
+
+
+@pytest.fixture(scope="module")
+def pendulum():
+    ex = load_example("double_pendulum_on_rail")
+    model = CartDoublePendulum(ex.CART_MASS, ex.RODS, ex.rod_inertia)
+    runs = {dt: ex.run(seconds=1.0, dt=dt) for dt in (1e-3, 5e-4)}
+    reference = model.rk4(np.array(ex.INITIAL_POSE, dtype=float), 1.0, 5e-4)  # every 0.5 ms
+    return ex, model, runs, reference
+
+
+def test_cart_pendulum_follows_the_equations_of_motion(pendulum):
+    """Over the first second (the pendulum swings through the bottom twice; the cart moves 0.28 m)
+    the engine's joint trajectory at dt = 1 ms stays within 0.02 rad (m for the cart) of an RK4
+    solution of the equations derived above, and halving dt halves the error (first order: the
+    ratio is below 0.6), so the engine converges to that solution."""
+    ex, model, runs, reference = pendulum
+    errors = {}
+    for dt, result in runs.items():
+        stride = int(round(dt / 5e-4))
+        ref = reference[stride - 1::stride]
+        assert len(ref) == len(result["q"])
+        errors[dt] = np.abs(result["q"] - ref).max()
+    assert np.ptp(runs[1e-3]["q"][:, 0]) > 0.2, "the cart moves"
+    assert np.ptp(runs[1e-3]["q"][:, 1]) > 1.5, "the pendulum swings"
+    assert errors[1e-3] < 0.02, errors
+    assert errors[5e-4] < 0.6 * errors[1e-3], errors
+
+
+def test_cart_pendulum_conserves_energy_and_horizontal_momentum(pendulum):
+    """The mass matrix the engine reports equals the derived one (1e-5 relative); and along the
+    run, with E and p_x computed here from the engine's joint state: |E - E0| stays below 1 % of
+    the potential-energy swing of the rods, g (m1 a1 + m2 (L1 + a2)), and |p_x| below 3 % of the
+    largest momentum the cart alone reaches, mc max|xdot|, both shrinking by half or more with dt
+    (they are the integrator's first-order error, not a drift that stays). The example's own
+    energy and momentum, computed from the engine's mass matrix and link poses, agree with these."""
+    ex, model, runs, _ = pendulum
+    scale_e = G * (model.m1 * model.a1 + model.m2 * (model.L1 + model.a2))
+    worst = {}
+    for dt, result in runs.items():
+        e = np.array([model.energy(q, v) for q, v in zip(result["q"], result["v"])])
+        p = np.array([model.momentum_x(q, v) for q, v in zip(result["q"], result["v"])])
+        e0 = model.energy(np.array(ex.INITIAL_POSE, dtype=float), np.zeros(3))
+        scale_p = model.mc * np.abs(result["v"][:, 0]).max()
+        worst[dt] = (np.abs(e - e0).max() / scale_e, np.abs(p).max() / scale_p)
+        assert worst[dt][0] < 0.01, worst
+        assert worst[dt][1] < 0.03, worst
+        # the example's own energy and momentum (from the engine's mass matrix and link poses)
+        # are these, up to the constant potential energy of the rail's height
+        assert np.ptp(result["energy"] - e) < 1e-3 * scale_e
+        np.testing.assert_allclose(result["momentum"], p, atol=1e-3 * scale_p)
+    assert worst[5e-4][0] < 0.6 * worst[1e-3][0] and worst[5e-4][1] < 0.6 * worst[1e-3][1], worst
+
+    sdp.initialize(num_worker_threads=0)
+    try:
+        scene = sdp.create_scene("mass matrix")
+        actor = ex.create_cart_pendulum(scene)
+        for q in ([0.3, 1.2, -0.6], [-0.2, -2.0, 2.5], [0.0, 0.4, 3.0]):
+            actor.set_articulated_pose_from_joints(q)
+            M = np.array(actor.get_articulated_mass_matrix(), dtype=np.float64).reshape(3, 3)
+            expected = model.terms(np.array(q), np.zeros(3))[0]
+            np.testing.assert_allclose(M, expected, rtol=1e-5, atol=1e-5 * np.abs(expected).max())
+    finally:
+        sdp.shutdown()
+
+
+# --------------------------------------------------------------------------------------------
+# contact_filtering.py
+
+
+def test_filtered_pairs_never_touch_and_unfiltered_pairs_do():
+    """After every step, the solver's contact records (CONTACT_POINTS) hold no contact between a
+    filtered pair (ball-pedestal by actor pair, layer-1 balls and the layer-2 shelf by layers) and
+    no force between them; the filtered balls fall through and rest on the ground (z = r within
+    1 mm) carrying their weight from it. The unfiltered twins touch what they were dropped on: they
+    rest on top of it (pedestal top + r, shelf top + r, within 1 mm), carried by it (its contact
+    force on them is their weight within 1 %), and they have contact records with it."""
+    ex = load_example("contact_filtering")
+    filtered = [(ball, target) for ball, target, f in ex.DROPS if f]
+    unfiltered = [(ball, target) for ball, target, f in ex.DROPS if not f]
+    seen = {pair: 0 for pair in filtered + unfiltered}  # steps with contact records between the pair
+    final = {}
+    steps = []
+
+    def on_step(scene, actors):
+        steps.append(scene.get_total_simulation_time())
+        if len(steps) == 1:  # the balls are still high up; the records are there from the next step on
+            for actor in actors.values():
+                actor.register_query(sdp.QueryType.CONTACT_POINTS)
+            return
+        for ball, target in filtered + unfiltered:
+            other = actors[target].get_handle()
+            records = [c for c in actors[ball].get_contact_points_world() if other in (c.actor_a, c.actor_b)]
+            seen[(ball, target)] += len(records) > 0
+            if (ball, target) in filtered:
+                assert np.linalg.norm(actors[ball].get_contact_force_from_actor_world(actors[target])) == 0.0
+        for ball, target in filtered + unfiltered:
+            final[ball] = (np.array(actors[ball].get_contact_force_from_actor_world(actors[target]), dtype=np.float64),
+                           np.array(actors[ball].get_contact_force_from_actor_world(actors["ground"]), dtype=np.float64))
+
+    result = ex.run(seconds=1.5, dt=0.005, on_step=on_step)
+    weight = ex.BALL_MASS * G
+    for ball, target in filtered:
+        assert seen[(ball, target)] == 0, f"{ball} touched {target}"
+        assert result["positions"][ball][2] == pytest.approx(ex.RADIUS, abs=1e-3), f"{ball} fell to the ground"
+        np.testing.assert_allclose(final[ball][1], [0, 0, weight], atol=0.01 * weight)
+    for ball, target in unfiltered:
+        assert seen[(ball, target)] > 50, f"{ball} should rest on {target}"
+        assert result["positions"][ball][2] == pytest.approx(ex.REST_HEIGHT[target], abs=1e-3), f"{ball} on {target}"
+        np.testing.assert_allclose(final[ball][0], [0, 0, weight], atol=0.01 * weight)
+        np.testing.assert_allclose(final[ball][1], 0.0, atol=1e-9)
+    # the ghost ball lies inside its pedestal, which still rests on the ground
+    np.testing.assert_allclose(result["positions"]["ghost_pedestal"], [0, -0.3, ex.PEDESTAL_HALF], atol=1e-3)
+    assert np.linalg.norm(result["positions"]["ghost_ball"] - result["positions"]["ghost_pedestal"]) < ex.PEDESTAL_HALF
+
+
+# --------------------------------------------------------------------------------------------
+# every example as a script
+
+
+@pytest.mark.parametrize("name, args", [
+    ("falling_and_stacking", ["--seconds", "0.5"]),
+    ("soft_duck_drop", ["--seconds", "0.02"]),
+    ("double_pendulum_on_rail", ["--seconds", "0.5"]),
+    ("contact_filtering", ["--seconds", "0.5"]),
+    ("double_pendulum", ["--seconds", "0.5"]),
+])
+def test_runs_as_a_script(name, args, tmp_path):
+    """python <example> --debugger exits 0 with nothing on stderr and prints its summary; with
+    SUPERDEX_DEBUGGER_RECORD the debugger records the run (header, frames up to the end)."""
+    recording = tmp_path / "run.jsonl"
+    env = dict(os.environ, SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0")
+    proc = subprocess.run([sys.executable, str(EXAMPLES / f"{name}.py"), *args, "--debugger"], env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert len(proc.stdout.splitlines()) >= 3
+    lines = [json.loads(line) for line in recording.read_text().splitlines()]
+    assert lines[0]["type"] == "header"
+    frames = [line for line in lines if line["type"] == "frame"]
+    assert frames and frames[-1]["t"] == pytest.approx(float(args[1]), abs=1e-4)
