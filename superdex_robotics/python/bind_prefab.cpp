@@ -95,10 +95,17 @@ void export_prefab(nb::module_& m) {
   nb::class_<BotPrefab>(m, "BotPrefab", "A robot description; edit it before create_bot.")
       .def_prop_rw("name", [](const BotPrefab& p) { return p.articulation.name; },
                    [](BotPrefab& p, std::string n) { p.articulation.name = std::move(n); })
-      .def_prop_ro("links", [](BotPrefab& p) -> std::vector<LinkDesc>& { return p.articulation.links; },
-                   nb::rv_policy::reference_internal)
-      .def_prop_ro("joints", [](BotPrefab& p) -> std::vector<JointDesc>& { return p.articulation.joints; },
-                   nb::rv_policy::reference_internal)
+      .def_prop_rw("links", [](BotPrefab& p) -> std::vector<LinkDesc>& { return p.articulation.links; },
+                   [](BotPrefab& p, std::vector<LinkDesc> links) {
+                     p.articulation.links = std::move(links);
+                     // one (possibly empty) list of sensors and of actuators per link
+                     p.sensors.resize(p.articulation.links.size());
+                     p.actuators.resize(p.articulation.links.size());
+                   },
+                   nb::rv_policy::reference_internal, "the links (editable in place or replaced; one joint per link)")
+      .def_prop_rw("joints", [](BotPrefab& p) -> std::vector<JointDesc>& { return p.articulation.joints; },
+                   [](BotPrefab& p, std::vector<JointDesc> joints) { p.articulation.joints = std::move(joints); },
+                   nb::rv_policy::reference_internal, "joints[i] attaches links[i] to its parent")
       .def_prop_rw("default_pose", [](const BotPrefab& p) { return p.articulation.default_pose; },
                    [](BotPrefab& p, nb::handle v) {
                      const VecX x = read_vector(v, "default_pose");

@@ -247,3 +247,18 @@ def test_render_models_travel_in_recordings_byte_for_byte(scene, tmp_path):
     assert glb == (tmp_path / "models" / "ball.glb").read_bytes()
     assert glb[:4] == b"glTF"
     sdr.destroy_bot(scene, bot)
+
+
+def test_links_and_joints_of_a_prefab_can_be_replaced(scene):
+    """API.md: BotPrefab's links and joints are writable. Replacing them keeps one list of sensors
+    and of actuators per link; the bot built from the edited prefab has the new structure."""
+    prefab = sdr.load_bot_prefab_from_file(str(resolve_asset(EXAMPLE_BOT)))
+    prefab.links = list(prefab.links)[:3]  # drop the ball and its weld
+    prefab.joints = list(prefab.joints)[:3]
+    assert [l.name for l in prefab.links] == ["base_link", "link_1", "link_2"]
+    assert len(prefab.sensors) == len(prefab.actuators) == 3
+    with pytest.warns(UserWarning, match="not registered"):
+        bot = sdr.create_bot(scene, prefab, sdr.create_context())
+    arm = bot.get_articulated_actor()
+    assert len(arm.get_nested_link_actors()) == 3 and arm.get_num_dofs() == 2
+    sdr.destroy_bot(scene, bot)
