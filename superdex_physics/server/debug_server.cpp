@@ -134,6 +134,7 @@ struct DebugServer::Impl {
   CoordinateAxes axes = CoordinateAxes::FLU;
   // stepping thread's side
   Clock::time_point last_frame{};
+  double frame_cost = 0;  // running mean of the seconds one frame costs the stepping thread
   struct Anchor {
     Clock::time_point wall;
     double sim = 0;
@@ -335,9 +336,11 @@ bool DebugServer::wants_frame() const {
   ServerCore* core = impl_->core.get();
   if (!core || core->replay || core->connections == 0) return false;
   if (core->resync) return true;
-  const auto since = Clock::now() - impl_->last_frame;
+  const auto since = std::chrono::duration<double>(Clock::now() - impl_->last_frame).count();
+  // at most 60 frames per second, and frames may cost the simulation at most 3 % of its time
+  const double spacing = std::max(1.0 / 60, impl_->frame_cost / 0.03);
   // a page that stopped acknowledging still gets a frame now and then
-  return since >= std::chrono::microseconds(16667) && (core->max_backlog < 2 || since >= std::chrono::milliseconds(500));
+  return since >= spacing && (core->max_backlog < 2 || since >= std::max(0.5, spacing));
 }
 
 bool DebugServer::take_resync() {
@@ -345,10 +348,11 @@ bool DebugServer::take_resync() {
   return core && core->resync.exchange(false);
 }
 
-void DebugServer::broadcast(std::string lines) {
+void DebugServer::broadcast(std::string lines, double build_seconds) {
   ServerCore* core = impl_->core.get();
   if (!core || core->connections == 0) return;
   impl_->last_frame = Clock::now();
+  impl_->frame_cost = impl_->frame_cost == 0 ? build_seconds : 0.8 * impl_->frame_cost + 0.2 * build_seconds;
   // counted now so that wants_frame() sees the backlog before the server thread does
   ++core->max_backlog;
   auto message = std::make_shared<const std::string>(std::move(lines));

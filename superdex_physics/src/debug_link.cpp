@@ -2,6 +2,7 @@
 
 #include "debug_link.h"
 
+#include <chrono>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -34,10 +35,11 @@ LinkState& link_state() {
 
 // Sends the scene's frame (with any descriptions the pages lack) to the pages.
 void send_frame(DebugServer& server, const SceneData& s, LinkState& state) {
+  const auto start = std::chrono::steady_clock::now();
   if (server.take_resync()) state.stream = StreamState{};
   std::string lines;
   append_frame_lines(s, state.stream, lines);
-  server.broadcast(std::move(lines));
+  server.broadcast(std::move(lines), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace

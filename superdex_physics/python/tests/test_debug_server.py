@@ -203,6 +203,16 @@ def test_the_websocket_needs_the_token_and_a_local_origin(server):
     assert server.has_connection()
     page.close()
     assert page.wait_for(lambda: not server.has_connection())
+    # a Y-up page for pages that connect afterwards
+    server.set_coordinate_space(sdp.CoordinateSpace(axes=sdp.CoordinateSpaceAxes.RUB))
+    try:
+        page = Page(server)
+        assert page.wait_for(lambda: page.of_type("session"))
+        assert page.of_type("session")[0]["axes"] == "RUB"
+        assert server.get_coordinate_space().axes == sdp.CoordinateSpaceAxes.RUB
+        page.close()
+    finally:
+        server.set_coordinate_space(sdp.CoordinateSpace())
 
 
 def test_a_page_sees_the_scene_and_controls_the_simulation(server, stepping):

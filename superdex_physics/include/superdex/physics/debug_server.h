@@ -69,8 +69,10 @@ class DebugServer {
   bool wants_frame() const;
   /// True once after a page connected: every scene and actor must be described again.
   bool take_resync();
-  /// Sends JSON lines (one or more, '\n' separated) to every connected page.
-  void broadcast(std::string lines);
+  /// Sends JSON lines (one or more, '\n' separated) to every connected page; `build_seconds` is
+  /// the stepping thread's time spent making them. Frames are spaced so that building them
+  /// takes at most 3 % of the stepping thread's time.
+  void broadcast(std::string lines, double build_seconds = 0);
   /// Reports the latest simulated time and step count (shown by the page's status).
   void report_progress(double t, std::int64_t step);
 
