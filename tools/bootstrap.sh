@@ -9,9 +9,12 @@ APT_PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libhdf5-dev libtbb-dev
   libsuitesparse-dev libopenblas-dev
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
-  # the debugger page: Node.js and npm build it; chromium runs its tests (playwright-core)
-  nodejs npm chromium
 )
+# the debugger page: Node.js and npm build it, chromium runs its tests (playwright-core); a
+# machine may already have them from elsewhere (a Node.js package that bundles npm)
+command -v node >/dev/null 2>&1 || APT_PACKAGES+=(nodejs)
+command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(npm)
+command -v chromium >/dev/null 2>&1 || APT_PACKAGES+=(chromium)
 
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do
