@@ -28,7 +28,6 @@ import superdex.physics as sdp
 GRAVITY = 9.81  # m/s^2
 DUCK_LAMP_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab"
 PREFAB_OFFSET_X = -0.3  # m: where the prefab places the duck (under the seed's arm)
-PINNED_HEIGHT = 0.001  # m: the prefab pins the nodes up to this height above the belly
 
 
 def add_duck(scene: sdp.Scene, height: float) -> sdp.Actor:
@@ -41,9 +40,8 @@ def add_duck(scene: sdp.Scene, height: float) -> sdp.Actor:
         params=sdp.prefab.PrefabParams(name="duck_lamp", translation=[-PREFAB_OFFSET_X, 0.0, height]),
     )
     duck = scene.get_actor(instance.actors[0])
-    nodes = duck.get_node_positions_world()
-    pinned = np.flatnonzero(nodes[:, 2] <= nodes[:, 2].min() + PINNED_HEIGHT)
-    duck.remove_boundary_condition_nodes(pinned)
+    # the prefab pins its belly (fixedRegion) to stand in the seed's scene; dropped, it is free
+    duck.remove_boundary_condition_nodes(duck.get_boundary_condition_nodes())
     return duck
 
 

@@ -207,6 +207,12 @@ void export_actor(nb::module_& m) {
              for (Eigen::Index k = 0; k < idx.size(); ++k) nodes.push_back(static_cast<int>(idx[k]));
              a.scene.release_boundary_nodes(a.handle, nodes);
            }, "node_indices"_a, "Soft actors: releases pinned nodes.")
+      .def("get_boundary_condition_nodes", [](const Actor& a) {
+             const std::vector<int> nodes = a.scene.boundary_nodes(a.handle);
+             nb::object np = nb::module_::import_("numpy");
+             return np.attr("array")(nb::cast(nodes), "dtype"_a = np.attr("int64"));
+           }, "Soft actors: the indices of the pinned nodes (a prefab's fixedNodes or fixedRegion, and those set\n"
+              "by add_boundary_condition_nodes_world), increasing.")
       .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)

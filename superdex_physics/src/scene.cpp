@@ -186,6 +186,14 @@ void Scene::release_boundary_nodes(ActorHandle h, const std::vector<int>& nodes)
   }
 }
 
+std::vector<int> Scene::boundary_nodes(ActorHandle h) const {
+  const SoftBody& b = soft_actor(scene_data(handle_), h, "get_boundary_condition_nodes");
+  std::vector<int> nodes;
+  for (size_t i = 0; i < b.model.pinned.size(); ++i)
+    if (b.model.pinned[i]) nodes.push_back(static_cast<int>(i));
+  return nodes;
+}
+
 void Scene::destroy_actor(ActorHandle actor) {
   SceneData& s = scene_data(handle_);
   auto it = s.actors.find(actor);

@@ -237,8 +237,11 @@ def test_boundary_nodes_pin_move_and_release(scene):
                                   material={"type": "Linear", "youngsModulus": E, "poissonRatio": 0.0, "density": 1000},
                                   fixed_nodes=np.flatnonzero(nodes[:, 0] < 1e-9))
     end = np.flatnonzero(nodes[:, 0] > length - 1e-9)
+    fixed = np.flatnonzero(nodes[:, 0] < 1e-9)
+    np.testing.assert_array_equal(bar.get_boundary_condition_nodes(), fixed)
     d = 0.002
     bar.add_boundary_condition_nodes_world(end, nodes[end] + [d, 0, 0])
+    np.testing.assert_array_equal(bar.get_boundary_condition_nodes(), np.union1d(fixed, end))
     scene.step(1e3)  # static equilibrium with the end face moved
     x = bar.get_node_positions_world()
     np.testing.assert_allclose(x[end], nodes[end] + [d, 0, 0], atol=1e-6)
@@ -248,6 +251,7 @@ def test_boundary_nodes_pin_move_and_release(scene):
     # released, under gravity, the end face falls
     scene.set_gravity([0, 0, -9.81])
     bar.remove_boundary_condition_nodes(end)
+    np.testing.assert_array_equal(bar.get_boundary_condition_nodes(), fixed)
     for _ in range(5):
         scene.step(0.01)
     assert (bar.get_node_positions_world()[end, 2] < nodes[end, 2] - 1e-4).all()

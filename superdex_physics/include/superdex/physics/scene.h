@@ -165,6 +165,9 @@ class Scene {
   void set_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W);
   /// Releases pinned nodes: they move freely from the next step.
   void release_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes);
+  /// The pinned nodes of a soft actor (a prefab's fixedNodes / fixedRegion, set_boundary_nodes),
+  /// in increasing order.
+  std::vector<int> boundary_nodes(ActorHandle soft) const;
   /// An articulation from its description; `source` names it in error messages (a file).
   /// Creates one link actor per link.
   ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);
