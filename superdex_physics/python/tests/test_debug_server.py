@@ -363,3 +363,27 @@ def test_bad_use_is_refused_with_clear_errors(tmp_path, ui_dir):
     finally:
         srv.stop()
     assert not srv.has_started() and srv.get_port() == 0 and srv.get_url() == ""
+
+
+def test_a_flood_of_connections_leaves_the_server_answering(server, stepping):
+    """Hundreds of idle or half-open connections, and many short-lived WebSocket pages, neither
+    stop the simulation nor the server from answering a real page."""
+    port = server.get_port()
+    idle = []
+    for i in range(300):
+        s = socket.create_connection(("127.0.0.1", port), timeout=5)
+        if i % 3 == 0:
+            s.sendall(b"GET /")  # a request line that never ends
+        idle.append(s)
+    for _ in range(30):
+        with connect(ws_url(server), open_timeout=5) as ws:
+            ws.send('{"type":"control","action":"play"}')
+    steps = stepping.steps
+    assert http_get(server.get_url())[0] == 200
+    page = Page(server)
+    assert page.wait_for(lambda: len(page.of_type("frame")) >= 3)
+    assert page.wait_for(lambda: stepping.steps > steps + 10)
+    page.close()
+    for s in idle:
+        s.close()
+    assert stepping.error is None
