@@ -51,8 +51,10 @@ def versions():
         k, v = line.split(" ", 1)
         out[k] = v
     try:
-        out["commit"] = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                                       cwd=os.path.dirname(__file__)).stdout.strip()
+        here = os.path.dirname(__file__)
+        out["commit"] = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=here).stdout.strip()
+        if subprocess.run(["git", "status", "--porcelain"], capture_output=True, text=True, cwd=here).stdout.strip():
+            out["commit"] += " with uncommitted changes"
     except OSError:
         pass
     return out
@@ -222,6 +224,39 @@ def scene7(results, opts):
 REPORTERS = {1: scene1, 2: scene2, 3: scene3, 4: scene4, 5: scene5, 6: scene6, 7: scene7}
 
 
+FINDINGS = """## Why targets are not met: profiles
+
+Taken with `perf record -g` on the float build while the suite was written (not re-measured by
+each run); the numbers above are this run's.
+
+- Scene 1: the soft duck's own step is the floor. With no components at all the scene runs at
+  about 0.1x real time (tens of ms per step, see the physics-only row), and contact with the duck
+  makes steps costlier still; the seed loop and the C++ pipeline differ by little, so control
+  is not where the time goes. Both targets need the soft step to get about 100x to 1000x
+  faster, not the Python side.
+- Scene 4 (pile, ratio to MuJoCo far above 1.5): the pile is one island of 300 DOFs, above
+  `dense_island_max_dofs` (96), so it takes the sparse path. In the profile, CHOLMOD's symbolic
+  analysis is redone for each factorization (cholmod_transpose_sym 7 %, amd, etree, rowcolcounts,
+  super_symbolic: about 13 % together), the float matrices are copied to double for CHOLMOD and
+  J^T G J is assembled as sparse products (assign_sparse_to_sparse: about 8 %), and malloc/free
+  take about 5 %. The step of an already settled pile is faster (superdex_microbench
+  BM_StepPile50, double build), so the landing phase dominates the timed run.
+- Scene 3 with the table: two sphere contacts make the step several times the free arm's. The
+  profile is dominated by the per-block constraint evaluation of the line search (block_response
+  and 3 x 3 block dot products: about 20 % of samples) and dense LLT solves.
+- Scenes 2, 3, 6 (step): even without contact a SuperDex step of a 2- or 7-DOF arm costs 2 to 3
+  times MuJoCo's. Per-step allocations show up (malloc, free) and the mass matrix is computed per
+  step (BM_MassMatrix/7 is a few microseconds, about half of MuJoCo's whole step).
+- Scene 6: set_external_forces_on_dofs costs several times MuJoCo's slice assignment and
+  get_articulated_joint_velocities about twice a numpy copy (binding overhead; not profiled further).
+- Scene 7, Python threads: two Python threads stepping separate scenes get no speedup, and
+  `/usr/bin/time` shows user CPU time equal to wall time, so only one core is busy although
+  scene.step releases the GIL: something serializes steps of different scenes (not found; the
+  engine's registry lock is a shared lock). Worker threads (islands in parallel in one scene)
+  scale close to 1.8x.
+"""
+
+
 def write(path, sections, micro, opts, elapsed):
     v = versions()
     lines = ["# Benchmark results", "",
@@ -248,6 +283,7 @@ def write(path, sections, micro, opts, elapsed):
         for n in notes:
             lines.append(f"- Note: {n}")
         lines.append("")
+    lines += [FINDINGS, ""]
     lines += ["## Micro-benchmarks (Google Benchmark, double build)", ""]
     lines += [micro, ""]
     with open(path, "w") as fh:

@@ -74,8 +74,9 @@ def micro_benchmarks(opts):
         rows.append([f"`{b['name']}`", f"{report.f(b['real_time'])} {unit}", f"{report.f(b['cpu_time'])} {unit}", b["iterations"],
                      b.get("label", "") or extra])
     ctx = data.get("context", {})
-    head = (f"{ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz, library built as "
-            f"{ctx.get('library_build_type', '?')}; min time {min_time} s per benchmark.\n\n")
+    head = (f"{ctx.get('num_cpus', '?')} CPUs at {ctx.get('mhz_per_cpu', '?')} MHz; the engine in Release, the Google "
+            f"Benchmark library itself reports a {ctx.get('library_build_type', '?')} build (Debian's package); "
+            f"min time {min_time} s per benchmark.\n\n")
     return head + report.table(["benchmark", "wall", "CPU", "iterations", "counters"], rows)
 
 

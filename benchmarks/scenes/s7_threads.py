@@ -24,7 +24,7 @@ BOXES, SIDE = 18, 3
 
 def cases(opts):
     n = 2 if opts.quick else 8
-    steps = 3 if opts.quick else 250
+    steps = 3 if opts.quick else 100
     return [{"label": f"{variant} / {threads}", "sim": "superdex", "variant": variant, "threads": threads, "n": n,
              "steps": steps} for variant in ("worker threads", "Python threads") for threads in (1, 2)]
 
