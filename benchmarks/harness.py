@@ -29,8 +29,9 @@ def run_child(module: str, case: dict, timeout: float = 900.0) -> dict:
     # numpy's OpenBLAS (and any OpenMP pool) must not spin threads against the simulators' own
     env.setdefault("OMP_NUM_THREADS", "1")
     env.setdefault("OPENBLAS_NUM_THREADS", "1")
-    with tempfile.TemporaryFile() as err:
-        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=err, cwd=REPO, env=env)
+    # a scratch working directory: MuJoCo writes MUJOCO_LOG.TXT where it runs when it warns
+    with tempfile.TemporaryFile() as err, tempfile.TemporaryDirectory() as scratch:
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=err, cwd=scratch, env=env)
         start = time.monotonic()
         out = proc.stdout.read()  # until the child closes it (exits)
         _, status, usage = os.wait4(proc.pid, 0)
