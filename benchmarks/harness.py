@@ -1,0 +1,105 @@
+"""Timing harness: every measurement runs in a fresh child process (benchmarks/worker.py), so that
+its peak resident memory is its own (os.wait4's rusage of that child), and an imported simulator
+cannot warm or slow another's run. Repetitions are separate children; results are medians."""
+
+from __future__ import annotations
+
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parent
+REPO = BENCH.parent
+
+
+class ChildFailed(RuntimeError):
+    pass
+
+
+def run_child(module: str, case: dict, timeout: float = 900.0) -> dict:
+    """Runs scenes/<module>.run_case(case) in a new interpreter. Returns its result dict plus
+    'peak_rss_mb' (the child's peak resident set size)."""
+    cmd = [sys.executable, str(BENCH / "worker.py"), module, json.dumps(case)]
+    env = dict(os.environ)
+    # numpy's OpenBLAS (and any OpenMP pool) must not spin threads against the simulators' own
+    env.setdefault("OMP_NUM_THREADS", "1")
+    env.setdefault("OPENBLAS_NUM_THREADS", "1")
+    # a scratch working directory: MuJoCo writes MUJOCO_LOG.TXT where it runs when it warns
+    with tempfile.TemporaryFile() as err, tempfile.TemporaryDirectory() as scratch:
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=err, cwd=scratch, env=env)
+        start = time.monotonic()
+        out = proc.stdout.read()  # until the child closes it (exits)
+        _, status, usage = os.wait4(proc.pid, 0)
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        if time.monotonic() - start > timeout:
+            raise ChildFailed(f"{module} {case}: took longer than {timeout} s")
+        err.seek(0)
+        stderr = err.read().decode(errors="replace")
+    lines = [line for line in out.decode(errors="replace").splitlines() if line.startswith("RESULT ")]
+    if proc.returncode != 0 or not lines:
+        raise ChildFailed(f"{module} {case} failed (exit {proc.returncode}):\n{stderr[-3000:]}")
+    result = json.loads(lines[-1][len("RESULT "):])
+    result["peak_rss_mb"] = usage.ru_maxrss / 1024.0  # KiB on Linux
+    return result
+
+
+def measure(module: str, case: dict, repeats: int, log=print) -> dict:
+    """Median over `repeats` children of every numeric field; the first run's other fields
+    (checks, notes) are kept as they are; the individual walls are kept in 'walls'."""
+    runs = []
+    for r in range(repeats):
+        runs.append(run_child(module, case))
+    merged = dict(runs[0])
+    for key, value in runs[0].items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            merged[key] = statistics.median(run[key] for run in runs)
+    merged["walls"] = [run.get("wall") for run in runs]
+    merged["repeats"] = repeats
+    derive(merged)
+    log(f"    {case.get('label', case)}: {summary(merged)}")
+    return merged
+
+
+def derive(m: dict) -> None:
+    """Steps per second, ms per step and real-time factor from wall, steps and sim_time."""
+    if m.get("wall") and m.get("steps"):
+        m["steps_per_s"] = m["steps"] / m["wall"]
+        m["ms_per_step"] = 1e3 * m["wall"] / m["steps"]
+    if m.get("wall") and m.get("sim_time"):
+        m["rtf"] = m["sim_time"] / m["wall"]
+
+
+def summary(m: dict) -> str:
+    parts = []
+    if "ms_per_step" in m:
+        parts.append(f"{m['ms_per_step']:.4f} ms/step")
+    if "rtf" in m:
+        parts.append(f"{m['rtf']:.1f}x real time")
+    parts.append(f"{m['peak_rss_mb']:.0f} MB")
+    checks = m.get("checks")
+    if checks:
+        parts.append(", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in checks.items()))
+    return "; ".join(parts)
+
+
+class Timer:
+    """Wall time of a stepping loop: `with Timer() as t: ...; t.wall`."""
+
+    def __enter__(self):
+        self.start = time.perf_counter()
+        return self
+
+    def __exit__(self, *exc):
+        self.wall = time.perf_counter() - self.start
+        return False
+
+
+def emit(result: dict) -> None:
+    """What a child prints: one JSON line the parent reads."""
+    sys.stdout.write("RESULT " + json.dumps(result) + "\n")
+    sys.stdout.flush()

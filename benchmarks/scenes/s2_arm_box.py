@@ -1,0 +1,57 @@
+"""Scene 2: the seed's 2-DOF arm pressing on a rigid box (instead of the soft duck), in SuperDex,
+MuJoCo and PyBullet, from one description (scenes/arm.py), at the seed's 250 Hz.
+
+Variants
+- control: the seed's law (circle tracking, force control on contact, PI servos) in Python every
+  step, reading and writing each simulator through its Python API (the same per-step work).
+- physics: no control, the joints' efforts held at zero: the arm folds under gravity onto the
+  box; only the simulator's step is timed (PyBullet still needs its torques given every step).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from benchmarks.harness import Timer
+from benchmarks.scenes import arm
+
+NUMBER = 2
+TITLE = "2-DOF arm on a rigid box (250 Hz)"
+SIMS = ("superdex", "mujoco", "pybullet")
+
+
+def cases(opts):
+    seconds = 0.1 if opts.quick else 6.0
+    return [{"label": f"{variant} / {sim}", "sim": sim, "variant": variant, "seconds": seconds}
+            for variant in ("control", "physics") for sim in SIMS]
+
+
+def run_case(case):
+    desc = arm.scene_description(with_box=True)
+    sim = arm.ADAPTERS[case["sim"]](desc)
+    steps = int(round(case["seconds"] / arm.DT))
+    control = case["variant"] == "control"
+    controller = arm.Controller()
+    servos = [arm.Servo(**params) for params in arm.arm_description()["servos"]]
+    f = np.zeros(3)
+    fz_tail = []
+    with Timer() as timer:
+        for k in range(steps):
+            if control:
+                x, J, qd = sim.observe()
+                q_dot_des = controller.compute(x, J, f[2], k * arm.DT)
+                sim.apply([s.effort(w, qd[i], arm.DT) for i, (s, w) in enumerate(zip(servos, q_dot_des))])
+                sim.step()
+                f = sim.contact_force()
+                if k >= steps - int(1.0 / arm.DT):
+                    fz_tail.append(f[2])
+            else:
+                sim.step()
+    x, _, _ = sim.observe()
+    checks = {"ball_x": float(x[0]), "ball_z": float(x[2]), "box_dx_mm": 1e3 * float(sim.box_position()[0] + 0.3)}
+    if control:
+        checks["fz_last_1s_N"] = float(np.mean(fz_tail)) if fz_tail else 0.0
+        checks["force_mode_frac"] = controller.force_steps / steps
+    result = {"wall": timer.wall, "steps": steps, "sim_time": steps * arm.DT, "checks": checks}
+    sim.close()
+    return result
