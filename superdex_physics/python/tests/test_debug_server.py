@@ -220,6 +220,12 @@ def test_a_page_sees_the_scene_and_controls_the_simulation(server, stepping):
     assert page.wait_for(lambda: len(page.of_type("frame")) >= 5)
     (actor,) = [a for a in page.of_type("actor") if a["name"] == "ball"]
     ball_link = str(actor["links"][0]["handle"])
+    # the ball falls from 0.5 m (in real time once the page is attached) and comes to rest
+    def resting():
+        f = page.of_type("frame")[-1]
+        return f["t"] > 0.6 and abs(f["links"][ball_link][2] - 0.1) < 0.01
+
+    assert page.wait_for(resting, timeout=20)
     frame = page.of_type("frame")[-1]
     assert frame["links"][ball_link][2] == pytest.approx(0.1, abs=0.01)  # resting on the ground
     assert frame["signals"]["ball.contact_force"][2] == pytest.approx(actor["links"][0]["mass"] * 9.81, rel=0.02)
