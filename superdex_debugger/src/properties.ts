@@ -102,14 +102,7 @@ export class PropertiesPanel {
       state.push(['q', vec(js.q, 4)], ['qd', vec(js.qd, 4)]);
     }
     const bodies = new Set<number>([a.handle, ...(a.links ?? []).map((l) => l.handle)]);
-    const cf = contactForceOn(frame?.contacts, bodies);
-    const contact: Row[] = frame
-      ? [
-          ['force', vec(cf.force, 3), 'N'],
-          ['|force|', num(norm(cf.force), 3), 'N'],
-          ['contacts', String(cf.count)],
-        ]
-      : [];
+    const contact = contactRows(frame, bodies);
     return [
       ['Actor', rows],
       ['State', state],
@@ -148,14 +141,7 @@ export class PropertiesPanel {
       if (q) joint.push(['q', vec(q), unit[0]]);
       if (qd) joint.push(['qd', vec(qd), unit[1]]);
     }
-    const cf = contactForceOn(frame?.contacts, new Set([l.handle]));
-    const contact: Row[] = frame
-      ? [
-          ['force', vec(cf.force, 3), 'N'],
-          ['|force|', num(norm(cf.force), 3), 'N'],
-          ['contacts', String(cf.count)],
-        ]
-      : [];
+    const contact = contactRows(frame, new Set([l.handle]));
     return [
       ['Link', rows],
       ['World pose', pose],
@@ -163,4 +149,15 @@ export class PropertiesPanel {
       ['Contact (world)', contact],
     ];
   }
+}
+
+/** Rows of the total contact force (world) on `bodies` in `frame`; none without a frame. */
+function contactRows(frame: FrameMsg | undefined, bodies: Set<number>): Row[] {
+  if (!frame) return [];
+  const cf = contactForceOn(frame.contacts, bodies);
+  return [
+    ['force', vec(cf.force, 3), 'N'],
+    ['|force|', num(norm(cf.force), 3), 'N'],
+    ['contacts', String(cf.count)],
+  ];
 }
