@@ -137,7 +137,9 @@ export class PropertiesPanel {
       const qd = js.qd?.slice(offset, offset + dofs);
       // q has the same layout as qd only when the actor has no quaternion joints.
       const q = js.q?.length === js.qd?.length ? js.q.slice(offset, offset + dofs) : undefined;
-      const unit = l.joint.type === 'prismatic' ? ['m', 'm/s'] : l.joint.type === 'revolute' ? ['rad', 'rad/s'] : [undefined, undefined];
+      // the engine spells joint types as the bot files do ("Revolute")
+      const type = l.joint.type.toLowerCase();
+      const unit = type === 'prismatic' ? ['m', 'm/s'] : type === 'revolute' ? ['rad', 'rad/s'] : [undefined, undefined];
       if (q) joint.push(['q', vec(q), unit[0]]);
       if (qd) joint.push(['qd', vec(qd), unit[1]]);
     }

@@ -67,7 +67,8 @@ export interface Collider {
 
 /** The joint that connects a link to its parent. */
 export interface Joint {
-  type: 'hard' | 'free' | 'revolute' | 'prismatic' | 'spherical' | string;
+  /** "Hard", "Free", "Revolute", "Prismatic" or "Spherical" (the bot files' spelling). */
+  type: string;
   /** Number of generalized velocities of the joint. */
   dofs: number;
   /** Index of the joint's first DOF in the actor's qd. */
