@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "contact_block.h"
 #include "kinematics.h"
 #include "soft_island_solver.h"
+#include "sparse_newton_system.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -143,21 +145,18 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   rows.J.resize(m, n);
   rows.J.setFromTriplets(J_entries.begin(), J_entries.end());
 
-  // small islands: dense algebra (A's factor reused for one body); large ones: sparse; with soft
-  // bodies: block elimination
-  Eigen::LLT<MatX> A_llt;
-  const Eigen::LLT<MatX>* llt = island.bodies.empty() ? nullptr : &terms[island.bodies[0]].A_llt;
+  // small islands: dense algebra; large ones: sparse, on one pattern for every pass; with soft
+  // bodies: block elimination. Every solve starts from v_start: the free motion A^-1 r first.
   SparseMat A_sparse;
+  std::optional<SparseNewtonSystem> system;
   const bool sparse = n > params.dense_island_max_dofs;
   if (soft.empty() && sparse) {
     A_sparse = A.sparseView();
-  } else if (soft.empty() && island.bodies.size() > 1) {
-    A_llt.compute(A);
-    llt = &A_llt;
+    system.emplace(A_sparse, rows);
   }
   auto solve = [&] {
     if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, params);
-    return sparse ? solve_convex(A_sparse, r, rows, params) : solve_convex(A, *llt, r, rows, params);
+    return sparse ? solve_convex(A_sparse, r, rows, params, v_start, *system) : solve_convex(A, r, rows, params, v_start);
   };
   ConvexResult sol = solve();
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
@@ -183,7 +182,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     }
     if (pass > 0 && change <= params.friction_pass_tolerance * scale) break;
     const int previous = sol.iterations;
-    if (!soft.empty()) v_start = sol.v;  // the elastic iteration restarts from the last solution
+    v_start = sol.v;  // each pass starts from the last solution (a nearby problem)
     sol = solve();
     sol.iterations += previous;
   }

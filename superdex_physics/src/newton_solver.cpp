@@ -4,6 +4,7 @@
 
 #include "newton_loop.h"
 #include "sparse_cholesky.h"
+#include "sparse_newton_system.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -135,10 +136,11 @@ class DenseAlgebra {
   Eigen::LLT<MatX> llt_;
 };
 
-// Sparse linear algebra for the Newton loop: sparse A and J, sparse LDL^T of H.
+// Sparse linear algebra for the Newton loop: sparse A and J, H on a pattern analysed once.
 class SparseAlgebra {
  public:
-  SparseAlgebra(const SparseMat& A, const SparseRowMat& J) : A_(A), J_(J), Jt_(J.transpose()) {}
+  SparseAlgebra(const SparseMat& A, const SparseRowMat& J, SparseNewtonSystem& system)
+      : A_(A), J_(J), Jt_(J.transpose()), system_(system) {}
   int n() const { return static_cast<int>(A_.rows()); }
   VecX diagonal() const { return A_.diagonal(); }
   VecX A_mul(const VecX& x) const { return A_ * x; }
@@ -148,31 +150,41 @@ class SparseAlgebra {
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
-    const SparseMat H = A_ + constraint_hessian(rows, G, J_, Jt_);
-    cholesky_.compute(H);
+    system_.factor(rows, G);
   }
-  VecX solve(const VecX& b) const { return cholesky_.solve(b); }
+  VecX solve(const VecX& b) const { return system_.solve(b); }
 
  private:
   const SparseMat& A_;
   const SparseRowMat& J_;
   SparseMat Jt_;
-  SparseCholesky cholesky_;
+  SparseNewtonSystem& system_;
 };
 
 }  // namespace
 
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params) {
+  return solve_convex(A, r, rows, params, A_llt.solve(r));
+}
+
+ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                          const VecX& v_start) {
   DenseAlgebra alg(A, rows.J);
-  return newton(alg, r, rows, params, A_llt.solve(r));
+  return newton(alg, r, rows, params, v_start);
 }
 
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
   SparseCholesky A_chol;
   A_chol.compute(A);
-  SparseAlgebra alg(A, rows.J);
-  return newton(alg, r, rows, params, A_chol.solve(r));
+  SparseNewtonSystem system(A, rows);
+  return solve_convex(A, r, rows, params, A_chol.solve(r), system);
+}
+
+ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                          const VecX& v_start, SparseNewtonSystem& system) {
+  SparseAlgebra alg(A, rows.J, system);
+  return newton(alg, r, rows, params, v_start);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -68,9 +68,18 @@ struct ConvexResult {
 // problems). `A_llt` is A's Cholesky factor.
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params);
-// The same with sparse linear algebra (large islands): Newton steps use a sparse LDL^T of
-// A + J^T G J.
+// The same from v_start (a warm start: the solution of a nearby problem).
+ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                          const VecX& v_start);
+// The same with sparse linear algebra (large islands): Newton steps use a sparse Cholesky
+// factorization of A + J^T G J.
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
+// The same from v_start, with the Newton matrices on `system`'s pattern, which must have been
+// built for A and rows with the same J and block sizes (it may serve several calls whose blocks
+// differ only in kind and parameters).
+class SparseNewtonSystem;
+ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                          const VecX& v_start, SparseNewtonSystem& system);
 
 // J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.
 SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,

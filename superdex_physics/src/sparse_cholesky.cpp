@@ -18,13 +18,20 @@ struct SparseCholesky::Impl {
 namespace {
 
 // Our systems are small to medium and the engine runs islands in parallel itself: a threaded
-// BLAS behind CHOLMOD would spin its threads against ours, so it is made single-threaded once.
+// BLAS or OpenMP team behind CHOLMOD would spin its threads against ours (and against other
+// scenes stepped on other threads), so both are made single-threaded. OpenMP's thread count is
+// a per-thread setting: it is made once in every thread that factors.
 void use_serial_blas() {
   static std::once_flag once;
   std::call_once(once, [] {
     for (const char* name : {"openblas_set_num_threads", "goto_set_num_threads"})
       if (auto fn = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, name))) fn(1);
   });
+  thread_local bool serial_openmp = false;
+  if (!serial_openmp) {
+    if (auto fn = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) fn(1);
+    serial_openmp = true;
+  }
 }
 
 }  // namespace
@@ -36,12 +43,19 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<real>& H) {
+  use_serial_blas();
   impl_->H = H.cast<double>();
   impl_->llt.analyzePattern(impl_->H);
 }
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<real>& H) {
-  impl_->H = H.cast<double>();
+  use_serial_blas();
+  // the analysed structure: only the values change (no reallocation)
+  if (impl_->H.nonZeros() == H.nonZeros() && impl_->H.rows() == H.rows() && H.isCompressed())
+    Eigen::Map<Eigen::VectorXd>(impl_->H.valuePtr(), H.nonZeros()) =
+        Eigen::Map<const VecX>(H.valuePtr(), H.nonZeros()).cast<double>();
+  else
+    impl_->H = H.cast<double>();
   impl_->llt.factorize(impl_->H);
   return impl_->llt.info() == Eigen::Success;
 }
