@@ -3,6 +3,8 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <climits>
+
 #include "bind_common.h"
 
 namespace superdex::python {
@@ -18,6 +20,21 @@ nb::object fill_out(nb::handle out, const VecX& values, const std::string& arg) 
 }
 
 std::vector<int> read_indices(nb::handle obj, const std::string& arg) {
+  // a list or tuple of Python ints, without a conversion to numpy
+  PyObject* o = obj.ptr();
+  if (PyList_Check(o) || PyTuple_Check(o)) {
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(o);
+    PyObject** items = PySequence_Fast_ITEMS(o);
+    std::vector<int> out(n);
+    bool all_ints = true;
+    for (Py_ssize_t i = 0; i < n && all_ints; ++i) {
+      int overflow = 0;
+      const long k = PyLong_Check(items[i]) ? PyLong_AsLongAndOverflow(items[i], &overflow) : 0;
+      all_ints = PyLong_Check(items[i]) && !overflow && k >= INT_MIN && k <= INT_MAX;
+      out[i] = static_cast<int>(k);
+    }
+    if (all_ints) return out;
+  }
   const VecX v = read_vector(obj, arg);
   std::vector<int> out(v.size());
   for (Eigen::Index i = 0; i < v.size(); ++i) {

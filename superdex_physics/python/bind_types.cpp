@@ -16,10 +16,51 @@ NumpyArray numpy_copy(const real* data, std::initializer_list<size_t> shape) {
   return NumpyArray(copy->data(), shape.size(), shape.begin(), owner);
 }
 
+namespace {
+
+// The common cases without a numpy conversion: a 1-D contiguous float64 or float32 array, or a
+// list or tuple of Python numbers. False when obj is none of these (the general path decides).
+bool read_vector_fast(nb::handle obj, VecX& out) {
+  nb::ndarray<const double, nb::ndim<1>, nb::c_contig> d;
+  if (nb::try_cast(obj, d, false)) {
+    out = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.shape(0))).cast<real>();
+    return true;
+  }
+  nb::ndarray<const float, nb::ndim<1>, nb::c_contig> f;
+  if (nb::try_cast(obj, f, false)) {
+    out = Eigen::Map<const Eigen::VectorXf>(f.data(), static_cast<Eigen::Index>(f.shape(0))).cast<real>();
+    return true;
+  }
+  PyObject* o = obj.ptr();
+  if (!PyList_Check(o) && !PyTuple_Check(o)) return false;
+  const Py_ssize_t n = PySequence_Fast_GET_SIZE(o);
+  PyObject** items = PySequence_Fast_ITEMS(o);
+  out.resize(n);
+  for (Py_ssize_t i = 0; i < n; ++i) {
+    if (!PyFloat_Check(items[i]) && !PyLong_Check(items[i])) return false;
+    const double x = PyFloat_AsDouble(items[i]);
+    if (x == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();  // an int too large for a double: the general path reports it
+      return false;
+    }
+    out[i] = static_cast<real>(x);
+  }
+  return true;
+}
+
+}  // namespace
+
 VecX read_vector(nb::handle obj, const std::string& arg, long expected) {
+  VecX fast;
+  if (read_vector_fast(obj, fast)) {
+    if (expected >= 0 && fast.size() != expected)
+      throw Error(arg + ": expected " + std::to_string(expected) + " values, got " + std::to_string(fast.size()));
+    return fast;
+  }
   nb::object arr;
   try {
-    nb::object np = nb::module_::import_("numpy");
+    // imported once and never released (a static object would be destroyed after the interpreter)
+    static const nb::handle np = nb::module_::import_("numpy").release();
     arr = np.attr("ascontiguousarray")(obj, "dtype"_a = np.attr("float64"));
   } catch (nb::python_error&) {
     throw Error(arg + ": expected a sequence of numbers");
@@ -37,6 +78,9 @@ VecX read_vector(nb::handle obj, const std::string& arg, long expected) {
 Vec3 read_vec3(nb::handle obj, const std::string& arg) { return read_vector(obj, arg, 3); }
 
 real* out_buffer(nb::handle out, const std::string& arg, size_t n) {
+  // the common case first: a writable contiguous array of the right dtype and length
+  nb::ndarray<real, nb::ndim<1>, nb::c_contig> fast;
+  if (nb::try_cast(out, fast, false) && fast.shape(0) == n) return fast.data();
   if (nb::isinstance<DynamicArrayReal>(out)) {
     auto& d = nb::cast<DynamicArrayReal&>(out);
     if (d.values.size() != n)

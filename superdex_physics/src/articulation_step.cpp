@@ -24,14 +24,19 @@ std::vector<JointRow> joint_rows(const ArticulationModel& model, const Articulat
                                  const Eigen::LLT<MatX>& A_llt, real dt, const SolverParams& params) {
   std::vector<JointRow> rows;
   const real near_rigid = near_rigid_factor(params);
+  // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1, computed once when needed
+  VecX A_inv_diagonal;
   for (const JointModel& j : model.joints) {
     if (j.nv != 1) continue;
     const bool limited = j.has_lower || j.has_upper;
     if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
     const int k = j.v_offset;
-    VecX e = VecX::Zero(model.nv);
-    e[k] = 1;
-    const real w = A_llt.solve(e)[k];
+    if (A_inv_diagonal.size() == 0) {
+      MatX L_inv = MatX::Identity(model.nv, model.nv);
+      A_llt.matrixL().solveInPlace(L_inv);
+      A_inv_diagonal = L_inv.colwise().squaredNorm().transpose();
+    }
+    const real w = A_inv_diagonal[k];
     const real q = state.q[j.q_offset];
     if (limited) {
       // compliant limit (SAP): impulse = dt k (-(phi + dt vc) - tau_d vc), floored at the near-rigid compliance

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <optional>
 
 #include "contact_block.h"
 #include "kinematics.h"
@@ -17,7 +16,8 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 IslandSolution solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                             const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params) {
+                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                            std::shared_ptr<SparseNewtonSystem>* sparse_cache) {
   const auto t0 = std::chrono::steady_clock::now();
   IslandSolution out;
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
@@ -146,17 +146,31 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   rows.J.setFromTriplets(J_entries.begin(), J_entries.end());
 
   // small islands: dense algebra; large ones: sparse, on one pattern for every pass; with soft
-  // bodies: block elimination. Every solve starts from v_start: the free motion A^-1 r first.
+  // bodies: block elimination. The first solve starts from the free motion A^-1 r, or, when
+  // bodies touch, from their current velocities: resting and pressing contacts change little
+  // from one step to the next, and the problem is convex, so any start converges.
+  if (num_contacts > 0)
+    for (int b : island.bodies) v_start.segment(offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
   SparseMat A_sparse;
-  std::optional<SparseNewtonSystem> system;
+  std::shared_ptr<SparseNewtonSystem> system;
   const bool sparse = n > params.dense_island_max_dofs;
   if (soft.empty() && sparse) {
-    A_sparse = A.sparseView();
-    system.emplace(A_sparse, rows);
+    // A's structure is its bodies' diagonal blocks, whatever their values (so that it stays the
+    // same from step to step)
+    std::vector<Eigen::Triplet<real>> A_entries;
+    for (int b : island.bodies) {
+      const int o = offset[b], nb = s.articulations[b]->model.nv;
+      for (int j = 0; j < nb; ++j)
+        for (int i = 0; i < nb; ++i) A_entries.emplace_back(o + i, o + j, A(o + i, o + j));
+    }
+    A_sparse.resize(n, n);
+    A_sparse.setFromTriplets(A_entries.begin(), A_entries.end());
+    // the last step's pattern and analysis, when this island has kept its structure
+    if (sparse_cache && *sparse_cache && (*sparse_cache)->reuse(A_sparse, rows)) system = *sparse_cache;
   }
   auto solve = [&] {
     if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, params);
-    return sparse ? solve_convex(A_sparse, r, rows, params, v_start, *system) : solve_convex(A, r, rows, params, v_start);
+    return sparse ? solve_convex(A_sparse, r, rows, params, v_start, system) : solve_convex(A, r, rows, params, v_start);
   };
   ConvexResult sol = solve();
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
@@ -186,6 +200,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     sol = solve();
     sol.iterations += previous;
   }
+  if (sparse_cache) *sparse_cache = system;
   out.iterations = sol.iterations;
   out.residual = sol.residual;
   out.converged = sol.converged;

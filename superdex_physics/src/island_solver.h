@@ -24,9 +24,12 @@ struct IslandSolution {
 };
 
 // `soft_steps` holds one problem per scene soft body (null for those without free DOFs).
+// `sparse_cache` (may be null) holds the sparse Newton pattern of this island's bodies from the
+// last step: reused when the structure is unchanged, replaced otherwise.
 IslandSolution solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
                             const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params);
+                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                            std::shared_ptr<SparseNewtonSystem>* sparse_cache = nullptr);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -100,8 +100,13 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
         respond(vc_alpha, gamma_alpha);
         d -= dvc.dot(gamma_alpha);
         for (size_t k = 0; k < rows.blocks.size(); ++k) {
-          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-          dd += dvc.segment(r0, s).dot(G[k].topLeftCorner(s, s) * dvc.segment(r0, s));
+          const int r0 = rows.blocks[k].row;
+          if (rows.blocks[k].size() == 3) {
+            const Eigen::Matrix<real, 3, 1> d = dvc.template segment<3>(r0);
+            dd += d.dot(G[k] * d);
+          } else {
+            dd += G[k](0, 0) * dvc[r0] * dvc[r0];
+          }
         }
       }
       if (smooth) {

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -139,7 +140,7 @@ class DenseAlgebra {
 // Sparse linear algebra for the Newton loop: sparse A and J, H on a pattern analysed once.
 class SparseAlgebra {
  public:
-  SparseAlgebra(const SparseMat& A, const SparseRowMat& J, SparseNewtonSystem& system)
+  SparseAlgebra(const SparseMat& A, const SparseRowMat& J, std::shared_ptr<SparseNewtonSystem>& system)
       : A_(A), J_(J), Jt_(J.transpose()), system_(system) {}
   int n() const { return static_cast<int>(A_.rows()); }
   VecX diagonal() const { return A_.diagonal(); }
@@ -150,15 +151,17 @@ class SparseAlgebra {
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
-    system_.factor(rows, G);
+    // the pattern is built when first needed: a solve that starts converged needs none
+    if (!system_) system_ = std::make_shared<SparseNewtonSystem>(A_, rows);
+    system_->factor(rows, G);
   }
-  VecX solve(const VecX& b) const { return system_.solve(b); }
+  VecX solve(const VecX& b) const { return system_->solve(b); }
 
  private:
   const SparseMat& A_;
   const SparseRowMat& J_;
   SparseMat Jt_;
-  SparseNewtonSystem& system_;
+  std::shared_ptr<SparseNewtonSystem>& system_;
 };
 
 }  // namespace
@@ -177,12 +180,12 @@ ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& ro
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
   SparseCholesky A_chol;
   A_chol.compute(A);
-  SparseNewtonSystem system(A, rows);
+  std::shared_ptr<SparseNewtonSystem> system;
   return solve_convex(A, r, rows, params, A_chol.solve(r), system);
 }
 
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start, SparseNewtonSystem& system) {
+                          const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system) {
   SparseAlgebra alg(A, rows.J, system);
   return newton(alg, r, rows, params, v_start);
 }

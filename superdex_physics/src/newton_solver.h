@@ -12,6 +12,7 @@
 // applied.
 
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
 #include "superdex/physics/real.h"
@@ -74,12 +75,12 @@ ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& ro
 // The same with sparse linear algebra (large islands): Newton steps use a sparse Cholesky
 // factorization of A + J^T G J.
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
-// The same from v_start, with the Newton matrices on `system`'s pattern, which must have been
-// built for A and rows with the same J and block sizes (it may serve several calls whose blocks
-// differ only in kind and parameters).
+// The same from v_start, with the Newton matrices on `system`'s pattern: built on the first
+// Newton iteration when empty, else it must hold A's and rows' structure and values (built for
+// them, or SparseNewtonSystem::reuse()d; blocks may differ in kind and parameters).
 class SparseNewtonSystem;
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start, SparseNewtonSystem& system);
+                          const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system);
 
 // J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.
 SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,

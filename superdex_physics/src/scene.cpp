@@ -319,9 +319,24 @@ void Scene::step_dynamics(real dt) {
   std::vector<int> num_dofs(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
   const std::vector<Island> islands = build_islands(num_dofs, contacts, soft_free, soft_contacts);
+  // each large rigid island gets its slot of the sparse pattern cache (kept for islands that
+  // still exist, by their bodies); the map is complete before the parallel solves
+  std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
+  std::vector<std::shared_ptr<SparseNewtonSystem>*> sparse_cache(islands.size(), nullptr);
+  for (size_t k = 0; k < islands.size(); ++k) {
+    if (!islands[k].soft_bodies.empty()) continue;
+    int dofs = 0;
+    for (int b : islands[k].bodies) dofs += num_dofs[b];
+    if (dofs <= s.params.dense_island_max_dofs) continue;
+    auto previous = s.sparse_systems.find(islands[k].bodies);
+    auto& slot = sparse_systems[islands[k].bodies];
+    if (previous != s.sparse_systems.end()) slot = std::move(previous->second);
+    sparse_cache[k] = &slot;
+  }
+  s.sparse_systems = std::move(sparse_systems);
   std::vector<IslandSolution> solutions(islands.size());
   parallel(islands.size(), [&](size_t k) {
-    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params);
+    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
   });
 
   // 4. next states; a non-finite result leaves every actor in its last good state

@@ -1,7 +1,7 @@
 // Scene methods that read and write one actor: poses, velocities, forces, articulation queries.
 
 #include <cmath>
-#include <set>
+#include <utility>
 
 #include "dynamics.h"
 #include "kinematics.h"
@@ -135,26 +135,27 @@ int Scene::num_dofs(ActorHandle h) const {
 
 void Scene::set_external_forces_on_dofs(ActorHandle h, const std::vector<int>& dofs, const std::vector<real>& values) {
   const char* what = "set_external_forces_on_dofs";
-  ActorRef ref = lookup(scene_data(handle_), h, what);
+  SceneData& s = scene_data(handle_);
+  ActorRef ref = lookup(s, h, what);
   VecX* target = ref.soft ? &ref.soft->state.tau_external : nullptr;
-  Articulation* art = ref.soft ? nullptr : &whole(scene_data(handle_), h, what);
+  Articulation* art = ref.soft ? nullptr : &whole(s, h, what);
   const int nv = ref.soft ? static_cast<int>(target->size()) : art->model.nv;
   if (dofs.size() != values.size())
     throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but force_values has " +
                 std::to_string(values.size()));
   VecX tau = VecX::Zero(nv);
-  std::set<int> seen;
+  std::vector<char> seen(nv, 0);
   for (size_t i = 0; i < dofs.size(); ++i) {
     if (dofs[i] < 0 || dofs[i] >= nv)
       throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) +
                   " is out of range: the actor has " + std::to_string(nv) + " DOFs");
-    if (!seen.insert(dofs[i]).second)
+    if (std::exchange(seen[dofs[i]], 1))
       throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) + " appears twice");
     if (!std::isfinite(values[i]))
       throw Error(std::string(what) + ": force_values[" + std::to_string(i) + "] is not finite (NaN or infinity)");
     tau[dofs[i]] = values[i];
   }
-  (target ? *target : art->state.tau_external) = tau;
+  (target ? *target : art->state.tau_external).swap(tau);
 }
 
 void Scene::clear_external_forces(ActorHandle h) {

@@ -19,6 +19,8 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
+class SparseNewtonSystem;  // sparse_newton_system.h
+
 struct Articulation {
   ActorHandle handle = 0;
   int layer = 0;           // rigid bodies: collision layer
@@ -83,6 +85,9 @@ struct SceneData {
   std::map<std::string, StepCallbackRecord> callbacks;
   std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
   int next_signal_source = 1;
+  // sparse Newton patterns of the last step's large islands, by their sorted body indices
+  // (a cache: reused while an island keeps its structure)
+  std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;

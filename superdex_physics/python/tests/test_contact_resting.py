@@ -118,13 +118,14 @@ def test_contact_points_of_a_resting_box(scene):
 
 
 def test_solver_stats_report_the_contact(scene):
-    """A resting box is one island with contact; the solve converges."""
+    """A resting box is one island with contact; the solve converges, and, warm-started from the
+    resting velocities of the last step, within a couple of Newton iterations."""
     resting_box(scene, settle_seconds=0.5)
     stats = scene.get_solver_stats()
     assert stats.converged
     assert stats.num_contacts >= 1
     assert stats.num_islands == 1
-    assert stats.newton_iterations >= 1
+    assert stats.newton_iterations <= 2
     assert stats.residual >= 0
 
 
