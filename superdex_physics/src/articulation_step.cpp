@@ -23,6 +23,7 @@ namespace {
 std::vector<JointRow> joint_rows(const ArticulationModel& model, const ArticulationState& state,
                                  const Eigen::LLT<MatX>& A_llt, real dt, const SolverParams& params) {
   std::vector<JointRow> rows;
+  rows.reserve(4 * model.joints.size());  // at most a lower and an upper limit, a drive and friction
   const real near_rigid = near_rigid_factor(params);
   // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1, computed once when needed
   VecX A_inv_diagonal;
@@ -144,13 +145,12 @@ ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, rea
   const ArticulationModel& model = a.model;
   ArticulationTerms t;
   if (model.nv == 0) return t;
-  const MatX M = mass_matrix(model, a.kin);
+  t.A = mass_matrix(model, a.kin);
   const VecX c = bias_forces(model, a.state, a.kin, g_W);
   // (M + dt D) v+ = M v + dt (tau - c): viscous joint friction integrated implicitly
-  t.A = M;
+  t.r = t.A * a.state.v + dt * (a.state.tau_external - c);
   for (const JointModel& j : model.joints)
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
-  t.r = M * a.state.v + dt * (a.state.tau_external - c);
   implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
   t.joint_rows = joint_rows(model, a.state, t.A_llt, dt, params);

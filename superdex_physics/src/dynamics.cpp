@@ -13,9 +13,13 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
   for (int i : model.order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
-    const auto S = kin.S[i].leftCols(j.nv);
-    const Vec6 vJ = S * state.v.segment(j.v_offset, j.nv);
-    Vec6 A_i = S * a.segment(j.v_offset, j.nv) + cross_motion(kin.V_L[i], vJ);
+    // joint velocity and acceleration, column by column (nv is at most 6)
+    Vec6 vJ = Vec6::Zero(), aJ = Vec6::Zero();
+    for (int c = 0; c < j.nv; ++c) {
+      vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
+      aJ += kin.S[i].col(c) * a[j.v_offset + c];
+    }
+    Vec6 A_i = aJ + cross_motion(kin.V_L[i], vJ);
     // a Free joint's S changes with its rotation: Sdot qdot = (-w x (R^T v), 0)
     if (j.type == JointType::Free) A_i.head<3>() -= vJ.tail<3>().cross(vJ.head<3>());
     if (p >= 0) A_i += kin.X_PL[i].apply_motion_inverse(A[p]);
@@ -31,7 +35,7 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
     const int i = *it;
     const JointModel& j = model.joints[i];
     // armature (rotor inertia) acts on the joint acceleration directly, as in mass_matrix()
-    tau.segment(j.v_offset, j.nv) = kin.S[i].leftCols(j.nv).transpose() * F[i] + j.armature * a.segment(j.v_offset, j.nv);
+    for (int c = 0; c < j.nv; ++c) tau[j.v_offset + c] = kin.S[i].col(c).dot(F[i]) + j.armature * a[j.v_offset + c];
     const int p = model.parent[i];
     if (p >= 0) F[p] += kin.X_PL[i].apply_force(F[i]);
   }
@@ -43,32 +47,70 @@ VecX bias_forces(const ArticulationModel& model, const ArticulationState& state,
   return inverse_dynamics(model, state, kin, VecX::Zero(model.nv), g_W);
 }
 
+namespace {
+
+// A body's spatial inertia about its frame's origin: mass m, first moment h = m c and rotational
+// inertia I_o about the origin. Inertias of bodies in one frame add up in this form.
+struct OriginInertia {
+  real m = 0;
+  Vec3 h = Vec3::Zero();
+  Mat3 I = Mat3::Zero();
+
+  static OriginInertia of(const SpatialInertia& b) {
+    const Vec3 c = b.com;
+    return {b.mass, b.mass * c, b.inertia_com + b.mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose())};
+  }
+  // The same inertia expressed in frame A, given X_AB (this one in B).
+  OriginInertia in_parent(const SpatialTransform& X_AB) const {
+    const Vec3& p = X_AB.p;
+    const Vec3 h_A = X_AB.R * h;
+    // -[p + y]x^2 summed over the body: R I_o R^T + m (|p|^2 - p p^T) - ([p]x [h_A]x + [h_A]x [p]x)
+    const Mat3 cross_terms = p.dot(h_A) * Mat3::Identity() * 2 - p * h_A.transpose() - h_A * p.transpose();
+    return {m, h_A + m * p,
+            X_AB.R * I * X_AB.R.transpose() + m * (p.squaredNorm() * Mat3::Identity() - p * p.transpose()) + cross_terms};
+  }
+  OriginInertia& operator+=(const OriginInertia& o) {
+    m += o.m, h += o.h, I += o.I;
+    return *this;
+  }
+  // Momentum of motion V = (v, w): (m v - h x w, h x v + I w).
+  Vec6 apply(const Vec6& V) const {
+    const auto v = V.head<3>(), w = V.tail<3>();
+    Vec6 F;
+    F.head<3>() = m * v - h.cross(w);
+    F.tail<3>() = h.cross(v) + I * w;
+    return F;
+  }
+};
+
+}  // namespace
+
 MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin) {
   const int n = model.num_links;
-  std::vector<Mat6> Ic(n);
-  for (int i = 0; i < n; ++i) Ic[i] = model.inertia[i].matrix();
   // composite inertias, leaves first, each expressed in its own link frame
+  std::vector<OriginInertia> Ic(n);
+  for (int i = 0; i < n; ++i) Ic[i] = OriginInertia::of(model.inertia[i]);
   for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
     const int i = *it, p = model.parent[i];
-    if (p >= 0) Ic[p] += kin.X_PL[i].force_matrix() * Ic[i] * kin.X_PL[i].inverse().motion_matrix();
+    if (p >= 0) Ic[p] += Ic[i].in_parent(kin.X_PL[i]);
   }
+  // column by column: the force that a unit motion of DOF (i, c) needs, carried up the tree and
+  // projected onto each ancestor joint's motion subspace
   MatX M = MatX::Zero(model.nv, model.nv);
   for (int i = 0; i < n; ++i) {
     const JointModel& ji = model.joints[i];
-    if (ji.nv == 0) continue;
-    Eigen::Matrix<real, 6, Eigen::Dynamic, 0, 6, 6> F = Ic[i] * kin.S[i].leftCols(ji.nv);
-    M.block(ji.v_offset, ji.v_offset, ji.nv, ji.nv) = kin.S[i].leftCols(ji.nv).transpose() * F;
-    // off-diagonal blocks with every ancestor joint
-    for (int k = i; model.parent[k] >= 0;) {
-      F = kin.X_PL[k].force_matrix() * F;
-      k = model.parent[k];
-      const JointModel& jk = model.joints[k];
-      if (jk.nv == 0) continue;
-      auto block = (kin.S[k].leftCols(jk.nv).transpose() * F).eval();
-      M.block(jk.v_offset, ji.v_offset, jk.nv, ji.nv) = block;
-      M.block(ji.v_offset, jk.v_offset, ji.nv, jk.nv) = block.transpose();
+    for (int c = 0; c < ji.nv; ++c) {
+      const int col = ji.v_offset + c;
+      Vec6 F = Ic[i].apply(kin.S[i].col(c));
+      for (int r = 0; r < ji.nv; ++r) M(ji.v_offset + r, col) = kin.S[i].col(r).dot(F);
+      for (int k = i; model.parent[k] >= 0;) {
+        F = kin.X_PL[k].apply_force(F);
+        k = model.parent[k];
+        const JointModel& jk = model.joints[k];
+        for (int r = 0; r < jk.nv; ++r) M(col, jk.v_offset + r) = M(jk.v_offset + r, col) = kin.S[k].col(r).dot(F);
+      }
+      M(col, col) += ji.armature;
     }
-    for (int c = 0; c < ji.nv; ++c) M(ji.v_offset + c, ji.v_offset + c) += ji.armature;
   }
   return M;
 }

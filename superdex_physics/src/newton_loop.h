@@ -34,6 +34,7 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
   const real r_norm = (D.asDiagonal() * r).norm();
 
   VecX vc(m), grad(n), dv(n), dvc(m), jc(n), smooth_grad(n);
+  VecX vc_alpha(m), gamma_alpha(m), v_alpha;  // line-search trial points
   std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
 
   // impulses and Hessian blocks at the current constraint velocities
@@ -92,7 +93,6 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
     // elastic energy each trial costs a gradient evaluation, and a strong-Wolfe-like reduction
     // of the slope keeps Newton's convergence
     const real line_search_tolerance = smooth ? real(0.05) : real(1e-10);
-    VecX vc_alpha(m), gamma_alpha(m), v_alpha;
     auto dphi = [&](real alpha, real* ddphi) {
       real d = a0 + alpha * a1, dd = a1 + curvature;
       if (m > 0) {
