@@ -11,4 +11,9 @@ if _requested not in _VALUES:
         f"SUPERDEX_PRECISION={os.environ['SUPERDEX_PRECISION']!r} is not understood: use 'float' (default) or 'double'"
     )
 PRECISION = _VALUES[_requested]
+# The sparse Cholesky behind soft bodies opens small OpenMP regions; by default their threads then
+# spin, taking a core from the engine's own worker threads and from scenes stepped on other
+# threads. Waiting threads sleep instead unless the user chose otherwise (read when the OpenMP
+# runtime loads, with the module below).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 module = importlib.import_module(f"superdex._superdex_{PRECISION}")

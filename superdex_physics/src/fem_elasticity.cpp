@@ -210,17 +210,15 @@ real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, co
                 Mat12* hessian, bool project_spd) {
   const Mat3 F = deformation_gradient(rest, x);
   const real energy = rest.volume * energy_density(m, F, R);
-  // dF/dx (9 x 12): F = Ds Dm^-1 is linear in the node positions
-  Eigen::Matrix<real, 9, 12> dFdx = Eigen::Matrix<real, 9, 12>::Zero();
-  const Mat3& B = rest.Dm_inv;
-  for (int node = 1; node <= 3; ++node)
-    for (int j = 0; j < 3; ++j)      // column j of F
-      for (int i = 0; i < 3; ++i) {  // coordinate i
-        // F(i, j) = sum_k (x_k - x_0)(i) B(k-1, j)
-        dFdx(i + 3 * j, 3 * node + i) += B(node - 1, j);
-        dFdx(i + 3 * j, i) -= B(node - 1, j);
-      }
-  if (gradient) *gradient = rest.volume * dFdx.transpose() * vec(first_piola(m, F, R));
+  // F = Ds Dm^-1 is linear in the node positions: dF(i, j)/dx_a(c) = delta_ic D(a, j), with D's
+  // rows those of Dm^-1 for nodes 1-3 and minus their sum for node 0
+  Eigen::Matrix<real, 4, 3> D;
+  D.bottomRows<3>() = rest.Dm_inv;
+  D.row(0) = -rest.Dm_inv.colwise().sum();
+  if (gradient) {
+    const Mat3 P = rest.volume * first_piola(m, F, R);
+    for (int a = 0; a < 4; ++a) gradient->segment<3>(3 * a) = P * D.row(a).transpose();
+  }
   if (hessian) {
     Mat9 H = project_spd && m.model == MaterialModel::NeoHookean ? neo_hookean_projected_stress_derivative(m, F)
                                                                     : stress_derivative(m, F, R);
@@ -234,7 +232,18 @@ real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, co
       const Vec9 l = eig.eigenvalues().cwiseMax(real(0));
       H = eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
     }
-    *hessian = rest.volume * dFdx.transpose() * H * dFdx;
+    // block (a, b) of dF/dx^T H dF/dx: sum over columns j, l of F of D(a, j) D(b, l) H_jl, with
+    // H_jl the 3 x 3 block of H coupling column j with column l
+    Mat3 T[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int l = 0; l < 3; ++l)
+        T[a][l] = D(a, 0) * H.block<3, 3>(0, 3 * l) + D(a, 1) * H.block<3, 3>(3, 3 * l) + D(a, 2) * H.block<3, 3>(6, 3 * l);
+    for (int a = 0; a < 4; ++a)
+      for (int b = a; b < 4; ++b) {
+        const Mat3 block = rest.volume * (D(b, 0) * T[a][0] + D(b, 1) * T[a][1] + D(b, 2) * T[a][2]);
+        hessian->block<3, 3>(3 * a, 3 * b) = block;
+        if (b != a) hessian->block<3, 3>(3 * b, 3 * a) = block.transpose();
+      }
   }
   return energy;
 }

@@ -230,11 +230,16 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
     mass[f] = m.node_mass[d / 3];
     r[f] = mass[f] * v0[f] + dt * (mass[f] * g_W[d % 3] + b.state.tau_external[d]);
   }
-  // A = M + dt (alpha M + beta K(x0))
+  // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration
+  K0_.assign(pattern.H.nonZeros(), real(0));
+  add_element_hessians(b, pattern, x0, R_, dt * dt, K0_.data());
   A = pattern.H;
-  if (m.beta > 0) add_element_hessians(b, pattern, x0, R_, dt * m.beta, A.valuePtr());
+  if (m.beta > 0)
+    Eigen::Map<VecX>(A.valuePtr(), A.nonZeros()) = (m.beta / dt) * Eigen::Map<const VecX>(K0_.data(), A.nonZeros());
   for (int f = 0; f < nf; ++f) A.valuePtr()[pattern.slot(f, f)] += (1 + dt * m.alpha) * mass[f];
 }
+
+void SoftStep::start_hessian(Eigen::SparseMatrix<real>& K) const { std::copy(K0_.begin(), K0_.end(), K.valuePtr()); }
 
 VecX SoftStep::full_velocity(const VecX& v_free) const {
   VecX v = v_pinned;

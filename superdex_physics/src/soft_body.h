@@ -98,9 +98,13 @@ class SoftStep {
   // K = dt^2 P^T hess Psi(x0 + dt v) P, element Hessians projected to be positive semi-definite;
   // K must have the pattern's structure (its values are overwritten).
   void hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const;
+  // K at the start of the step, x0 (computed once with the stiffness damping): the Hessian of a
+  // first Newton iteration, which starts from v0 and so differs from x0 by dt v0 only.
+  void start_hessian(Eigen::SparseMatrix<real>& K) const;
 
  private:
-  std::vector<Mat3> R_;  // per-tetrahedron rotations of the corotated model, at x0
+  std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
+  std::vector<real> K0_;    // dt^2 P^T hess Psi(x0) P, in the pattern's value order
 };
 
 // Total elastic energy at positions x (J).

@@ -62,7 +62,9 @@ class SoftAlgebra {
     MatX H_rr = A_r_;
     for (size_t k = 0; k < soft_.size(); ++k) {
       const SoftStep& s = *soft_[k];
-      s.hessian(v.segment(offset_[k], s.size()), K_[k]);
+      // the first iteration's Hessian is the one at the start of the step, already computed
+      if (first_factor_) s.start_hessian(K_[k]);
+      else s.hessian(v.segment(offset_[k], s.size()), K_[k]);
       // H_k = A_k + K_k: the same structure, so the values add up
       Eigen::Map<VecX>(H_[k].valuePtr(), H_[k].nonZeros()) =
           Eigen::Map<const VecX>(s.A.valuePtr(), s.A.nonZeros()) + Eigen::Map<const VecX>(K_[k].valuePtr(), K_[k].nonZeros());
@@ -98,6 +100,7 @@ class SoftAlgebra {
       if (nr_ > 0) H_rr.noalias() -= B_[k].transpose() * chol.solve(B_[k]);
     }
     if (nr_ > 0) S_llt_.compute(H_rr);
+    first_factor_ = false;
   }
 
   VecX solve(const VecX& b) const {
@@ -134,6 +137,7 @@ class SoftAlgebra {
   std::vector<SparseMat> K_, H_;  // elastic Hessians and Newton blocks, per soft body
   std::vector<MatX> B_;           // couplings soft block x articulation DOFs
   Eigen::LLT<MatX> S_llt_;
+  bool first_factor_ = true;
 };
 
 }  // namespace
