@@ -177,6 +177,18 @@ void export_types(nb::module_& m) {
   nb::enum_<JointType>(m, "JointType")
       .value("HARD", JointType::Hard).value("FREE", JointType::Free).value("REVOLUTE", JointType::Revolute)
       .value("PRISMATIC", JointType::Prismatic).value("SPHERICAL", JointType::Spherical);
+  nb::enum_<NumericalFaultPolicy>(m, "NumericalFaultPolicy",
+                                  "What scene.step does when a body's next state is not finite or the solver does not converge.")
+      .value("RAISE", NumericalFaultPolicy::Raise,
+             "raise superdex.physics.Error naming the actor and quantity; the scene keeps its last good state (default)")
+      .value("WARN_AND_CLAMP", NumericalFaultPolicy::WarnAndClamp,
+             "warn (RuntimeWarning) and keep going: a faulty island's bodies keep their last good positions with zero "
+             "velocity; an unconverged but finite result is kept");
+  nb::class_<NumericalFault>(m, "NumericalFault", "A numerical fault that the last step clamped.")
+      .def_ro("actor", &NumericalFault::actor, "handle of the rigid, articulated or soft actor")
+      .def_ro("quantity", &NumericalFault::quantity, "\"positions\", \"velocities\", \"contact forces\", \"node positions\", ... or \"convergence\"")
+      .def_ro("message", &NumericalFault::message)
+      .def("__repr__", [](const NumericalFault& f) { return "NumericalFault(" + f.message + ")"; });
 }
 
 }  // namespace superdex::python
