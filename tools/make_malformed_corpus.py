@@ -203,7 +203,7 @@ def prefab_cases():
     case(P, "shape_absolute_path" + e, prefab(rigid=[box_actor(shape="/etc/passwd")]), r"actors\.rigid\[0\]\.shape: absolute paths are not allowed \('/etc/passwd'\): use \./ \(prefab folder\) or a path under the root")
     case(P, "shape_dot_dot" + e, prefab(rigid=[box_actor(shape="./../../secret.obj")]), r"actors\.rigid\[0\]\.shape: paths containing '\.\.' are not allowed \('\./\.\./\.\./secret\.obj'\)")
     case(P, "shape_file_missing" + e, prefab(rigid=[box_actor(shape="./missing.obj")]), r"actors\.rigid\[0\]\.shape: shape file '.*prefab/missing\.obj' does not exist")
-    case(P, "negative_mass" + e, prefab(rigid=[box_actor(mass=-1.0)]), r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): links\[0\]\.mass: must be a positive finite number, got -1")
+    case(P, "negative_mass" + e, prefab(rigid=[box_actor(mass=-1.0)]), r"actors\.rigid\[0\]\.mass: must be a positive finite number, got -1")
     case(P, "mass_and_density" + e, prefab(rigid=[box_actor(density=500.0)]), r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): give mass or density, not both")
     case(P, "rotation_three_values" + e, prefab(rigid=[box_actor(worldFromLocal={"rotation": [0, 0, 1], "translation": [0, 0, 0]})]),
          r"actors\.rigid\[0\]\.worldFromLocal\.rotation: expected an array of 4 numbers, got an array of 3")
@@ -213,7 +213,7 @@ def prefab_cases():
     case(P, "unknown_collider" + e, prefab(rigid=[box_actor(colliderType="Cone")]), r"actors\.rigid\[0\]\.colliderType: unknown collider type \"Cone\"")
     case(P, "dynamic_plane" + e, prefab(rigid=[box_actor(shape={"plane": {"normal": [0, 0, 1], "distance": 0}})]),
          r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): shape: a plane is unbounded and can only be static \(pass is_static=True\)")
-    case(P, "layer_out_of_range" + e, prefab(rigid=[box_actor(layer=99)]), r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): links\[0\]\.layer: must be between 0 and 63, got 99")
+    case(P, "layer_out_of_range" + e, prefab(rigid=[box_actor(layer=99)]), r"actors\.rigid\[0\]\.layer: must be between 0 and 63, got 99")
     case(P, "soft_triangle_mesh" + e, prefab(soft=[soft_actor(shape="./valid_cube.obj")]), r"actors\.soft\[0\]\.shape: '.*prefab/valid_cube\.obj' has no tetrahedral mesh/ \(connectivity M x 4\)")
     case(P, "soft_unknown_material" + e, prefab(soft=[soft_actor(material={"type": "Jelly", "youngsModulus": 1e5, "poissonRatio": 0.3})]),
          r"actors\.soft\[0\]: create_soft_actor\('corpus/jelly'\): material\.type: unknown material type 'Jelly'")

@@ -1,6 +1,7 @@
 // Loading `.mochi_prefab` / `.mochi_scene` files into a scene (prefab.h).
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -191,8 +192,12 @@ struct Loader {
       if (c == "None") collider = ColliderType::None;
     }
     const int layer = opt_int(e, "layer", 0, file, path);
+    if (layer < 0 || layer > 63) fail(file, path + ".layer", "must be between 0 and 63, got " + std::to_string(layer));
     const Transform X_WL = place(local_pose(e, file, path));
     const std::optional<real> density = opt_number(e, "density", file, path), mass = opt_number(e, "mass", file, path);
+    for (const auto& [key, value] : {std::pair{"mass", mass}, std::pair{"density", density}})
+      if (value && !(std::isfinite(*value) && *value > 0))
+        fail(file, path + "." + key, "must be a positive finite number, got " + json(*value).dump());
     validate_shape(geometry, file + ": " + path + ".shape");
     const ShapeHandle shape = create_shape(geometry);
     shapes.push_back(shape);
