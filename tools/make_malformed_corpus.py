@@ -153,7 +153,7 @@ def bot_cases():
     case(B, "sphere_negative_radius" + e, bot_edit(link(1, shape={"sphere": {"radius": -0.1}})), r"links\[1\]\.shape: sphere radius must be a positive finite number, got -0\.1")
     case(B, "unknown_primitive" + e, bot_edit(link(1, shape={"cone": {"radius": 0.1}})), r"links\[1\]\.shape: unknown inline shape 'cone' \(expected sphere, box, capsule or plane\)")
     case(B, "box_two_half_extents" + e, bot_edit(link(0, shape={"box": {"halfExtents": [0.1, 0.1]}})), r"links\[0\]\.shape\.box\.halfExtents: expected an array of 3 numbers, got an array of 2")
-    case(B, "shape_number" + e, bot_edit(link(0, shape=3)), r"links\[0\]\.shape: expected an object, got a number")
+    case(B, "shape_number" + e, bot_edit(link(0, shape=3)), r"links\[0\]\.shape: expected a shape file path or an inline primitive such as \{\"sphere\": \{\"radius\": r\}\}, got a number")
     case(B, "unknown_collider_type" + e, bot_edit(link(1, colliderType="Blob")), r"links\[1\]\.colliderType: unknown collider type 'Blob'")
     case(B, "render_model_not_glb" + e, bot_edit(link(1, renderModel="valid_params.json")), r"links\[1\]\.renderModel: render models are binary glTF")
     case(B, "contact_override_unknown_link" + e, bot(contactOverrides=[{"linkA": "base", "linkB": "hand", "enable": False}]),

@@ -138,6 +138,9 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
     if (r.at("shape").is_string()) {
       L.shape_file = r.string("shape");
     } else {
+      if (!r.at("shape").is_object())
+        r.fail(r.field_path("shape"), std::string("expected a shape file path or an inline primitive such as {\"sphere\": {\"radius\": r}}, got ") +
+                                          type_name(r.at("shape")));
       L.shape = shape_from_json(r.at("shape"), "", r.field_path("shape"));
       L.link_from_shape = shape_pose_from_json(r.at("shape"), "", r.field_path("shape"));
     }
