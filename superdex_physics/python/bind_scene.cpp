@@ -148,7 +148,9 @@ void export_scene(nb::module_& m) {
            "the same time; one scene must not be used from two threads at once.")
       .def("get_total_simulation_time", &Scene::total_simulation_time)
       .def("get_solver_params", &Scene::solver_params)
-      .def("set_solver_params", &Scene::set_solver_params, "params"_a)
+      .def("set_solver_params", [](Scene& s, nb::handle params) {
+             s.set_solver_params(object_of<SolverParams>(params, "set_solver_params: params", "a superdex.physics.SolverParams"));
+           }, "params"_a.none())
       .def("get_solver_stats", &Scene::solver_stats)
       .def("set_numerical_fault_policy", [](Scene& s, nb::handle policy) {
              NumericalFaultPolicy p;
@@ -256,7 +258,9 @@ void export_scene(nb::module_& m) {
       .def("cancel_callback", &Scene::cancel_callback, "name"_a)
       .def("capture_state", [](const Scene& s) { return SceneState{s.capture_state()}; },
            "The evolving state; restore_state() replays bitwise identically.")
-      .def("restore_state", [](Scene& s, const SceneState& st) { s.restore_state(st.bytes); }, "state"_a)
+      .def("restore_state", [](Scene& s, nb::handle state) {
+             s.restore_state(object_of<SceneState>(state, "restore_state: state", "a SceneState from capture_state()").bytes);
+           }, "state"_a.none())
       .def("capture_state_to_bytes", [](const Scene& s) {
              const std::vector<std::uint8_t> b = s.capture_state();
              return nb::bytes(reinterpret_cast<const char*>(b.data()), b.size());

@@ -267,6 +267,10 @@ def test_arguments_of_the_wrong_type_name_the_argument(scene):
         scene.register_post_step_callback("cb", None)
     with pytest.raises(sdp.Error, match="register_query: query_type: expected a superdex.physics.QueryType, got str"):
         ball.register_query("TOTAL_CONTACT_FORCE")
+    with pytest.raises(sdp.Error, match="set_solver_params: params: expected a superdex.physics.SolverParams, got None"):
+        scene.set_solver_params(None)
+    with pytest.raises(sdp.Error, match=r"restore_state: state: expected a SceneState from capture_state\(\), got bytes"):
+        scene.restore_state(b"state")
     assert scene.get_actor(ball.get_handle()) == ball  # ints and actors still work
     scene.step(np.float64(0.01))  # and any real number type for dt
     assert scene.get_total_simulation_time() == pytest.approx(0.01)
