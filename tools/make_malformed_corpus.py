@@ -151,6 +151,10 @@ def bot_cases():
          r"links\[2\]\.actuators\[0\]\.name: duplicate name 'm'")
     case(B, "missing_shape_file" + e, bot_edit(link(2, shape="meshes/nothing.obj")), r"links\[2\]\.shape: shape file '.*bot/meshes/nothing\.obj' does not exist")
     case(B, "sphere_negative_radius" + e, bot_edit(link(1, shape={"sphere": {"radius": -0.1}})), r"links\[1\]\.shape: sphere radius must be a positive finite number, got -0\.1")
+    # found by mutating the example bot: a required primitive field that is missing
+    case(B, "capsule_without_half_length" + e, bot_edit(link(2, shape={"capsule": {"radius": 0.02}})),
+         r"links\[2\]\.shape\.capsule\.halfLength: required")
+    case(B, "sphere_radius_null" + e, bot_edit(link(1, shape={"sphere": {"radius": None}})), r"links\[1\]\.shape\.sphere\.radius: required")
     case(B, "unknown_primitive" + e, bot_edit(link(1, shape={"cone": {"radius": 0.1}})), r"links\[1\]\.shape: unknown inline shape 'cone' \(expected sphere, box, capsule or plane\)")
     case(B, "box_two_half_extents" + e, bot_edit(link(0, shape={"box": {"halfExtents": [0.1, 0.1]}})), r"links\[0\]\.shape\.box\.halfExtents: expected an array of 3 numbers, got an array of 2")
     case(B, "shape_number" + e, bot_edit(link(0, shape=3)), r"links\[0\]\.shape: expected a shape file path or an inline primitive such as \{\"sphere\": \{\"radius\": r\}\}, got a number")

@@ -42,10 +42,14 @@ class Reader {
   }
   std::string field_path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
   bool has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
-  const json& at(const char* key) const { return j_.at(key); }
+  // the value of a field the caller requires: "required" naming it when absent (or null)
+  const json& at(const char* key) const {
+    if (!has(key)) fail(field_path(key), "required");
+    return j_.at(key);
+  }
 
   real number(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_number()) fail(field_path(key), std::string("expected a number, got ") + type_name(v));
     const real x = v.get<real>();
     if (!std::isfinite(x)) fail(field_path(key), "must be finite");
@@ -53,7 +57,7 @@ class Reader {
   }
   std::optional<real> opt_number(const char* key) const { return has(key) ? std::optional<real>(number(key)) : std::nullopt; }
   int integer(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_number_integer()) fail(field_path(key), std::string("expected an integer, got ") + type_name(v));
     constexpr int kMax = std::numeric_limits<int>::max(), kMin = std::numeric_limits<int>::min();
     const bool out_of_range = v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(kMax)
@@ -62,18 +66,18 @@ class Reader {
     return v.get<int>();
   }
   std::string string(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_string()) fail(field_path(key), std::string("expected a string, got ") + type_name(v));
     return v.get<std::string>();
   }
   bool boolean(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_boolean()) fail(field_path(key), std::string("expected true or false, got ") + type_name(v));
     return v.get<bool>();
   }
   template <int N>
   Eigen::Matrix<real, N, 1> vec(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_array() || v.size() != N)
       fail(field_path(key), "expected an array of " + std::to_string(N) + " numbers, got " +
                                 (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(type_name(v))));
