@@ -22,8 +22,9 @@ bool all_finite(const std::vector<Vec3>& xs) {
 }  // namespace
 
 void StepGuard::add(ActorHandle actor, const std::string& name, const std::string& quantity, const std::string& detail) {
+  // one fault per actor: the first quantity found bad (the others follow from it)
   for (const NumericalFault& f : faults_)
-    if (f.actor == actor && f.quantity == quantity) return;
+    if (f.actor == actor) return;
   NumericalFault f;
   f.actor = actor;
   f.quantity = quantity;
@@ -60,8 +61,10 @@ void StepGuard::check_island(const Island& island, IslandSolution& sol) {
     add(a.handle, a.model.name, quantity, detail + outcome + advice);
   }
   for (int k : island.soft_bodies) {
+    // a soft body's unknowns are its node velocities
     const SoftBody& body = *s_.soft_bodies[k];
-    add(body.handle, body.model.name, quantity, detail + outcome + advice);
+    const std::string soft_quantity = quantity == "velocities" ? "node velocities" : quantity;
+    add(body.handle, body.model.name, soft_quantity, (quantity == "velocities" ? "node " : "") + detail + outcome + advice);
   }
   if (!clamp() || quantity == "convergence") return;
   // clamp: the island's bodies stop where they are; no contact force is reported

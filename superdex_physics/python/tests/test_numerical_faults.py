@@ -119,3 +119,19 @@ def test_warnings_can_be_made_errors(scene):
 def test_policy_argument_is_checked(scene):
     with pytest.raises(sdp.Error, match="set_numerical_fault_policy: policy: expected a superdex.physics.NumericalFaultPolicy, got str"):
         scene.set_numerical_fault_policy("raise")
+
+
+def test_soft_body_fault_names_node_velocities(scene):
+    nodes = np.array([[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]], dtype=float)
+    soft = scene.create_soft_actor("jelly", sdp.create_tet_mesh_shape(nodes, np.array([[0, 1, 2, 3]])))
+    # a pinned node sent to the largest finite coordinate: its velocity overflows
+    soft.add_boundary_condition_nodes_world([0], [[float(np.finfo(real_dtype()).max), 0, 0]])
+    before = np.array(soft.get_node_positions_world())
+    with pytest.raises(sdp.Error, match=r"^step: scene 'test', actor 'jelly' \(handle \d+\): node velocities became non-finite[^\n]*$"):
+        scene.step(0.01)
+    np.testing.assert_array_equal(soft.get_node_positions_world(), before)
+    scene.set_numerical_fault_policy(sdp.NumericalFaultPolicy.WARN_AND_CLAMP)
+    with pytest.warns(RuntimeWarning, match="actor 'jelly'.*node velocities"):
+        scene.step(0.01)
+    np.testing.assert_array_equal(soft.get_node_positions_world(), before)
+    assert [f.quantity for f in scene.get_last_numerical_faults()] == ["node velocities"]
