@@ -280,7 +280,9 @@ void export_robotics(nb::module_& parent) {
   def_kind<ComponentKind::Sensor>(m, ctx_cls, bot_cls, "sensor");
   def_kind<ComponentKind::Actuator>(m, ctx_cls, bot_cls, "actuator");
 
-  m.def("create_context", [] { return new PyContext(); }, nb::rv_policy::take_ownership, "A new robotics context.");
+  m.def("create_context", [] { return new PyContext(); }, nb::rv_policy::take_ownership,
+        "A new robotics context. Not thread-safe: a context, its bots and components are used by one\n"
+        "thread at a time (give each thread that steps its own scene its own context).");
   m.def("load_bot_prefab_from_file", [](const std::string& path) {
         std::vector<std::string> warnings;
         BotPrefab p = robotics::load_bot_prefab(path, &warnings);
