@@ -230,7 +230,12 @@ void export_actor(nb::module_& m) {
              return np.attr("array")(nb::cast(nodes), "dtype"_a = np.attr("int64"));
            }, "Soft actors: the indices of the pinned nodes (a prefab's fixedNodes or fixedRegion, and those set\n"
               "by add_boundary_condition_nodes_world), increasing.")
-      .def("register_query", [](Actor& a, QueryType type) { return a.scene.register_query(a.handle, type); }, "query_type"_a,
+      .def("register_query", [](Actor& a, nb::handle query_type) {
+             QueryType type;
+             if (!nb::try_cast(query_type, type))
+               throw Error(std::string("register_query: query_type: expected a superdex.physics.QueryType, got ") + nb::inst_name(query_type).c_str());
+             return a.scene.register_query(a.handle, type);
+           }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)
       .def("get_contact_force_world", [](const Actor& a) { const Vec3 f = a.scene.contact_force(a.handle); return numpy_copy(f.data(), {3}); },

@@ -76,6 +76,16 @@ struct SceneState {
 // The handle of an Actor object or an integer handle (bind_scene.cpp).
 ActorHandle actor_handle_of(nb::handle obj, const std::string& arg);
 
+/// `obj` as a bound C++ object of type T, or superdex::Error naming the argument `arg` and the
+/// `expected` Python type (instead of nanobind's TypeError for a mismatched signature).
+template <class T>
+T& object_of(nb::handle obj, const std::string& arg, const char* expected) {
+  T* p = nullptr;
+  if (obj.is_none() || !nb::try_cast<T*>(obj, p) || !p)
+    throw Error(arg + ": expected " + expected + ", got " + nb::inst_name(obj).c_str());
+  return *p;
+}
+
 // The shape handle behind a Shape object (bind_engine.cpp).
 ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg);
 // A Shape object for a registered shape (bind_engine.cpp).

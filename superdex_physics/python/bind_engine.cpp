@@ -28,8 +28,10 @@ real read_real(nb::handle obj, const std::string& arg) {
 
 void export_engine(nb::module_& m) {
   m.def("initialize", &physics::initialize, "num_worker_threads"_a = 0,
-        "Starts the engine: 0 single-threaded, -1 one worker per core, N worker threads.");
-  m.def("shutdown", &physics::shutdown, "Destroys every scene and shape and stops the engine.");
+        "Starts the engine: 0 single-threaded, -1 one worker per core, N worker threads.\n"
+        "Not thread-safe: call it from one thread while no other thread uses the engine.");
+  m.def("shutdown", &physics::shutdown, "Destroys every scene and shape and stops the engine.\n"
+        "Not thread-safe: no other thread may be using the engine (stepping a scene, loading a file).");
   m.def("is_initialized", &physics::is_initialized);
   m.def("start_recording", &physics::start_recording, "path"_a, "frame_interval"_a = 1.0 / 60,
         "Records every live scene's steps to a JSON-lines file (docs/recording_format.md), a frame per\n"
@@ -38,8 +40,12 @@ void export_engine(nb::module_& m) {
   m.def("is_recording", &physics::is_recording);
   m.def("recorded_time", &physics::recorded_time, "Latest simulated time (s) a recorded scene reached.");
   m.def("uses_double_precision", [] { return kUsesDoublePrecision; }, "True in the float64 build (SUPERDEX_PRECISION=double).");
-  m.def("create_scene", &physics::create_scene, "name"_a = "scene");
-  m.def("destroy_scene", [](const Scene& s) { physics::destroy_scene(s.handle()); }, "scene"_a);
+  m.def("create_scene", &physics::create_scene, "name"_a = "scene",
+        "A new, empty scene. Thread-safe: scenes may be created, filled and stepped from several threads,\n"
+        "each scene used by one thread at a time.");
+  m.def("destroy_scene", [](const Scene& s) { physics::destroy_scene(s.handle()); }, "scene"_a,
+        "Destroys a scene and its actors; its handles then raise superdex.physics.Error.\n"
+        "Not thread-safe for that scene: no other thread may be stepping or using it.");
 
   nb::class_<Shape>(m, "Shape", "A shape registered with the engine, referenced by handle.")
       .def("get_handle", [](const Shape& s) { return s.handle; })

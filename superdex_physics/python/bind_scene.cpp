@@ -42,6 +42,17 @@ StepCallback python_step_callback(nb::callable fn) {
   };
 }
 
+nb::callable callable_of(nb::handle fn, const std::string& arg) {
+  if (!PyCallable_Check(fn.ptr())) throw Error(arg + ": expected a callable fn(scene, dt), got " + nb::inst_name(fn).c_str());
+  return nb::borrow<nb::callable>(fn);
+}
+
+// The faults that the last step clamped (NumericalFaultPolicy.WARN_AND_CLAMP), as RuntimeWarnings.
+void warn_numerical_faults(const Scene& s) {
+  for (const NumericalFault& f : s.last_numerical_faults())
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, f.message.c_str(), 1) != 0) throw nb::python_error();
+}
+
 void emit_warnings(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
 }
@@ -120,12 +131,42 @@ void export_scene(nb::module_& m) {
       .def("set_gravity", [](Scene& s, nb::handle g) { s.set_gravity(read_vec3(g, "set_gravity: gravity")); }, "gravity"_a,
            "Gravity in m/s^2, world frame (Z up).")
       .def("get_gravity", [](const Scene& s) { const Vec3 g = s.gravity(); return numpy_copy(g.data(), {3}); })
-      .def("step", &Scene::step, "dt"_a, nb::call_guard<nb::gil_scoped_release>(),
-           "Advances the scene by dt seconds (releases the GIL).")
+      .def("step", [](Scene& s, nb::handle dt) {
+             double x;
+             if (!nb::try_cast(dt, x)) throw Error(std::string("step: dt: expected a number of seconds, got ") + nb::inst_name(dt).c_str());
+             {
+               nb::gil_scoped_release release;
+               s.step(static_cast<real>(x));
+             }
+             warn_numerical_faults(s);
+           }, "dt"_a,
+           "Advances the scene by dt seconds (releases the GIL while the physics runs).\n\n"
+           "Raises superdex.physics.Error for a dt that is not a positive finite number and, under the\n"
+           "default NumericalFaultPolicy.RAISE, for a numerical fault (the scene then keeps its last good\n"
+           "state). An exception raised by a Python callback or component propagates as itself, with its\n"
+           "traceback. Thread safety: different scenes may be stepped from different Python threads at\n"
+           "the same time; one scene must not be used from two threads at once.")
       .def("get_total_simulation_time", &Scene::total_simulation_time)
       .def("get_solver_params", &Scene::solver_params)
-      .def("set_solver_params", &Scene::set_solver_params, "params"_a)
+      .def("set_solver_params", [](Scene& s, nb::handle params) {
+             s.set_solver_params(object_of<SolverParams>(params, "set_solver_params: params", "a superdex.physics.SolverParams"));
+           }, "params"_a.none())
       .def("get_solver_stats", &Scene::solver_stats)
+      .def("set_numerical_fault_policy", [](Scene& s, nb::handle policy) {
+             NumericalFaultPolicy p;
+             if (!nb::try_cast(policy, p))
+               throw Error(std::string("set_numerical_fault_policy: policy: expected a superdex.physics.NumericalFaultPolicy, got ") +
+                           nb::inst_name(policy).c_str());
+             s.set_numerical_fault_policy(p);
+           }, "policy"_a,
+           "NumericalFaultPolicy.RAISE (default): a step whose result is not finite or does not converge raises\n"
+           "superdex.physics.Error naming the actor and quantity, and the scene keeps its last good state.\n"
+           "NumericalFaultPolicy.WARN_AND_CLAMP: the step goes on, the faulty island's bodies keep their last\n"
+           "good positions with zero velocity, and each fault is a RuntimeWarning (get_last_numerical_faults()).\n"
+           "Not thread-safe: call it while no thread steps this scene.")
+      .def("get_numerical_fault_policy", &Scene::numerical_fault_policy)
+      .def("get_last_numerical_faults", &Scene::last_numerical_faults,
+           "The faults the last step clamped under WARN_AND_CLAMP (empty after a clean step).")
       .def("create_rigid_actor",
            [](Scene& s, const std::string& name, nb::handle shape, bool is_static, nb::handle world_from_local,
               ColliderType collider_type, nb::handle density, nb::handle mass, int layer, nb::handle contact) {
@@ -186,7 +227,8 @@ void export_scene(nb::module_& m) {
            "density"_a.none() = nb::none(), "fixed_nodes"_a.none() = nb::none(),
            "A soft body from a tet-mesh shape; material {type, youngsModulus, poissonRatio, density, damping\n"
            "(stiffness-proportional Rayleigh, s), dampingAlpha (mass-proportional, 1/s)}; fixed_nodes are pinned.")
-      .def("get_actor", [](Scene& s, ActorHandle h) {
+      .def("get_actor", [](Scene& s, nb::handle handle) {
+             const ActorHandle h = actor_handle_of(handle, "get_actor: handle");
              if (!s.has_actor(h)) throw Error("get_actor: actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
              return Actor{s, h};
            }, "handle"_a)
@@ -206,17 +248,19 @@ void export_scene(nb::module_& m) {
            }, "a"_a, "b"_a, "enable"_a, "Enables or disables contact between two actors (both ways).")
       .def("enable_layer_contact_symmetric", &Scene::enable_layer_contact, "layer_a"_a, "layer_b"_a, "enable"_a,
            "Enables or disables contact between two collision layers (0..63, both ways).")
-      .def("register_pre_step_callback", [](Scene& s, const std::string& name, nb::callable fn, int priority) {
-             s.register_pre_step_callback(name, python_step_callback(fn), priority);
-           }, "name"_a, "fn"_a, "priority"_a = 100,
+      .def("register_pre_step_callback", [](Scene& s, const std::string& name, nb::handle fn, int priority) {
+             s.register_pre_step_callback(name, python_step_callback(callable_of(fn, "register_pre_step_callback('" + name + "'): fn")), priority);
+           }, "name"_a, "fn"_a.none(), "priority"_a = 100,
            "Calls fn(scene, dt) at the start of every step, lower priority first. Exceptions propagate to step().")
-      .def("register_post_step_callback", [](Scene& s, const std::string& name, nb::callable fn, int priority) {
-             s.register_post_step_callback(name, python_step_callback(fn), priority);
-           }, "name"_a, "fn"_a, "priority"_a = 100, "Calls fn(scene, dt) at the end of every step.")
+      .def("register_post_step_callback", [](Scene& s, const std::string& name, nb::handle fn, int priority) {
+             s.register_post_step_callback(name, python_step_callback(callable_of(fn, "register_post_step_callback('" + name + "'): fn")), priority);
+           }, "name"_a, "fn"_a.none(), "priority"_a = 100, "Calls fn(scene, dt) at the end of every step.")
       .def("cancel_callback", &Scene::cancel_callback, "name"_a)
       .def("capture_state", [](const Scene& s) { return SceneState{s.capture_state()}; },
            "The evolving state; restore_state() replays bitwise identically.")
-      .def("restore_state", [](Scene& s, const SceneState& st) { s.restore_state(st.bytes); }, "state"_a)
+      .def("restore_state", [](Scene& s, nb::handle state) {
+             s.restore_state(object_of<SceneState>(state, "restore_state: state", "a SceneState from capture_state()").bytes);
+           }, "state"_a.none())
       .def("capture_state_to_bytes", [](const Scene& s) {
              const std::vector<std::uint8_t> b = s.capture_state();
              return nb::bytes(reinterpret_cast<const char*>(b.data()), b.size());

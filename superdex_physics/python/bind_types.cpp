@@ -1,5 +1,7 @@
 // Value types: Error, Quaternion, TransformRT, the dynamic arrays, enums, and array helpers.
 
+#include <cstring>
+
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
@@ -132,7 +134,22 @@ size_t wrap_index(long i, size_t n) {
 }  // namespace
 
 void export_types(nb::module_& m) {
-  nb::exception<superdex::Error>(m, "Error", PyExc_RuntimeError);
+  nb::exception<superdex::Error> error_type(m, "Error", PyExc_RuntimeError);
+  // Messages quote file contents, which need not be UTF-8 (a malformed file's bytes): decode
+  // them with replacement characters instead of failing with a UnicodeDecodeError. Translators
+  // registered later are tried first, so this one replaces nanobind's default for Error.
+  nb::register_exception_translator(
+      [](const std::exception_ptr& p, void* type) {
+        try {
+          std::rethrow_exception(p);
+        } catch (const superdex::Error& e) {
+          const char* what = e.what();
+          PyObject* message = PyUnicode_DecodeUTF8(what, static_cast<Py_ssize_t>(std::strlen(what)), "replace");
+          PyErr_SetObject(static_cast<PyObject*>(type), message);
+          Py_XDECREF(message);
+        }
+      },
+      error_type.ptr());
 
   nb::class_<Quaternion>(m, "Quaternion", "A rotation as a unit quaternion, stored x, y, z, w.")
       .def(nb::init<>())
@@ -204,6 +221,18 @@ void export_types(nb::module_& m) {
   nb::enum_<JointType>(m, "JointType")
       .value("HARD", JointType::Hard).value("FREE", JointType::Free).value("REVOLUTE", JointType::Revolute)
       .value("PRISMATIC", JointType::Prismatic).value("SPHERICAL", JointType::Spherical);
+  nb::enum_<NumericalFaultPolicy>(m, "NumericalFaultPolicy",
+                                  "What scene.step does when a body's next state is not finite or the solver does not converge.")
+      .value("RAISE", NumericalFaultPolicy::Raise,
+             "raise superdex.physics.Error naming the actor and quantity; the scene keeps its last good state (default)")
+      .value("WARN_AND_CLAMP", NumericalFaultPolicy::WarnAndClamp,
+             "warn (RuntimeWarning) and keep going: a faulty island's bodies keep their last good positions with zero "
+             "velocity; an unconverged but finite result is kept");
+  nb::class_<NumericalFault>(m, "NumericalFault", "A numerical fault that the last step clamped.")
+      .def_ro("actor", &NumericalFault::actor, "handle of the rigid, articulated or soft actor")
+      .def_ro("quantity", &NumericalFault::quantity, "\"positions\", \"velocities\", \"contact forces\", \"node positions\", ... or \"convergence\"")
+      .def_ro("message", &NumericalFault::message)
+      .def("__repr__", [](const NumericalFault& f) { return "NumericalFault(" + f.message + ")"; });
 }
 
 }  // namespace superdex::python

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "http_session.h"
+#include "recording_reader.h"
 #include "request_policy.h"
 #include "server_core.h"
 #include "superdex/physics/error.h"
@@ -229,21 +230,9 @@ DebugServer::~DebugServer() { impl_->shutdown(); }
 int DebugServer::start(int port) { return impl_->launch(port, std::make_unique<ServerCore>()); }
 
 int DebugServer::start_replay(const std::string& path, int port) {
-  std::ifstream in(path);
-  if (!in) throw Error("debug server: cannot read the recording '" + path + "'");
-  auto lines = std::make_shared<std::vector<std::string>>();
-  std::size_t frames = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty()) continue;
-    if (lines->empty()) {
-      const json header = json::parse(line, nullptr, false);
-      if (!header.is_object() || header.value("format", json()) != "superdex-recording")
-        throw Error("debug server: '" + path + "' is not a SuperDex recording (its first line is not a recording header)");
-    }
-    if (line.find("\"type\":\"frame\"") != std::string::npos) ++frames;
-    lines->push_back(std::move(line));
-  }
-  if (lines->empty()) throw Error("debug server: the recording '" + path + "' is empty");
+  debug::RecordingLines recording = debug::read_recording(path);
+  auto lines = std::make_shared<std::vector<std::string>>(std::move(recording.lines));
+  const std::size_t frames = recording.frames;
   auto core = std::make_unique<ServerCore>();
   core->replay = true;
   core->replay_source = std::filesystem::path(path).filename().string();

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "superdex/physics/error.h"
@@ -40,10 +42,14 @@ class Reader {
   }
   std::string field_path(const char* key) const { return path_.empty() ? key : path_ + "." + key; }
   bool has(const char* key) const { return j_.contains(key) && !j_.at(key).is_null(); }
-  const json& at(const char* key) const { return j_.at(key); }
+  // the value of a field the caller requires: "required" naming it when absent (or null)
+  const json& at(const char* key) const {
+    if (!has(key)) fail(field_path(key), "required");
+    return j_.at(key);
+  }
 
   real number(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_number()) fail(field_path(key), std::string("expected a number, got ") + type_name(v));
     const real x = v.get<real>();
     if (!std::isfinite(x)) fail(field_path(key), "must be finite");
@@ -51,23 +57,27 @@ class Reader {
   }
   std::optional<real> opt_number(const char* key) const { return has(key) ? std::optional<real>(number(key)) : std::nullopt; }
   int integer(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_number_integer()) fail(field_path(key), std::string("expected an integer, got ") + type_name(v));
+    constexpr int kMax = std::numeric_limits<int>::max(), kMin = std::numeric_limits<int>::min();
+    const bool out_of_range = v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(kMax)
+                                                     : v.get<std::int64_t>() < kMin || v.get<std::int64_t>() > kMax;
+    if (out_of_range) fail(field_path(key), "integer " + v.dump() + " is out of range");
     return v.get<int>();
   }
   std::string string(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_string()) fail(field_path(key), std::string("expected a string, got ") + type_name(v));
     return v.get<std::string>();
   }
   bool boolean(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_boolean()) fail(field_path(key), std::string("expected true or false, got ") + type_name(v));
     return v.get<bool>();
   }
   template <int N>
   Eigen::Matrix<real, N, 1> vec(const char* key) const {
-    const json& v = j_.at(key);
+    const json& v = at(key);
     if (!v.is_array() || v.size() != N)
       fail(field_path(key), "expected an array of " + std::to_string(N) + " numbers, got " +
                                 (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(type_name(v))));
@@ -115,7 +125,12 @@ JointType joint_type_from(const Reader& r, const char* key) {
 LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
   LinkDesc L;
   L.name = r.has("name") ? r.string("name") : "";
-  if (r.has("parentLink")) L.parent_link = r.integer("parentLink");
+  if (r.has("parentLink")) {
+    L.parent_link = r.integer("parentLink");
+    // -1 means "no parent" inside the engine; in a file the field is simply left out
+    if (L.parent_link < 0) r.fail(r.field_path("parentLink"), "refers to link " + std::to_string(L.parent_link) +
+                                                               ", which does not exist (omit the field for the root)");
+  }
   L.mass = r.opt_number("mass");
   if (r.has("centerOfMass")) L.center_of_mass = r.vec<3>("centerOfMass");
   if (r.has("momentOfInertia")) {
@@ -127,12 +142,21 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
     if (r.at("shape").is_string()) {
       L.shape_file = r.string("shape");
     } else {
+      if (!r.at("shape").is_object())
+        r.fail(r.field_path("shape"), std::string("expected a shape file path or an inline primitive such as {\"sphere\": {\"radius\": r}}, got ") +
+                                          type_name(r.at("shape")));
       L.shape = shape_from_json(r.at("shape"), "", r.field_path("shape"));
       L.link_from_shape = shape_pose_from_json(r.at("shape"), "", r.field_path("shape"));
     }
   }
   if (r.has("shapeScale")) L.shape_scale = r.vec<3>("shapeScale");
-  if (r.has("colliderType")) L.collider_type = r.string("colliderType");
+  if (r.has("colliderType")) {
+    L.collider_type = r.string("colliderType");
+    static const char* const kColliders[] = {"Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf"};
+    if (std::find(std::begin(kColliders), std::end(kColliders), L.collider_type) == std::end(kColliders))
+      r.fail(r.field_path("colliderType"), "unknown collider type '" + L.collider_type +
+                                               "' (expected Auto, None, Sphere, Box, Plane, Mesh or Sdf)");
+  }
   if (r.has("renderModel")) L.render_model = r.string("renderModel");
   if (r.has("renderModelScale")) L.render_model_scale = r.vec<3>("renderModelScale");
   if (r.has("contact")) L.contact = contact_material_from_json(r.at("contact"), "", r.field_path("contact"));
@@ -190,7 +214,8 @@ json read_json_file(const std::string& path, const std::string& kind) {
   if (!in) throw Error(path + ": cannot open the " + kind + " file (does it exist?)");
   try {
     return json::parse(in, nullptr, true, true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse errors, and numbers too large for a double (out_of_range 406)
     throw Error(path + ": not valid JSON: " + e.what());
   }
 }
@@ -276,11 +301,28 @@ SoftMaterial soft_material_from_json(const json& j, const std::string& source, c
     Reader r(j, source, path, warnings);
     SoftMaterial m;
     if (r.has("type")) m.type = r.string("type");
-    if (r.has("youngsModulus")) m.youngs_modulus = r.number("youngsModulus");
-    if (r.has("poissonRatio")) m.poisson_ratio = r.number("poissonRatio");
-    if (r.has("density")) m.density = r.number("density");
-    if (r.has("damping")) m.damping_beta = r.number("damping");
-    if (r.has("dampingAlpha")) m.damping_alpha = r.number("dampingAlpha");
+    auto got = [](real x) { return ", got " + json(x).dump(); };
+    if (r.has("youngsModulus")) {
+      m.youngs_modulus = r.number("youngsModulus");
+      if (!(*m.youngs_modulus > 0)) r.fail(r.field_path("youngsModulus"), "must be positive (Pa)" + got(*m.youngs_modulus));
+    }
+    if (r.has("poissonRatio")) {
+      m.poisson_ratio = r.number("poissonRatio");
+      if (!(*m.poisson_ratio > -1 && *m.poisson_ratio < real(0.5)))
+        r.fail(r.field_path("poissonRatio"), "must be in (-1, 0.5)" + got(*m.poisson_ratio));
+    }
+    if (r.has("density")) {
+      m.density = r.number("density");
+      if (!(m.density > 0)) r.fail(r.field_path("density"), "must be positive (kg/m^3)" + got(m.density));
+    }
+    if (r.has("damping")) {
+      m.damping_beta = r.number("damping");
+      if (!(m.damping_beta >= 0)) r.fail(r.field_path("damping"), "must be >= 0 (s)" + got(m.damping_beta));
+    }
+    if (r.has("dampingAlpha")) {
+      m.damping_alpha = r.number("dampingAlpha");
+      if (!(m.damping_alpha >= 0)) r.fail(r.field_path("dampingAlpha"), "must be >= 0 (1/s)" + got(m.damping_alpha));
+    }
     r.check_unknown({"type", "youngsModulus", "poissonRatio", "density", "damping", "dampingAlpha"}, {});
     return m;
   });

@@ -1,5 +1,8 @@
 // Loading `.mochi_prefab` / `.mochi_scene` files into a scene (prefab.h).
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -62,12 +65,37 @@ struct Loader {
     if (!e.at(key).is_number()) fail(file, path + "." + key, "expected a number");
     return e.at(key).get<real>();
   }
+  // e[key] when present: a boolean, an integer or a string; fails naming the field otherwise
+  bool opt_bool(const json& e, const char* key, bool fallback, const std::string& file, const std::string& path) {
+    if (!e.contains(key)) return fallback;
+    if (!e.at(key).is_boolean()) fail(file, path + "." + key, "expected a boolean, got " + e.at(key).dump());
+    return e.at(key).get<bool>();
+  }
+  int opt_int(const json& e, const char* key, int fallback, const std::string& file, const std::string& path) {
+    if (!e.contains(key)) return fallback;
+    const json& v = e.at(key);
+    if (!v.is_number_integer() || v.get<std::int64_t>() < -(1 << 30) || v.get<std::int64_t>() > (1 << 30))
+      fail(file, path + "." + key, "expected an integer, got " + v.dump());
+    return v.get<int>();
+  }
+  Vec3 vec3(const json& v, const std::string& file, const std::string& path) {
+    if (!v.is_array() || v.size() != 3) fail(file, path, "expected 3 numbers, got " + v.dump());
+    Vec3 x;
+    for (int k = 0; k < 3; ++k) {
+      if (!v[k].is_number()) fail(file, path + "[" + std::to_string(k) + "]", "expected a number, got " + v[k].dump());
+      x[k] = v[k].get<real>();
+    }
+    if (!x.allFinite()) fail(file, path, "must be finite");
+    return x;
+  }
 
   void load(const fs::path& file_path, const PrefabParams& params) {
     const std::string file = file_path.string();
     if (++depth > 16) fail(file, "prefabs", "prefabs nest more than 16 deep (a prefab includes itself?)");
     const json doc = read_json_file(file, "prefab");
     if (!doc.is_object()) fail(file, "(top level)", "expected an object");
+    if (doc.contains("actors") && !doc.at("actors").is_object())
+      fail(file, "actors", "expected an object with lists rigid, soft and articulated, got " + doc.at("actors").dump());
     const fs::path dir = file_path.parent_path();
     const real s = params.scale;
     // world-from-local of an entry: the prefab's pose, then the scaled local placement
@@ -80,16 +108,18 @@ struct Loader {
     if (params.apply_scene_settings && doc.contains("scene")) {
       const json& sc = doc.at("scene");
       if (sc.contains("gravity")) {
-        const json& g = sc.at("gravity");
-        if (!g.is_array() || g.size() != 3) fail(file, "scene.gravity", "expected 3 numbers");
-        scene.set_gravity(Vec3(g[0].get<real>(), g[1].get<real>(), g[2].get<real>()));
+        scene.set_gravity(vec3(sc.at("gravity"), file, "scene.gravity"));
       }
       if (sc.contains("solver")) {
         SolverParams p = scene.solver_params();
         const json& so = sc.at("solver");
-        if (so.contains("maxNewtonIterations")) p.max_newton_iterations = so.at("maxNewtonIterations").get<int>();
-        if (so.contains("contactMargin")) p.contact_margin = so.at("contactMargin").get<real>();
-        scene.set_solver_params(p);
+        p.max_newton_iterations = opt_int(so, "maxNewtonIterations", p.max_newton_iterations, file, "scene.solver");
+        p.contact_margin = opt_number(so, "contactMargin", file, "scene.solver").value_or(p.contact_margin);
+        try {
+          scene.set_solver_params(p);
+        } catch (const Error& err) {
+          fail(file, "scene.solver", err.what());
+        }
       }
     }
 
@@ -112,12 +142,15 @@ struct Loader {
         const json& e = list[i];
         if (!e.is_object() || !e.contains("path") || !e.at("path").is_string()) fail(file, path + ".path", "required: the nested prefab's file");
         PrefabParams nested;
+        if (e.contains("name") && !e.at("name").is_string()) fail(file, path + ".name", "expected a string, got " + e.at("name").dump());
         nested.name = prefixed(e.value("name", std::string("prefab") + std::to_string(i)));
         const real ns = opt_number(e, "scale", file, path).value_or(1);
         if (!(ns > 0)) fail(file, path + ".scale", "must be positive");
         nested.scale = s * ns;
         nested.world_from_prefab = place(local_pose(e, file, path));
-        load(resolve(e.at("path").get<std::string>(), dir, root, file, path + ".path"), nested);
+        const fs::path nested_path = resolve(e.at("path").get<std::string>(), dir, root, file, path + ".path");
+        if (!fs::is_regular_file(nested_path)) fail(file, path + ".path", "prefab file '" + nested_path.string() + "' does not exist");
+        load(nested_path, nested);
       }
     }
 
@@ -147,19 +180,30 @@ struct Loader {
     } else {
       geometry = scaled_primitive(shape_from_json(sh, file, path + ".shape"), s);
     }
-    const bool is_static = e.value("isStatic", false);
+    const bool is_static = opt_bool(e, "isStatic", false, file, path);
     ContactMaterial material;
     if (e.contains("contact")) material = contact_material_from_json(e.at("contact"), file, path + ".contact");
     ColliderType collider = ColliderType::Auto;
-    if (e.contains("colliderType") && e.at("colliderType") == "None") collider = ColliderType::None;
-    const int layer = e.value("layer", 0);
+    if (e.contains("colliderType")) {
+      static const std::vector<std::string> kNames = {"Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf"};
+      const json& c = e.at("colliderType");
+      if (!c.is_string() || std::find(kNames.begin(), kNames.end(), c.get<std::string>()) == kNames.end())
+        fail(file, path + ".colliderType", "unknown collider type " + c.dump() + " (expected Auto, None, Sphere, Box, Plane, Mesh or Sdf)");
+      if (c == "None") collider = ColliderType::None;
+    }
+    const int layer = opt_int(e, "layer", 0, file, path);
+    if (layer < 0 || layer > 63) fail(file, path + ".layer", "must be between 0 and 63, got " + std::to_string(layer));
+    const Transform X_WL = place(local_pose(e, file, path));
+    const std::optional<real> density = opt_number(e, "density", file, path), mass = opt_number(e, "mass", file, path);
+    for (const auto& [key, value] : {std::pair{"mass", mass}, std::pair{"density", density}})
+      if (value && !(std::isfinite(*value) && *value > 0))
+        fail(file, path + "." + key, "must be a positive finite number, got " + json(*value).dump());
     validate_shape(geometry, file + ": " + path + ".shape");
     const ShapeHandle shape = create_shape(geometry);
     shapes.push_back(shape);
     try {
-      result.actors.push_back(scene.create_rigid_actor(prefixed(e.at("name").get<std::string>()), shape, is_static,
-                                                       place(local_pose(e, file, path)), opt_number(e, "density", file, path),
-                                                       opt_number(e, "mass", file, path), material, layer, collider));
+      result.actors.push_back(scene.create_rigid_actor(prefixed(e.at("name").get<std::string>()), shape, is_static, X_WL,
+                                                       density, mass, material, layer, collider));
     } catch (const Error& err) {
       fail(file, path, err.what());
     }
@@ -191,26 +235,29 @@ struct Loader {
       const json& list = e.at("fixedNodes");
       if (!list.is_array()) fail(file, path + ".fixedNodes", "expected an array of node indices");
       for (size_t k = 0; k < list.size(); ++k) {
-        if (!list[k].is_number_integer()) fail(file, path + ".fixedNodes[" + std::to_string(k) + "]", "expected an integer");
+        const std::string field = path + ".fixedNodes[" + std::to_string(k) + "]";
+        if (!list[k].is_number_integer()) fail(file, field, "expected an integer, got " + list[k].dump());
+        if (list[k].get<std::int64_t>() < 0 || list[k].get<std::int64_t>() >= static_cast<std::int64_t>(mesh->nodes.size()))
+          fail(file, field, "node " + list[k].dump() + " is out of range (the mesh has " + std::to_string(mesh->nodes.size()) + " nodes)");
         fixed.push_back(list[k].get<int>());
       }
     }
     if (e.contains("fixedRegion")) {
       const json& r = e.at("fixedRegion");
       auto corner = [&](const char* key) {
-        if (!r.is_object() || !r.contains(key) || !r.at(key).is_array() || r.at(key).size() != 3)
-          fail(file, path + ".fixedRegion." + key, "expected 3 numbers");
-        return Vec3(r.at(key)[0].get<real>(), r.at(key)[1].get<real>(), r.at(key)[2].get<real>()) * s;
+        if (!r.is_object() || !r.contains(key)) fail(file, path + ".fixedRegion." + key, "required: 3 numbers (m, actor frame)");
+        return vec3(r.at(key), file, path + ".fixedRegion." + key) * s;
       };
       const Vec3 lo = corner("min"), hi = corner("max");
+      if ((lo.array() > hi.array()).any()) fail(file, path + ".fixedRegion", "min must not exceed max in any axis");
       for (size_t k = 0; k < mesh->nodes.size(); ++k)
         if ((mesh->nodes[k].array() >= lo.array()).all() && (mesh->nodes[k].array() <= hi.array()).all()) fixed.push_back(static_cast<int>(k));
     }
     const std::string source = file + ": " + path;
+    const Transform X_WL = place(local_pose(e, file, path));
     try {
       const ShapeHandle shape = create_tet_mesh_shape(std::move(*mesh), source + ".shape");
-      result.actors.push_back(scene.create_soft_actor(prefixed(e.at("name").get<std::string>()), shape, material,
-                                                      place(local_pose(e, file, path)), fixed));
+      result.actors.push_back(scene.create_soft_actor(prefixed(e.at("name").get<std::string>()), shape, material, X_WL, fixed));
     } catch (const Error& err) {
       const std::string msg = err.what();
       throw Error(msg.rfind(file, 0) == 0 ? msg : source + ": " + msg);
@@ -255,6 +302,9 @@ struct Loader {
         if (scene.actor_name(h) == prefixed(name)) return h;
       fail(file, path, "no actor named '" + name + "' in this prefab");
     };
+    if (!f.is_object()) fail(file, "contactFilter", "expected an object {disabledPairs, disabledLayers}");
+    for (const char* key : {"disabledPairs", "disabledLayers"})
+      if (f.contains(key) && !f.at(key).is_array()) fail(file, std::string("contactFilter.") + key, "expected an array of pairs");
     if (f.contains("disabledPairs"))
       for (size_t i = 0; i < f.at("disabledPairs").size(); ++i) {
         const json& p = f.at("disabledPairs")[i];
@@ -265,8 +315,13 @@ struct Loader {
     if (f.contains("disabledLayers"))
       for (size_t i = 0; i < f.at("disabledLayers").size(); ++i) {
         const json& p = f.at("disabledLayers")[i];
-        if (!p.is_array() || p.size() != 2) fail(file, "contactFilter.disabledLayers[" + std::to_string(i) + "]", "expected two layers");
-        scene.enable_layer_contact(p[0].get<int>(), p[1].get<int>(), false);
+        const std::string path = "contactFilter.disabledLayers[" + std::to_string(i) + "]";
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer()) fail(file, path, "expected two layers");
+        try {
+          scene.enable_layer_contact(p[0].get<int>(), p[1].get<int>(), false);
+        } catch (const Error& err) {
+          fail(file, path, err.what());
+        }
       }
   }
 };
@@ -309,7 +364,12 @@ PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::stri
   if (!(params.scale > 0) || !std::isfinite(params.scale)) throw Error("add_to_scene: scale must be a positive number");
   Loader loader{scene, fs::path(root_path), warnings, {}, {}};
   try {
-    loader.load(fs::path(prefab_path), params);
+    try {
+      loader.load(fs::path(prefab_path), params);
+    } catch (const nlohmann::json::exception& e) {
+      // a value of the wrong JSON type that no check above caught
+      throw Error(prefab_path + ": unexpected JSON value: " + e.what());
+    }
   } catch (...) {
     // all or nothing
     for (ActorHandle h : loader.result.actors)

@@ -12,6 +12,7 @@
 #include "recording_internal.h"
 #include "soft_contact.h"
 #include "soft_body.h"
+#include "step_guard.h"
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
@@ -28,6 +29,10 @@ void Scene::set_gravity(const Vec3& g_W) {
 }
 Vec3 Scene::gravity() const { return scene_data(handle_).gravity; }
 double Scene::total_simulation_time() const { return scene_data(handle_).time; }
+
+void Scene::set_numerical_fault_policy(NumericalFaultPolicy policy) { scene_data(handle_).fault_policy = policy; }
+NumericalFaultPolicy Scene::numerical_fault_policy() const { return scene_data(handle_).fault_policy; }
+std::vector<NumericalFault> Scene::last_numerical_faults() const { return scene_data(handle_).last_faults; }
 
 void Scene::set_solver_params(const SolverParams& p) {
   if (p.max_newton_iterations < 1) throw Error("set_solver_params: max_newton_iterations must be >= 1");
@@ -339,24 +344,21 @@ void Scene::step_dynamics(real dt) {
     solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
   });
 
-  // 4. next states; a non-finite result leaves every actor in its last good state
-  std::vector<VecX> q_next(n), v_next(n);
+  // 4. next states; a fault (non-finite, unconverged) raises before anything is committed, or
+  // is clamped (step_guard.h)
+  StepGuard guard(s);
+  for (size_t k = 0; k < islands.size(); ++k) guard.check_island(islands[k], solutions[k]);
+  std::vector<VecX> q_next(n), v_next(n), efforts_next(n);
   for (size_t k = 0; k < islands.size(); ++k)
     for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
       const int b = islands[k].bodies[j];
       v_next[b] = solutions[k].v[j];
-      s.articulations[b]->drive_efforts = solutions[k].drive_efforts[j];
+      efforts_next[b] = solutions[k].drive_efforts[j];
       q_next[b] = s.articulations[b]->state.q;
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
     }
-  for (size_t b = 0; b < n; ++b) {
-    if (num_dofs[b] == 0) continue;
-    const Articulation& a = *s.articulations[b];
-    if (!v_next[b].allFinite() || !q_next[b].allFinite())
-      throw Error("step: actor '" + a.model.name + "' (handle " + std::to_string(a.handle) + "): " +
-                  (v_next[b].allFinite() ? "positions" : "velocities") +
-                  " became non-finite; the scene keeps its last good state (check forces, masses and dt)");
-  }
+  for (size_t b = 0; b < n; ++b)
+    if (num_dofs[b] > 0) guard.check_articulation(static_cast<int>(b), q_next[b], v_next[b]);
   // soft bodies: next positions and node contact forces
   std::vector<SoftState> soft_next(s.soft_bodies.size());
   std::vector<VecX> node_forces(s.soft_bodies.size());
@@ -369,9 +371,7 @@ void Scene::step_dynamics(real dt) {
       const int k = islands[i].soft_bodies[j];
       soft_next[k].v = solutions[i].soft_v[j];
       soft_next[k].x += dt * soft_next[k].v;
-      if (!soft_next[k].x.allFinite() || !soft_next[k].v.allFinite())
-        throw Error("step: soft actor '" + s.soft_bodies[k]->model.name +
-                    "': positions or velocities became non-finite; the scene keeps its last good state");
+      guard.check_soft(k, soft_next[k]);
     }
     for (size_t j = 0; j < islands[i].soft_contacts.size(); ++j) {
       const SoftContact& c = soft_contacts[islands[i].soft_contacts[j]];
@@ -379,9 +379,11 @@ void Scene::step_dynamics(real dt) {
         if (c.nodes[v] >= 0) node_forces[c.soft].segment<3>(3 * c.nodes[v]) += c.weights[v] * solutions[i].soft_contact_force[j];
     }
   }
+  guard.finish();
   for (size_t b = 0; b < n; ++b) {
     if (num_dofs[b] == 0) continue;
     Articulation& a = *s.articulations[b];
+    a.drive_efforts = std::move(efforts_next[b]);
     a.state.q = std::move(q_next[b]);
     a.state.v = std::move(v_next[b]);
     refresh_kinematics(a);

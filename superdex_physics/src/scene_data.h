@@ -72,6 +72,8 @@ struct SceneData {
   double time = 0;
   SolverParams params;
   SolverStats stats;
+  NumericalFaultPolicy fault_policy = NumericalFaultPolicy::Raise;
+  std::vector<NumericalFault> last_faults;  // clamped by the last step (WarnAndClamp)
   std::vector<std::unique_ptr<Articulation>> articulations;  // creation order
   std::vector<std::unique_ptr<SoftBody>> soft_bodies;        // creation order
   std::unordered_map<ActorHandle, ActorRef> actors;

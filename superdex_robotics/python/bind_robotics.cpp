@@ -280,7 +280,9 @@ void export_robotics(nb::module_& parent) {
   def_kind<ComponentKind::Sensor>(m, ctx_cls, bot_cls, "sensor");
   def_kind<ComponentKind::Actuator>(m, ctx_cls, bot_cls, "actuator");
 
-  m.def("create_context", [] { return new PyContext(); }, nb::rv_policy::take_ownership, "A new robotics context.");
+  m.def("create_context", [] { return new PyContext(); }, nb::rv_policy::take_ownership,
+        "A new robotics context. Not thread-safe: a context, its bots and components are used by one\n"
+        "thread at a time (give each thread that steps its own scene its own context).");
   m.def("load_bot_prefab_from_file", [](const std::string& path) {
         std::vector<std::string> warnings;
         BotPrefab p = robotics::load_bot_prefab(path, &warnings);
@@ -293,13 +295,15 @@ void export_robotics(nb::module_& parent) {
         emit(warnings);
         return p;
       }, "path"_a, "Imports a URDF file.");
-  m.def("create_bot", [](const Scene& scene, const BotPrefab& prefab, nb::object ctx) {
+  m.def("create_bot", [](nb::handle scene_arg, nb::handle prefab_arg, nb::object ctx) {
+        const Scene& scene = object_of<Scene>(scene_arg, "create_bot: scene", "a superdex.physics.Scene");
+        const BotPrefab& prefab = object_of<BotPrefab>(prefab_arg, "create_bot: prefab", "a BotPrefab (load_bot_prefab_from_file)");
         std::vector<std::string> warnings;
-        Context& c = nb::cast<PyContext&>(ctx).ctx;
+        Context& c = object_of<PyContext>(ctx, "create_bot: ctx", "a robotics context (create_context())").ctx;
         const BotHandle h = c.create_bot(scene, prefab, &warnings);
         emit(warnings);
         return PyBot{ctx, h};
-      }, "scene"_a, "prefab"_a, "ctx"_a,
+      }, "scene"_a.none(), "prefab"_a.none(), "ctx"_a.none(),
       "Builds the articulation and the sensors and actuators declared on its links.");
   m.def("destroy_bot", [](const Scene& scene, PyBot& bot) {
         Context& c = bot.ctx();

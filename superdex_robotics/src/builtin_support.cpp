@@ -29,7 +29,7 @@ ComponentParams::ComponentParams(const std::string& text, std::string where) : w
   }
   try {
     json_ = nlohmann::json::parse(source);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors and numbers too large for a double
     throw Error(where_ + ": " + origin + " is not valid JSON: " + e.what());
   }
   if (!json_.is_object()) throw Error(where_ + ": " + origin + " must be a JSON object");

@@ -248,7 +248,13 @@ BotHandle Context::create_bot(Scene scene, const BotPrefab& prefab, std::vector<
           }
           ComponentArgs args{scene, links[i], resolve_params(d.params, prefab.base_dir, where + ".params"), &b.prefab,
                              d.parent_from_sensor};
-          const ComponentHandle h = create(kind, d.type, args, d.name, b.handle);
+          ComponentHandle h = 0;
+          try {
+            h = create(kind, d.type, args, d.name, b.handle);
+          } catch (const Error& e) {
+            // say which declaration in which file made the component fail
+            throw Error(where + " ('" + d.name + "'): " + e.what());
+          }
           (kind == ComponentKind::Sensor ? b.sensors : b.actuators).push_back(h);
         }
     }

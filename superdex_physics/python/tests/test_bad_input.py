@@ -255,14 +255,90 @@ def test_bad_step_and_settings(scene):
     sdp.initialize(0)
 
 
-def test_numerical_fault_keeps_last_good_state(scene):
-    # velocities whose Coriolis forces overflow the scalar type: step raises and nothing moves
+def test_arguments_of_the_wrong_type_name_the_argument(scene):
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    with pytest.raises(sdp.Error, match="step: dt: expected a number of seconds, got str"):
+        scene.step("0.01")
+    with pytest.raises(sdp.Error, match="get_actor: handle: expected an Actor or an actor handle"):
+        scene.get_actor("ball")
+    with pytest.raises(sdp.Error, match=r"register_pre_step_callback\('cb'\): fn: expected a callable fn\(scene, dt\), got int"):
+        scene.register_pre_step_callback("cb", 5)
+    with pytest.raises(sdp.Error, match=r"register_post_step_callback\('cb'\): fn: expected a callable"):
+        scene.register_post_step_callback("cb", None)
+    with pytest.raises(sdp.Error, match="register_query: query_type: expected a superdex.physics.QueryType, got str"):
+        ball.register_query("TOTAL_CONTACT_FORCE")
+    with pytest.raises(sdp.Error, match="set_solver_params: params: expected a superdex.physics.SolverParams, got None"):
+        scene.set_solver_params(None)
+    with pytest.raises(sdp.Error, match=r"restore_state: state: expected a SceneState from capture_state\(\), got bytes"):
+        scene.restore_state(b"state")
+    assert scene.get_actor(ball.get_handle()) == ball  # ints and actors still work
+    scene.step(np.float64(0.01))  # and any real number type for dt
+    assert scene.get_total_simulation_time() == pytest.approx(0.01)
+
+
+@pytest.mark.parametrize("bad", [[math.nan, 0, 0], [0, math.inf, 0], [0, 0]])
+def test_bad_vectors_name_the_argument(scene, bad):
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    with pytest.raises(sdp.Error, match="set_velocity: (linear|linear and angular velocity)"):
+        ball.set_velocity(bad, [0, 0, 0])
+    with pytest.raises(sdp.Error, match="set_velocity: (angular|linear and angular velocity)"):
+        ball.set_velocity([0, 0, 0], bad)
+    with pytest.raises(sdp.Error, match=r"(set_root_transform: transform\.translation: must be finite|TransformRT: translation: expected 3 values)"):
+        ball.set_root_transform(sdp.TransformRT(translation=bad))
+    with pytest.raises(sdp.Error, match="set_gravity: gravity"):
+        scene.set_gravity(bad)
+    scene.step(0.01)  # nothing was changed by the rejected calls
+    assert np.all(np.isfinite(ball.get_root_transform().translation))
+
+
+# every Actor method with arguments that would be valid for a live actor
+ACTOR_CALLS = {
+    "get_name": (), "get_type": (), "get_root_transform": (), "get_mass": (), "get_num_dofs": (),
+    "set_root_transform": (sdp.TransformRT(),), "set_velocity": ([0, 0, 0], [0, 0, 0]),
+    "get_linear_velocity": (), "get_angular_velocity": (),
+    "set_external_forces_on_dofs": ([0], [1.0]), "clear_external_forces": (), "get_external_forces": (),
+    "register_query": (sdp.QueryType.TOTAL_CONTACT_FORCE,), "get_contact_force_world": (),
+    "get_contact_torque_world": (), "get_contact_points_world": (),
+}
+
+
+@pytest.mark.parametrize("method", sorted(ACTOR_CALLS))
+def test_every_method_of_a_destroyed_actor_raises(scene, method):
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    handle = ball.get_handle()
+    scene.destroy_actor(ball)
+    with pytest.raises(sdp.Error, match=f"actor {handle} does not exist"):
+        getattr(ball, method)(*ACTOR_CALLS[method])
+    scene.step(0.01)
+
+
+def test_stale_handles_after_destroy_scene_and_shutdown(engine):
+    scene = sdp.create_scene("gone")
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
     arm = two_link_arm(scene)
-    arm.set_articulated_pose_from_joints([0.2, 0.1])
-    huge = float(np.finfo(real_dtype()).max)
-    arm.set_articulated_joint_velocities([huge, -huge])
-    before = arm.get_articulated_pose().copy()
-    with pytest.raises(sdp.Error, match=r"actor 'arm'.*non-finite"):
-        scene.step(0.01)
-    np.testing.assert_array_equal(arm.get_articulated_pose(), before)
-    assert scene.get_total_simulation_time() == 0
+    sdp.destroy_scene(scene)
+    for call in (lambda: scene.step(0.01), lambda: ball.get_mass(), lambda: arm.get_articulated_pose(),
+                 lambda: scene.capture_state(), lambda: scene.get_actor(ball.get_handle())):
+        with pytest.raises(sdp.Error, match="does not exist"):
+            call()
+    with pytest.raises(sdp.Error, match="destroy_scene: scene .* does not exist"):
+        sdp.destroy_scene(scene)
+    live = sdp.create_scene("live")
+    live_ball = live.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    sdp.shutdown()
+    with pytest.raises(sdp.Error, match="does not exist"):
+        live.step(0.01)
+    with pytest.raises(sdp.Error, match="does not exist"):
+        live_ball.get_root_transform()
+    sdp.initialize(0)
+    fresh = sdp.create_scene("fresh")
+    fresh.step(0.01)
+
+
+def test_actor_of_another_scene_is_refused(scene):
+    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    other = sdp.create_scene("other")
+    with pytest.raises(sdp.Error, match=f"destroy_actor: actor {ball.get_handle()} does not exist in scene 'other'"):
+        other.destroy_actor(ball)
+    with pytest.raises(sdp.Error, match="enable_actor_contact_symmetric: actor .* does not exist in scene 'other'"):
+        other.enable_actor_contact_symmetric(ball, ball, False)

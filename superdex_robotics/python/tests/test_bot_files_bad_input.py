@@ -74,3 +74,17 @@ def test_unknown_field_warns(tmp_path):
     doc["links"][0]["colour"] = "blue"
     with pytest.warns(UserWarning, match=r"links\[0\]\.colour: unknown field"):
         sdr.load_bot_prefab_from_file(str(write_bot(tmp_path, doc)))
+
+
+def test_create_bot_arguments_of_the_wrong_type(scene):
+    prefab = sdr.load_bot_prefab_from_file(str(resolve_asset(EXAMPLE_BOT)))
+    ctx = sdr.create_context()
+    with pytest.raises(sdp.Error, match=r"create_bot: prefab: expected a BotPrefab \(load_bot_prefab_from_file\), got str"):
+        sdr.create_bot(scene, str(resolve_asset(EXAMPLE_BOT)), ctx)
+    with pytest.raises(sdp.Error, match="create_bot: scene: expected a superdex.physics.Scene, got NoneType"):
+        sdr.create_bot(None, prefab, ctx)
+    with pytest.raises(sdp.Error, match=r"create_bot: ctx: expected a robotics context \(create_context\(\)\), got dict"):
+        sdr.create_bot(scene, prefab, {})
+    with pytest.warns(UserWarning):  # the example's component types are not registered here
+        bot = sdr.create_bot(scene, prefab, ctx)
+    assert bot.get_articulated_actor().get_num_dofs() == 2

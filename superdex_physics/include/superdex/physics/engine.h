@@ -16,15 +16,22 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 class Scene;
 
+/// Threads: the registries of scenes and shapes are locked, so scenes and shapes may be created,
+/// and different scenes filled and stepped, on several threads at once; one scene must not be
+/// used from two threads at once. initialize() and shutdown() are not thread-safe.
+
 /// Starts the engine. `num_worker_threads`: 0 single-threaded, -1 one per core, N > 0 threads.
+/// Not thread-safe: no other thread may use the engine meanwhile.
 void initialize(int num_worker_threads = 0);
 /// Destroys every scene and shape and stops the engine. Safe to call when not initialized.
+/// Not thread-safe: no other thread may use the engine meanwhile.
 void shutdown();
 bool is_initialized();
 /// Worker threads in use (1 when single-threaded).
 int num_worker_threads();
 
 Scene create_scene(const std::string& name);
+/// Destroys a scene; no other thread may be stepping or using that scene.
 void destroy_scene(SceneHandle scene);
 bool scene_exists(SceneHandle scene);
 

@@ -120,6 +120,26 @@ struct ArticulatedShapeInfo {
   std::vector<DofInfo> dof_info;
 };
 
+/// What Scene::step does when the solve of an island produces a non-finite value (NaN or
+/// infinity) in a body's next positions, velocities or contact forces, or its Newton solver
+/// stops at max_newton_iterations without converging.
+enum class NumericalFaultPolicy {
+  /// Throw superdex::Error naming each faulty actor and quantity. Nothing of the step is
+  /// committed: every actor keeps its last good state and the time does not advance. Default.
+  Raise,
+  /// Keep going: the actors of a faulty island keep their last good positions with zero
+  /// velocity (a non-finite result) or take the unconverged but finite result; the others
+  /// step normally. The faults are reported by last_numerical_faults() (Python: RuntimeWarning).
+  WarnAndClamp,
+};
+
+/// One numerical fault of a step.
+struct NumericalFault {
+  ActorHandle actor = 0;  ///< the rigid, articulated or soft actor
+  std::string quantity;   ///< "positions", "velocities", "contact forces" or "convergence"
+  std::string message;    ///< names the scene, the actor and the quantity, and what to check
+};
+
 class Scene;
 /// Called before (pre) or after (post) each step with the scene and the step's dt (s).
 using StepCallback = std::function<void(Scene& scene, real dt)>;
@@ -134,8 +154,16 @@ class Scene {
   void set_gravity(const Vec3& g_W);
   Vec3 gravity() const;
   /// Advances by dt seconds: one implicit solve per island. Throws superdex::Error for a
-  /// non-positive dt or a numerical fault (the scene then keeps its last good state).
+  /// non-positive dt or, under NumericalFaultPolicy::Raise, a numerical fault (the scene then
+  /// keeps its last good state). Different scenes may be stepped on different threads at once;
+  /// a scene must not be used from two threads at once.
   void step(real dt);
+  /// Sets what step() does on a numerical fault (default Raise). Not thread-safe: call it while
+  /// no thread steps this scene.
+  void set_numerical_fault_policy(NumericalFaultPolicy policy);
+  NumericalFaultPolicy numerical_fault_policy() const;
+  /// The faults the last step clamped under WarnAndClamp; empty after a clean step.
+  std::vector<NumericalFault> last_numerical_faults() const;
   /// Seconds simulated since creation.
   double total_simulation_time() const;
   void set_solver_params(const SolverParams& params);
