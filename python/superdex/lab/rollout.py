@@ -91,8 +91,8 @@ def plot_returns(returns: np.ndarray, path, title: str = "episode returns") -> P
     fig = Figure(figsize=(6, 3.5), dpi=100)
     ax = fig.add_subplot()
     ax.plot(np.arange(1, len(returns) + 1), returns, ".", ms=4)
-    if len(returns) >= 10:
-        k = max(1, len(returns) // 10)
+    if len(returns) >= 20:
+        k = len(returns) // 10
         ax.plot(np.arange(k, len(returns) + 1), np.convolve(returns, np.ones(k) / k, mode="valid"), "-", label=f"mean of {k}")
         ax.legend()
     ax.set_xlabel("episode")
