@@ -200,3 +200,20 @@ def test_bad_input_raises_error_naming_the_argument(engine):
         env.reset(seed=0)
         env.step(np.zeros(3))
     env.close()
+
+
+def test_human_render_mode_attaches_the_debugger(engine, tmp_path, monkeypatch):
+    """render_mode="human" attaches the scene debugger; headless, SUPERDEX_DEBUGGER_RECORD makes
+    it record, and the recording holds the environment's scene and its stepped frames."""
+    path = tmp_path / "lab.jsonl"
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_RECORD", str(path))
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_FRAME_INTERVAL", "0")
+    env = SeedTaskEnv(prop="box", render_mode="human")
+    env.reset(seed=0)
+    for _ in range(5):
+        env.step(np.ones(2, dtype=np.float32))
+    assert sdp.debugger.is_attached()
+    sdp.debugger.detach()
+    text = path.read_text()
+    assert "SeedTaskEnv" in text and text.count('"frame"') >= 5
+    env.close()
