@@ -171,9 +171,12 @@ const SceneBatchSpec& SceneBatch::spec() const { return impl_->spec; }
 
 void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* obs_out) {
   Impl& b = *impl_;
-  for (int k : indices)
+  std::vector<char> seen(num_scenes(), 0);
+  for (int k : indices) {
     if (k < 0 || k >= num_scenes())
       throw Error("SceneBatch.reset: index " + std::to_string(k) + " is out of range (" + std::to_string(num_scenes()) + " scenes)");
+    if (seen[k]++) throw Error("SceneBatch.reset: index " + std::to_string(k) + " appears twice in indices");
+  }
   physics::run_on_worker_threads(indices.size(), [&](size_t i) {
     SceneSlot& slot = b.slots[indices[i]];
     Scene& scene = slot.member.scene;
