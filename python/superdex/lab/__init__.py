@@ -18,4 +18,18 @@ from superdex.lab.vector_env import SuperDexVectorEnv
 
 ENVIRONMENTS = {"seed": SeedTaskEnv, "panda": PandaReachEnv}
 
+
+def _register():
+    """gymnasium.make("superdex/SeedTask-v0", prop="box") and gymnasium.make_vec(...,
+    vectorization_mode="vector_entry_point") give these environments and the batched vector env."""
+    import gymnasium
+
+    for env_id, cls in (("superdex/SeedTask-v0", "SeedTaskEnv"), ("superdex/PandaReach-v0", "PandaReachEnv")):
+        if env_id not in gymnasium.registry:
+            gymnasium.register(id=env_id, entry_point=f"superdex.lab:{cls}",
+                               vector_entry_point=f"superdex.lab.vector_env:make_{cls}_vector")
+
+
+_register()
+
 __all__ = ["SuperDexEnv", "SeedTaskEnv", "PandaReachEnv", "SuperDexVectorEnv", "BuiltScene", "ENVIRONMENTS"]

@@ -93,3 +93,17 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
             for b in self._built:
                 sdp.destroy_scene(b.scene)
         self._built = []
+
+
+def make_SeedTaskEnv_vector(num_envs: int = 1, **kwargs) -> SuperDexVectorEnv:
+    """gymnasium.make_vec's vector entry point of superdex/SeedTask-v0."""
+    from superdex.lab.seed_task import SeedTaskEnv
+
+    return SuperDexVectorEnv(SeedTaskEnv, num_envs, **kwargs)
+
+
+def make_PandaReachEnv_vector(num_envs: int = 1, **kwargs) -> SuperDexVectorEnv:
+    """gymnasium.make_vec's vector entry point of superdex/PandaReach-v0."""
+    from superdex.lab.panda_reach import PandaReachEnv
+
+    return SuperDexVectorEnv(PandaReachEnv, num_envs, **kwargs)

@@ -217,3 +217,14 @@ def test_human_render_mode_attaches_the_debugger(engine, tmp_path, monkeypatch):
     text = path.read_text()
     assert "SeedTaskEnv" in text and text.count('"frame"') >= 5
     env.close()
+
+
+def test_registered_with_gymnasium(engine):
+    import gymnasium as gym
+
+    env = gym.make("superdex/SeedTask-v0", prop="box")
+    assert isinstance(env.unwrapped, SeedTaskEnv) and env.reset(seed=0)[0].shape == (13,)
+    vec = gym.make_vec("superdex/PandaReach-v0", num_envs=3, vectorization_mode="vector_entry_point")
+    assert isinstance(vec, SuperDexVectorEnv) and vec.reset(seed=0)[0].shape == (3, 23)
+    env.close()
+    vec.close()
