@@ -105,8 +105,12 @@ class SeedTaskEnv(SuperDexEnv):
 
     def target(self, t, params):
         """The circle's target points x*(t) (rows x 3, m, world) after t control steps."""
-        theta = OMEGA * np.asarray(t, dtype=np.float64) * self.control_dt + params[:, 0]
-        return CENTER + RADIUS * np.stack([np.cos(theta), np.zeros_like(theta), np.sin(theta)], axis=1)
+        theta = OMEGA * self.control_dt * np.asarray(t, dtype=np.float64) + params[:, 0]
+        x = np.empty((len(theta), 3))
+        x[:, 0] = CENTER[0] + RADIUS * np.cos(theta)
+        x[:, 1] = CENTER[1]
+        x[:, 2] = CENTER[2] + RADIUS * np.sin(theta)
+        return x
 
     def task_observation(self, raw, t, params):
         return np.concatenate([raw, self.target(t, params).astype(np_real)], axis=1)
