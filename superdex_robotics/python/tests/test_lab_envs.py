@@ -228,3 +228,36 @@ def test_registered_with_gymnasium(engine):
     assert isinstance(vec, SuperDexVectorEnv) and vec.reset(seed=0)[0].shape == (3, 23)
     env.close()
     vec.close()
+
+
+def test_batch_step_releases_the_gil(engine):
+    """Another Python thread runs while one SceneBatch.step call is inside C++ (with the GIL held
+    it could not run at all during the call: a C call is never preempted by the interpreter)."""
+    import threading
+    import time
+
+    vec = SuperDexVectorEnv(SeedTaskEnv, 16, prop="box", sim_multiple=100)  # one call: 1600 physics steps
+    vec.reset(seed=0)
+    actions = np.ascontiguousarray(np.full((16, 2), 0.5))
+    ticks, span, stop = [], [], threading.Event()
+
+    def ticker():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+
+    def stepper():
+        start = time.perf_counter()
+        vec._batch.step(actions, vec._raw)
+        span.extend([start, time.perf_counter()])
+
+    t = threading.Thread(target=ticker)
+    t.start()
+    s = threading.Thread(target=stepper)
+    s.start()
+    s.join()
+    stop.set()
+    t.join()
+    start, end = span
+    middle = [x for x in ticks if start + 0.3 * (end - start) < x < end - 0.3 * (end - start)]
+    assert end - start > 0.02 and len(middle) > 100, (end - start, len(middle))
+    vec.close()
