@@ -83,12 +83,15 @@ class SceneBatch {
   const SceneBatchSpec& spec() const;
 
   /// Restores the initial state of the scenes `indices`, sets their action DOFs to the rows of
-  /// `q0` (indices.size() x action_size(), rad or m; null: keep the initial pose), zero velocity,
-  /// resets their servos and drives, and writes their observation rows into `obs_out`
-  /// (num_scenes() x obs_size(); other rows untouched).
+  /// `q0` (indices.size() x action_size(), rad or m; null: keep the initial pose), keeping the
+  /// initial state's velocities, resets their servos and drive targets, and writes their
+  /// observation rows into `obs_out` (num_scenes() x obs_size(); other rows untouched). Throws for
+  /// an index out of range or given twice.
   void reset(const std::vector<int>& indices, const double* q0, real* obs_out);
   /// Applies `actions` (num_scenes() x action_size(), row-major) to every scene, steps each
   /// `substeps` times on the worker threads and writes every observation row into `obs_out`.
+  /// A scene whose step throws (a numerical fault) makes the call rethrow that error; the other
+  /// scenes may have stepped already.
   void step(const double* actions, real* obs_out);
   /// Writes every scene's observation row (contact force as of its last step).
   void observe(real* obs_out) const;
