@@ -226,8 +226,9 @@ def scene8(results, opts):
     targets = []
     for task in sorted({c["task"] for c, _ in results}, key=lambda t: [c["task"] for c, _ in results].index(t)):
         one, two = by(results, task=task, threads=1), by(results, task=task, threads=2)
+        scenes = next(c["n"] for c, _ in results if c["task"] == task)
         for threads, m in ((1, one), (2, two)):
-            rows.append([task, threads, m["n"] if "n" in m else "", f(m["scene_steps_per_s"]), f(m["wall"]), f(m["cpu_over_wall"]),
+            rows.append([task, threads, scenes, f(m["scene_steps_per_s"]), f(m["wall"]), f(m["cpu_over_wall"]),
                          f(m["peak_rss_mb"]), f(m["scene_steps_per_s"] / one["scene_steps_per_s"]), checks_text(m)])
         speedup = two["scene_steps_per_s"] / one["scene_steps_per_s"]
         same = one["checks"]["obs digest"] == two["checks"]["obs digest"]
