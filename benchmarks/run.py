@@ -10,6 +10,7 @@ Scenes (benchmarks/scenes/s<N>_*.py; each builds its models from one description
   5 soft block, 1k / 5k / 20k tetrahedra   (SuperDex, MuJoCo flex)
   6 Python overhead per call               (SuperDex, MuJoCo, PyBullet)
   7 threads: N independent scenes, 1 and 2 threads (SuperDex)
+  8 the lab's batched vector env, 64 scenes, 1 and 2 worker threads (SuperDex)
 then the Google Benchmark micro-benchmarks of the hot kernels (benchmarks/cpp, target
 superdex_microbench, built in the project's build directory).
 
@@ -36,7 +37,7 @@ from benchmarks import report  # noqa: E402
 from benchmarks.harness import BENCH, REPO, measure  # noqa: E402
 
 SCENES = {1: "s1_seed", 2: "s2_arm_box", 3: "s3_panda", 4: "s4_pile", 5: "s5_soft_block", 6: "s6_python_overhead",
-          7: "s7_threads"}
+          7: "s7_threads", 8: "s8_batched"}
 
 
 def build_dir():

@@ -101,6 +101,7 @@ void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
 void export_robotics(nb::module_& m);
 void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
+void export_scene_batch(nb::module_& m);    // superdex_robotics/python: into superdex.robotics
 void export_meshes(nb::module_& m);
 
 }  // namespace superdex::python

@@ -4,6 +4,8 @@
 #include <mutex>
 #include <thread>
 
+#include <oneapi/tbb/parallel_for.h>
+
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
@@ -56,6 +58,18 @@ int num_worker_threads() {
   EngineData& e = engine_data();
   std::shared_lock lock(e.mutex);
   return e.num_threads;
+}
+
+void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work) {
+  EngineData& e = engine_data();
+  oneapi::tbb::task_arena* arena = nullptr;
+  {
+    std::shared_lock lock(e.mutex);
+    arena = e.arena.get();
+  }
+  if (arena && count > 1) arena->execute([&] { oneapi::tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { work(i); }); });
+  else
+    for (std::size_t i = 0; i < count; ++i) work(i);
 }
 
 namespace {

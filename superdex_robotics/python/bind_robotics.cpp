@@ -206,6 +206,7 @@ ComponentHandle bot_create(PyBot& b, ComponentKind kind, const std::string& type
 void export_robotics(nb::module_& parent) {
   nb::module_ m = parent.def_submodule("robotics", "SuperDex robotics SDK");
   export_prefab(m);
+  export_scene_batch(m);
   bind_handle<ComponentKind::Controller>(m, "ControllerHandle");
   bind_handle<ComponentKind::Sensor>(m, "SensorHandle");
   bind_handle<ComponentKind::Actuator>(m, "ActuatorHandle");

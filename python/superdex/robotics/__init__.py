@@ -18,6 +18,10 @@ ControllerHandle = _r.ControllerHandle
 SensorHandle = _r.SensorHandle
 ActuatorHandle = _r.ActuatorHandle
 EFFORT_UNBOUNDED = _r.EFFORT_UNBOUNDED
+# batched stepping of scenes of one model (scene_batch.h; superdex.lab builds on it)
+SceneBatch = _r.SceneBatch
+SceneBatchSpec = _r.SceneBatchSpec
+BatchActionMode = _r.BatchActionMode
 
 create_context = _r.create_context
 register_python_controller = _r.register_python_controller

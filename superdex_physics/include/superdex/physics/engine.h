@@ -4,6 +4,8 @@
 /// Thread-safety: the registries are guarded; scenes may be stepped concurrently from
 /// different threads, but one scene must not be used from two threads at once.
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +31,11 @@ void shutdown();
 bool is_initialized();
 /// Worker threads in use (1 when single-threaded).
 int num_worker_threads();
+/// Runs work(i) for every i < count on the engine's worker threads (the oneTBB arena of
+/// initialize()), or in order on the calling thread when single-threaded. Returns when all are
+/// done; the first exception thrown by a work item is rethrown. Work items run concurrently, so
+/// each must touch its own scene (a scene's step may itself use the same threads).
+void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work);
 
 Scene create_scene(const std::string& name);
 /// Destroys a scene; no other thread may be stepping or using that scene.

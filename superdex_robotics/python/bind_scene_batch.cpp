@@ -1,0 +1,127 @@
+// superdex.robotics.SceneBatch: batched stepping of scenes of one model (scene_batch.h). The
+// arrays are checked and their buffers taken with the GIL held; reset and step then run without
+// it, spread over the engine's worker threads.
+
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "bind_common.h"
+#include "superdex/robotics/scene_batch.h"
+
+namespace superdex::python {
+
+using robotics::BatchActionMode;
+using robotics::SceneBatch;
+using robotics::SceneBatchMember;
+using robotics::SceneBatchSpec;
+
+namespace {
+
+std::string shape_text(size_t rows, size_t cols) { return "(" + std::to_string(rows) + ", " + std::to_string(cols) + ")"; }
+
+// The buffer of a C-contiguous 2-D numpy array of dtype T and shape (rows, cols); raises
+// superdex.physics.Error naming `arg` otherwise.
+template <typename T>
+T* matrix_buffer(nb::handle obj, const std::string& arg, size_t rows, size_t cols, bool writable) {
+  const std::string dtype = std::is_same_v<std::remove_const_t<T>, double> ? "float64" : "float32";
+  const std::string expect = std::string(writable ? "a writable" : "a") + ", C-contiguous numpy array of dtype " + dtype + " and shape " +
+                             shape_text(rows, cols);
+  if (writable && nb::hasattr(obj, "flags") && !nb::cast<bool>(obj.attr("flags").attr("writeable")))
+    throw Error(arg + ": expected " + expect + ", got a read-only array");
+  nb::ndarray<> a;
+  if (!nb::try_cast(obj, a, false)) throw Error(arg + ": expected " + expect + ", got " + nb::inst_name(obj).c_str());
+  const bool contiguous = a.ndim() == 2 && (a.shape(0) <= 1 || a.stride(0) == static_cast<int64_t>(a.shape(1))) &&
+                          (a.shape(1) <= 1 || a.stride(1) == 1);
+  if (a.dtype() != nb::dtype<std::remove_const_t<T>>() || a.ndim() != 2 || a.shape(0) != rows || a.shape(1) != cols || !contiguous) {
+    std::string got = "ndim " + std::to_string(a.ndim());
+    if (a.ndim() == 2) got = "shape " + shape_text(a.shape(0), a.shape(1));
+    if (a.dtype() != nb::dtype<std::remove_const_t<T>>()) got += " with another dtype";
+    else if (!contiguous) got += ", not contiguous";
+    throw Error(arg + ": expected " + expect + ", got " + got);
+  }
+  return static_cast<T*>(a.data());
+}
+
+}  // namespace
+
+void export_scene_batch(nb::module_& m) {
+  nb::enum_<BatchActionMode>(m, "BatchActionMode", "How a SceneBatch's actions drive its action DOFs (scene_batch.h).")
+      .value("VELOCITY_SERVO", BatchActionMode::VelocityServo, "velocity goals (rad/s) of VELOCITY_SERVO PI servos, applied as efforts")
+      .value("VELOCITY_DRIVE", BatchActionMode::VelocityDrive, "joint velocity commands (rad/s) tracked by implicit joint drives");
+
+  nb::class_<SceneBatchSpec>(m, "SceneBatchSpec", "The model shared by every scene of a SceneBatch (units: rad, rad/s, N m, s).")
+      .def(nb::init<>())
+      .def_rw("mode", &SceneBatchSpec::mode)
+      .def_rw("action_dofs", &SceneBatchSpec::action_dofs, "DOF index moved by each action column")
+      .def_rw("action_low", &SceneBatchSpec::action_low, "per column lower clip (rad/s); empty: no clipping")
+      .def_rw("action_high", &SceneBatchSpec::action_high)
+      .def_rw("servo_k_p", &SceneBatchSpec::servo_k_p, "VELOCITY_SERVO: N m s/rad per column")
+      .def_rw("servo_k_i", &SceneBatchSpec::servo_k_i, "VELOCITY_SERVO: N m/rad per column")
+      .def_rw("servo_effort_limit", &SceneBatchSpec::servo_effort_limit, "VELOCITY_SERVO: N m per column")
+      .def_rw("servo_profile_accel", &SceneBatchSpec::servo_profile_accel, "VELOCITY_SERVO: rad/s^2 per column (0: no ramp)")
+      .def_rw("drive_stiffness", &SceneBatchSpec::drive_stiffness, "VELOCITY_DRIVE: N m/rad per column")
+      .def_rw("drive_damping", &SceneBatchSpec::drive_damping, "VELOCITY_DRIVE: N m s/rad per column")
+      .def_rw("drive_max_effort", &SceneBatchSpec::drive_max_effort, "VELOCITY_DRIVE: N m per column (< 0: unbounded)")
+      .def_rw("observed_link", &SceneBatchSpec::observed_link, "link index E whose origin p_WE is observed")
+      .def_rw("dt", &SceneBatchSpec::dt, "physics step (s)")
+      .def_rw("substeps", &SceneBatchSpec::substeps, "physics steps per batch step");
+
+  nb::class_<SceneBatch>(m, "SceneBatch",
+                         "Scenes of one model stepped in one call on the engine's worker threads. Observation rows are\n"
+                         "[q (n) | v (n) | p_WE (3, m, world) | f_C_W (3, N, world: contact force on the contact actor)].")
+      .def("__init__",
+           [](SceneBatch* self, const SceneBatchSpec& spec, nb::sequence scenes, nb::sequence articulations, nb::sequence contact_actors) {
+             const size_t count = nb::len(scenes);
+             if (nb::len(articulations) != count || nb::len(contact_actors) != count)
+               throw Error("SceneBatch: scenes, articulations and contact_actors must have the same length (" + std::to_string(count) + ", " +
+                           std::to_string(nb::len(articulations)) + ", " + std::to_string(nb::len(contact_actors)) + ")");
+             std::vector<SceneBatchMember> members(count);
+             for (size_t k = 0; k < count; ++k) {
+               const std::string index = "[" + std::to_string(k) + "]";
+               Scene* scene = nullptr;
+               if (!nb::try_cast(scenes[k], scene) || scene == nullptr) throw Error("SceneBatch: scenes" + index + " is not a Scene");
+               members[k].scene = *scene;
+               members[k].articulation = actor_handle_of(articulations[k], "SceneBatch: articulations" + index);
+               nb::object c = contact_actors[k];
+               members[k].contact_actor = c.is_none() ? 0 : actor_handle_of(c, "SceneBatch: contact_actors" + index);
+             }
+             new (self) SceneBatch(spec, std::move(members));
+           },
+           "spec"_a, "scenes"_a, "articulations"_a, "contact_actors"_a,
+           "Checks the spec against every scene, registers the contact queries and captures each scene's initial state.")
+      .def_prop_ro("num_scenes", &SceneBatch::num_scenes)
+      .def_prop_ro("action_size", &SceneBatch::action_size)
+      .def_prop_ro("obs_size", &SceneBatch::obs_size)
+      .def(
+          "reset",
+          [](SceneBatch& b, const std::vector<int>& indices, nb::handle q0, nb::handle obs_out) {
+            const double* q = q0.is_none() ? nullptr
+                                           : matrix_buffer<const double>(q0, "SceneBatch.reset: q0", indices.size(), b.action_size(), false);
+            real* obs = matrix_buffer<real>(obs_out, "SceneBatch.reset: obs_out", b.num_scenes(), b.obs_size(), true);
+            nb::gil_scoped_release release;
+            b.reset(indices, q, obs);
+          },
+          "indices"_a, "q0"_a.none(), "obs_out"_a,
+          "Restores the initial state of scenes `indices`, sets their action DOFs to the rows of q0 (float64,\n"
+          "len(indices) x action_size; None: initial pose), resets servos and drives, writes their rows of obs_out.")
+      .def(
+          "step",
+          [](SceneBatch& b, nb::handle actions, nb::handle obs_out) {
+            const double* a = matrix_buffer<const double>(actions, "SceneBatch.step: actions", b.num_scenes(), b.action_size(), false);
+            real* obs = matrix_buffer<real>(obs_out, "SceneBatch.step: obs_out", b.num_scenes(), b.obs_size(), true);
+            nb::gil_scoped_release release;
+            b.step(a, obs);
+          },
+          "actions"_a, "obs_out"_a,
+          "Applies actions (float64, num_scenes x action_size) and steps every scene `substeps` times on the\n"
+          "worker threads (GIL released); writes every row of obs_out (build dtype, num_scenes x obs_size).")
+      .def(
+          "observe",
+          [](SceneBatch& b, nb::handle obs_out) {
+            real* obs = matrix_buffer<real>(obs_out, "SceneBatch.observe: obs_out", b.num_scenes(), b.obs_size(), true);
+            b.observe(obs);
+          },
+          "obs_out"_a, "Writes every scene's observation row.");
+}
+
+}  // namespace superdex::python
