@@ -242,36 +242,59 @@ def scene8(results, opts):
 REPORTERS = {1: scene1, 2: scene2, 3: scene3, 4: scene4, 5: scene5, 6: scene6, 7: scene7, 8: scene8}
 
 
-FINDINGS = """## Why targets are not met: profiles
+FINDINGS = """## Why targets are not met: profiles, what was fixed, what remains
 
-Taken with `perf record -g` on the float build while the suite was written (not re-measured by
-each run); the numbers above are this run's.
+Taken with `perf record` on the float build (not re-measured by each run); the numbers above are
+this run's.
 
-- Scene 1: the soft duck's own step is the floor. With no components at all the scene runs at
-  about 0.1x real time (tens of ms per step, see the physics-only row), and contact with the duck
-  makes steps costlier still; the seed loop and the C++ pipeline differ by little, so control
-  is not where the time goes. Both targets need the soft step to get about 100x to 1000x
-  faster, not the Python side.
-- Scene 4 (pile, ratio to MuJoCo far above 1.5): the pile is one island of 300 DOFs, above
-  `dense_island_max_dofs` (96), so it takes the sparse path. In the profile, CHOLMOD's symbolic
-  analysis is redone for each factorization (cholmod_transpose_sym 7 %, amd, etree, rowcolcounts,
-  super_symbolic: about 13 % together), the float matrices are copied to double for CHOLMOD and
-  J^T G J is assembled as sparse products (assign_sparse_to_sparse: about 8 %), and malloc/free
-  take about 5 %. The step of an already settled pile is faster (superdex_microbench
-  BM_StepPile50, double build), so the landing phase dominates the timed run.
-- Scene 3 with the table: two sphere contacts make the step several times the free arm's. The
-  profile is dominated by the per-block constraint evaluation of the line search (block_response
-  and 3 x 3 block dot products: about 20 % of samples) and dense LLT solves.
-- Scenes 2, 3, 6 (step): even without contact a SuperDex step of a 2- or 7-DOF arm costs 2 to 3
-  times MuJoCo's. Per-step allocations show up (malloc, free) and the mass matrix is computed per
-  step (BM_MassMatrix/7 is a few microseconds, about half of MuJoCo's whole step).
-- Scene 6: set_external_forces_on_dofs costs several times MuJoCo's slice assignment and
-  get_articulated_joint_velocities about twice a numpy copy (binding overhead; not profiled further).
-- Scene 7, Python threads: two Python threads stepping separate scenes get no speedup, and
-  `/usr/bin/time` shows user CPU time equal to wall time, so only one core is busy although
-  scene.step releases the GIL: something serializes steps of different scenes (not found; the
-  engine's registry lock is a shared lock). Worker threads (islands in parallel in one scene)
-  scale close to 1.8x.
+- Scene 1 (seed scene): the soft duck's own step is the floor; the seed loop and the C++ pipeline
+  differ by little, so control is not where the time goes. The duck has 3839 tetrahedra and 3090
+  free DOFs. A step without contact costs about 40 ms, in one Newton iteration:
+  - element Hessians (the projected Neo-Hookean stress derivative: a 3 x 3 SVD, a 3 x 3 eigen
+    solve and nine rank-one updates per tetrahedron), about a quarter;
+  - CHOLMOD's supernodal numeric factorization, about a quarter;
+  - gradient evaluations in the line search, about a sixth.
+  Fixed so far: the Hessian at the start of the step, computed for the stiffness damping, now also
+  serves the first Newton iteration (one element pass per step instead of two), the element
+  Hessian is assembled by 3 x 3 blocks, and CHOLMOD's OpenMP threads wait passively instead of
+  spinning. That took the physics-only row from 42.5 to 28.5 ms per step, but the
+  seed runs did not get faster: while the ball presses, each step takes several Newton iterations
+  and friction passes, each with a full Hessian and factorization. What remains: 10x and 30x real
+  time mean 0.4 ms and 0.13 ms per step, about 100 times less than one Hessian and one
+  factorization of this mesh. That needs a factorization reused across iterations and steps (a
+  lagged Newton matrix) or a reduced model of the prop, not a constant factor.
+- Scene 5 (soft block): the same per-iteration costs. The exponent (about 1.2 to 1.26 between
+  runs) is set by the sparse factorization, whose cost grows faster than n for 3-D meshes; reusing
+  factorizations across iterations would also lower it.
+- Scene 4 (pile). Found: every Newton iteration re-ran CHOLMOD's symbolic analysis and built
+  J^T G J by sparse products; Newton started from the free motion, so a settled pile took about
+  12 iterations per step; each friction pass started over. Fixed: a solve starts from the current
+  velocities when bodies touch (about 3 iterations per step); the Newton matrix's pattern is built
+  once per island and kept across steps while the island keeps its contacts (A's structure is
+  its bodies' blocks, whatever their values); each block's J_b^T G_b J_b is scattered into known
+  slots; rigid islands use a simplicial Cholesky in double (no BLAS or OpenMP threads). What
+  remains: the scalar simplicial factorization and the line search's per-block evaluations (a
+  supernodal Cholesky on the 6 x 6 body blocks would be next), and the landing phase, where the
+  contact set changes every step and the pattern is rebuilt.
+- Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
+  (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
+  iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
+  without 6 x 6 products) and the mass matrix column by column; joint motion per column in
+  inverse dynamics; the warm start above (the Panda on the table converges in 0 or 1 iteration).
+  What remains: allocations per step (malloc and free are about a tenth of a small step: per-step
+  vectors, maps and dense copies in the island assembly) and the robotics pipeline's own cost.
+- Scene 6 (calls). Found: every call imported numpy and converted its arguments with
+  numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
+  and contiguous arrays are read directly and writable out arrays of the right dtype are used as
+  they are; the general path remains for everything else.
+- Scenes 7 and 8 (threads). Found: rigid islands above 96 DOFs were factored by CHOLMOD, whose
+  OpenMP team (spinning after each factorization) took the second core from a concurrent step of
+  another scene: two Python threads got no speedup (1.05x). Now those islands are factored
+  without OpenMP, and the soft bodies' CHOLMOD threads sleep when idle: Python threads went to
+  about 1.7x. Worker threads (islands of one scene in parallel) went from 1.79x to about 1.4x:
+  the island solves they parallelize became 3 to 4 times cheaper while collision detection and
+  the step's assembly stay serial (not profiled yet); the batched scenes of scene 8 (1.86x for
+  the seed task on the box when first measured, about 1.35x in this run) need the same look.
 """
 
 
