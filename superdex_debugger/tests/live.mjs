@@ -38,7 +38,8 @@ try {
   await page.goto(url);
   out.hook = Boolean(await waitFor(page, () => typeof window.superdex === 'object', null, 10000));
   out.connected = Boolean(await waitFor(page, () => window.superdex.connected(), null, timeoutMs));
-  out.sessionMode = await page.evaluate(() => window.superdex.session()?.mode ?? null);
+  // the session message may follow the connection by a moment
+  out.sessionMode = (await waitFor(page, () => window.superdex.session()?.mode ?? null, null, timeoutMs)) ?? null;
   out.framesReceived = Boolean(await waitFor(page, () => window.superdex.frameCount() > 0, null, timeoutMs));
 
   // The 3D view draws something.

@@ -62,7 +62,8 @@ try {
   out.hook = Boolean(await waitFor(page, () => typeof window.superdex === 'object', null, 10000));
   out.connected = Boolean(await waitFor(page, () => window.superdex.connected(), null, 10000));
   out.replayEnded = Boolean(await waitFor(page, () => window.superdex.replayEnded(), null, timeoutMs));
-  out.sessionMode = await page.evaluate(() => window.superdex.session()?.mode ?? null);
+  // the session message may follow the connection by a moment
+  out.sessionMode = (await waitFor(page, () => window.superdex.session()?.mode ?? null, null, timeoutMs)) ?? null;
   out.endFrames = await page.evaluate(() => window.superdex.replayTotal());
   out.frameCount = await page.evaluate(() => window.superdex.frameCount());
   // The page keeps at most 20000 frames per scene: the newest ones.
