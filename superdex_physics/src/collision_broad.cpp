@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "collision_detection.h"
+#include "superdex/physics/engine.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -17,18 +18,6 @@ ContactMaterial combine_materials(const ContactMaterial& a, const ContactMateria
   m.dissipation_time = std::max(a.dissipation_time, b.dissipation_time);
   return m;
 }
-
-namespace {
-
-struct PosedCollider {
-  int body, collider;
-  SpatialTransform X_WS;
-  Aabb box;
-  bool unbounded;
-  real sweep;  // how far its surface can move within the step (m)
-};
-
-}  // namespace
 
 Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
   Aabb out;
@@ -91,18 +80,18 @@ bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider&
 
 }  // namespace
 
-std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
+ContactPairs find_contact_pairs(const SceneData& s, real margin, real dt) {
+  ContactPairs out;
+  out.margin = margin;
+  std::vector<PosedCollider>& posed = out.posed;
   // posed colliders and their world bounds, grown by the margin
-  std::vector<PosedCollider> posed, planes;
   for (size_t b = 0; b < s.articulations.size(); ++b) {
     const Articulation& a = *s.articulations[b];
     for (size_t c = 0; c < a.model.colliders.size(); ++c) {
       const LinkCollider& col = a.model.colliders[c];
-      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, false,
-                       collider_sweep(a, col, dt)};
+      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, collider_sweep(a, col, dt)};
       if (std::holds_alternative<PlaneShape>(col.shape)) {
-        pc.unbounded = true;
-        planes.push_back(pc);
+        out.planes.push_back(pc);
         continue;
       }
       pc.box = world_bounds(col.aabb_S, pc.X_WS);
@@ -118,32 +107,50 @@ std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
     if (posed[i].box.min.x() != posed[j].box.min.x()) return posed[i].box.min.x() < posed[j].box.min.x();
     return i < j;
   });
-  std::vector<std::pair<int, int>> pairs;  // indices into posed (or planes, encoded negative)
   for (size_t k = 0; k < order.size(); ++k) {
     const PosedCollider& p = posed[order[k]];
     for (size_t l = k + 1; l < order.size() && posed[order[l]].box.min.x() <= p.box.max.x(); ++l)
-      if (p.box.overlaps(posed[order[l]].box)) pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
+      if (p.box.overlaps(posed[order[l]].box)) out.pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
   }
-  std::sort(pairs.begin(), pairs.end());
-  for (size_t pl = 0; pl < planes.size(); ++pl)
-    for (size_t i = 0; i < posed.size(); ++i) pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+  std::sort(out.pairs.begin(), out.pairs.end());
+  for (size_t pl = 0; pl < out.planes.size(); ++pl)
+    for (size_t i = 0; i < posed.size(); ++i) out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+  return out;
+}
 
-  std::vector<Contact> contacts;
+void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out) {
   std::vector<ContactPoint> points;
-  for (const auto& [i, j] : pairs) {
-    const PosedCollider& pa = posed[i];
-    const PosedCollider& pb = j >= 0 ? posed[j] : planes[-1 - j];
+  const size_t end = std::min(pairs.pairs.size(), (chunk + 1) * ContactPairs::kPairsPerChunk);
+  for (size_t k = chunk * ContactPairs::kPairsPerChunk; k < end; ++k) {
+    const auto [i, j] = pairs.pairs[k];
+    const PosedCollider& pa = pairs.posed[i];
+    const PosedCollider& pb = j >= 0 ? pairs.posed[j] : pairs.planes[-1 - j];
     const Articulation& A = *s.articulations[pa.body];
     const Articulation& B = *s.articulations[pb.body];
     const LinkCollider& ca = A.model.colliders[pa.collider];
     const LinkCollider& cb = B.model.colliders[pb.collider];
     if (!pair_enabled(s, A, ca, B, cb)) continue;
     points.clear();
-    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, margin + pa.sweep + pb.sweep, points);
+    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, pairs.margin + pa.sweep + pb.sweep, points);
     const ContactMaterial m = combine_materials(ca.material, cb.material);
-    for (const ContactPoint& p : points) contacts.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
+    for (const ContactPoint& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
   }
+}
+
+std::vector<Contact> join_contacts(const std::vector<std::vector<Contact>>& chunks) {
+  size_t total = 0;
+  for (const auto& c : chunks) total += c.size();
+  std::vector<Contact> contacts;
+  contacts.reserve(total);
+  for (const auto& c : chunks) contacts.insert(contacts.end(), c.begin(), c.end());
   return contacts;
+}
+
+std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
+  const ContactPairs pairs = find_contact_pairs(s, margin, dt);
+  std::vector<std::vector<Contact>> chunks(pairs.num_chunks());
+  run_on_worker_threads(chunks.size(), [&](size_t c) { collide_pairs(s, pairs, c, chunks[c]); });
+  return join_contacts(chunks);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

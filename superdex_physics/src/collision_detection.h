@@ -20,8 +20,36 @@ struct Contact {
   ContactMaterial material; // combined for the pair
 };
 
-// All contact candidates closer than `margin` (m) plus the distance the two shapes can close
-// within `dt` at their current speeds (speculative contact), in a deterministic order.
+// A collider posed in the world for this step, with its world bounds grown by the margin and
+// its sweep (planes have no bounds).
+struct PosedCollider {
+  int body = 0, collider = 0;  // SceneData::articulations index; index in its model's colliders
+  SpatialTransform X_WS;
+  Aabb box;
+  real sweep = 0;  // how far its surface can move within the step (m)
+};
+
+// The broad phase's result: the posed colliders and the candidate pairs (indices into `posed`;
+// a negative second index -1 - k names planes[k]), in a deterministic order. The narrow phase
+// runs on consecutive chunks of the pairs, which the worker threads can share.
+struct ContactPairs {
+  static constexpr size_t kPairsPerChunk = 16;
+  std::vector<PosedCollider> posed, planes;
+  std::vector<std::pair<int, int>> pairs;
+  real margin = 0;  // contact margin (m)
+  size_t num_chunks() const { return (pairs.size() + kPairsPerChunk - 1) / kPairsPerChunk; }
+};
+
+// Broad phase: colliders whose bounds, grown by `margin` (m) plus the distance they can move
+// within `dt` at their current speeds (speculative contact), overlap; every collider is paired
+// with every plane.
+ContactPairs find_contact_pairs(const SceneData& scene, real margin, real dt);
+// Narrow phase of one chunk of the pairs: appends the chunk's contacts to `out`, in pair order.
+void collide_pairs(const SceneData& scene, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out);
+// The chunks' contacts joined in chunk order (the same list whatever the number of threads).
+std::vector<Contact> join_contacts(const std::vector<std::vector<Contact>>& chunks);
+// All contact candidates (broad phase, then the narrow phase on the worker threads), in a
+// deterministic order.
 std::vector<Contact> detect_contacts(const SceneData& scene, real margin, real dt);
 
 // World bounds of local bounds posed by X.

@@ -67,9 +67,29 @@ void run_on_worker_threads(std::size_t count, const std::function<void(std::size
     std::shared_lock lock(e.mutex);
     arena = e.arena.get();
   }
-  if (arena && count > 1) arena->execute([&] { oneapi::tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { work(i); }); });
-  else
+  // a call from inside a work item (a scene's step within a batch of scenes) runs in order on
+  // its thread: the outer items already keep the threads busy
+  thread_local int depth = 0;
+  if (!arena || count < 2 || depth > 0) {
     for (std::size_t i = 0; i < count; ++i) work(i);
+    return;
+  }
+  // greedy self-scheduling: each thread takes the next item as it becomes free, so items that
+  // differ much in cost (islands, scenes), given largest first, end close together
+  std::atomic<std::size_t> next{0};
+  const int runners = static_cast<int>(std::min<std::size_t>(count, static_cast<std::size_t>(arena->max_concurrency())));
+  arena->execute([&] {
+    oneapi::tbb::parallel_for(0, runners, [&](int) {
+      ++depth;
+      try {
+        for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
+      } catch (...) {
+        --depth;
+        throw;
+      }
+      --depth;
+    });
+  });
 }
 
 namespace {

@@ -14,6 +14,13 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
+bool island_is_sparse(const SceneData& s, const Island& island, const SolverParams& params) {
+  if (!island.soft_bodies.empty()) return false;
+  int dofs = 0;
+  for (int b : island.bodies) dofs += s.articulations[b]->model.nv;
+  return dofs > params.dense_island_max_dofs;
+}
+
 IslandSolution solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                             const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                             const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
@@ -153,8 +160,8 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     for (int b : island.bodies) v_start.segment(offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
   SparseMat A_sparse;
   std::shared_ptr<SparseNewtonSystem> system;
-  const bool sparse = n > params.dense_island_max_dofs;
-  if (soft.empty() && sparse) {
+  const bool sparse = island_is_sparse(s, island, params);
+  if (sparse) {
     // A's structure is its bodies' diagonal blocks, whatever their values (so that it stays the
     // same from step to step)
     std::vector<Eigen::Triplet<real>> A_entries;

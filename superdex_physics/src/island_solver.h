@@ -23,6 +23,10 @@ struct IslandSolution {
   double seconds = 0;
 };
 
+// Whether the island is solved on the sparse path: rigid only, with more than
+// params.dense_island_max_dofs DOFs. Such islands keep their Newton pattern across steps.
+bool island_is_sparse(const SceneData& scene, const Island& island, const SolverParams& params);
+
 // `soft_steps` holds one problem per scene soft body (null for those without free DOFs).
 // `sparse_cache` (may be null) holds the sparse Newton pattern of this island's bodies from the
 // last step: reused when the structure is unchanged, replaced otherwise.

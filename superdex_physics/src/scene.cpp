@@ -5,7 +5,6 @@
 #include <chrono>
 #include <tuple>
 #include <cmath>
-#include <oneapi/tbb/parallel_for.h>
 
 #include "island_solver.h"
 #include "debug_link.h"
@@ -297,29 +296,39 @@ void Scene::step_dynamics(real dt) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const size_t n = s.articulations.size();
-  EngineData& e = engine_data();
-  // runs work(i) for i < count on the worker threads when there are any
-  auto parallel = [&](size_t count, auto&& work) {
-    if (e.arena && count > 1) e.arena->execute([&] { oneapi::tbb::parallel_for(size_t(0), count, work); });
-    else for (size_t i = 0; i < count; ++i) work(i);
-  };
+  const auto parallel = run_on_worker_threads;
 
-  // 1. dynamics terms of every body
-  std::vector<ArticulationTerms> terms(n);
-  parallel(n, [&](size_t i) { terms[i] = articulation_terms(*s.articulations[i], s.gravity, dt, s.params); });
-  // 2. collision detection
+  // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem
+  // (the costliest items, first), the dynamics terms of every body and the narrow phase
   const auto t1 = Clock::now();
-  const std::vector<Contact> contacts = detect_contacts(s, s.params.contact_margin, dt);
-  const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
-  const double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
-  // soft bodies' parts of the problem
-  std::vector<std::unique_ptr<SoftStep>> soft_steps(s.soft_bodies.size());
-  std::vector<int> soft_free(s.soft_bodies.size(), 0);
-  for (size_t k = 0; k < s.soft_bodies.size(); ++k)
+  const ContactPairs pairs = find_contact_pairs(s, s.params.contact_margin, dt);
+  double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
+  const size_t num_soft = s.soft_bodies.size();
+  std::vector<std::unique_ptr<SoftStep>> soft_steps(num_soft);
+  std::vector<int> soft_free(num_soft, 0);
+  for (size_t k = 0; k < num_soft; ++k)
     for (char pinned : s.soft_bodies[k]->model.pinned) soft_free[k] += pinned ? 0 : 3;
-  parallel(s.soft_bodies.size(), [&](size_t k) {
-    if (soft_free[k] > 0) soft_steps[k] = std::make_unique<SoftStep>(*s.soft_bodies[k], s.gravity, dt);
+  std::vector<ArticulationTerms> terms(n);
+  std::vector<std::vector<Contact>> chunk_contacts(pairs.num_chunks());
+  std::vector<double> chunk_seconds(pairs.num_chunks());
+  parallel(num_soft + n + pairs.num_chunks(), [&](size_t i) {
+    if (i < num_soft) {
+      if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt);
+    } else if (i < num_soft + n) {
+      terms[i - num_soft] = articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params);
+    } else {
+      const size_t c = i - num_soft - n;
+      const auto t = Clock::now();
+      collide_pairs(s, pairs, c, chunk_contacts[c]);
+      chunk_seconds[c] = std::chrono::duration<double>(Clock::now() - t).count();
+    }
   });
+  // 2. the contact list, and soft contacts
+  const auto t2 = Clock::now();
+  const std::vector<Contact> contacts = join_contacts(chunk_contacts);
+  const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
+  time_collision += std::chrono::duration<double>(Clock::now() - t2).count();
+  for (double seconds : chunk_seconds) time_collision += seconds;
   // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
   std::vector<int> num_dofs(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
@@ -329,27 +338,27 @@ void Scene::step_dynamics(real dt) {
   std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
   std::vector<std::shared_ptr<SparseNewtonSystem>*> sparse_cache(islands.size(), nullptr);
   for (size_t k = 0; k < islands.size(); ++k) {
-    if (!islands[k].soft_bodies.empty()) continue;
-    int dofs = 0;
-    for (int b : islands[k].bodies) dofs += num_dofs[b];
-    if (dofs <= s.params.dense_island_max_dofs) continue;
+    if (!island_is_sparse(s, islands[k], s.params)) continue;
     auto previous = s.sparse_systems.find(islands[k].bodies);
     auto& slot = sparse_systems[islands[k].bodies];
     if (previous != s.sparse_systems.end()) slot = std::move(previous->second);
     sparse_cache[k] = &slot;
   }
   s.sparse_systems = std::move(sparse_systems);
+  // largest islands first (by contacts and DOFs), so that the threads finish close together
+  std::vector<size_t> by_size(islands.size());
+  std::vector<size_t> island_size(islands.size());
+  for (size_t k = 0; k < islands.size(); ++k) {
+    by_size[k] = k;
+    island_size[k] = islands[k].contacts.size() + islands[k].soft_contacts.size();
+    for (int b : islands[k].bodies) island_size[k] += num_dofs[b];
+    for (int b : islands[k].soft_bodies) island_size[k] += soft_free[b];
+  }
+  std::stable_sort(by_size.begin(), by_size.end(), [&](size_t x, size_t y) { return island_size[x] > island_size[y]; });
   std::vector<IslandSolution> solutions(islands.size());
-  parallel(islands.size(), [&](size_t k) {
-    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
-  });
-
-  // 4. next states; a fault (non-finite, unconverged) raises before anything is committed, or
-  // is clamped (step_guard.h)
-  StepGuard guard(s);
-  for (size_t k = 0; k < islands.size(); ++k) guard.check_island(islands[k], solutions[k]);
   std::vector<VecX> q_next(n), v_next(n), efforts_next(n);
-  for (size_t k = 0; k < islands.size(); ++k)
+  // the next states of island k's bodies (committed below, once every island is checked)
+  auto next_states = [&](size_t k) {
     for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
       const int b = islands[k].bodies[j];
       v_next[b] = solutions[k].v[j];
@@ -357,6 +366,18 @@ void Scene::step_dynamics(real dt) {
       q_next[b] = s.articulations[b]->state.q;
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
     }
+  };
+  parallel(islands.size(), [&](size_t i) {
+    const size_t k = by_size[i];
+    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
+    next_states(k);
+  });
+
+  // 4. next states; a fault (non-finite, unconverged) raises before anything is committed, or
+  // is clamped (step_guard.h)
+  StepGuard guard(s);
+  for (size_t k = 0; k < islands.size(); ++k)
+    if (guard.check_island(islands[k], solutions[k])) next_states(k);  // clamped
   for (size_t b = 0; b < n; ++b)
     if (num_dofs[b] > 0) guard.check_articulation(static_cast<int>(b), q_next[b], v_next[b]);
   // soft bodies: next positions and node contact forces

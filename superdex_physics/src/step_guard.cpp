@@ -32,7 +32,7 @@ void StepGuard::add(ActorHandle actor, const std::string& name, const std::strin
   faults_.push_back(std::move(f));
 }
 
-void StepGuard::check_island(const Island& island, IslandSolution& sol) {
+bool StepGuard::check_island(const Island& island, IslandSolution& sol) {
   const bool finite_v = all_finite(sol.v) && all_finite(sol.soft_v);
   const bool finite_f = all_finite(sol.contact_force) && all_finite(sol.soft_contact_force);
   std::string quantity, detail;
@@ -49,7 +49,7 @@ void StepGuard::check_island(const Island& island, IslandSolution& sol) {
     quantity = "convergence";
     detail = os.str();
   } else {
-    return;
+    return false;
   }
   const std::string advice = quantity == "convergence"
                                  ? "; raise max_newton_iterations or reduce dt"
@@ -66,13 +66,14 @@ void StepGuard::check_island(const Island& island, IslandSolution& sol) {
     const std::string soft_quantity = quantity == "velocities" ? "node velocities" : quantity;
     add(body.handle, body.model.name, soft_quantity, (quantity == "velocities" ? "node " : "") + detail + outcome + advice);
   }
-  if (!clamp() || quantity == "convergence") return;
+  if (!clamp() || quantity == "convergence") return false;
   // clamp: the island's bodies stop where they are; no contact force is reported
   for (size_t j = 0; j < island.bodies.size(); ++j) sol.v[j].setZero(s_.articulations[island.bodies[j]]->model.nv);
   for (VecX& e : sol.drive_efforts) e.setZero();
   for (VecX& v : sol.soft_v) v.setZero();
   for (Vec3& f : sol.contact_force) f.setZero();
   for (Vec3& f : sol.soft_contact_force) f.setZero();
+  return true;
 }
 
 void StepGuard::check_articulation(int b, VecX& q, VecX& v) {

@@ -21,8 +21,9 @@ class StepGuard {
   explicit StepGuard(SceneData& scene) : s_(scene) {}
 
   /// An island's solution: non-finite velocities or contact forces, or no convergence. Under
-  /// WarnAndClamp the non-finite parts are replaced (zero velocities and forces).
-  void check_island(const Island& island, IslandSolution& solution);
+  /// WarnAndClamp the non-finite parts are replaced (zero velocities and forces); returns whether
+  /// the solution was changed.
+  bool check_island(const Island& island, IslandSolution& solution);
   /// Articulation b's next positions q and velocities v (after integration).
   void check_articulation(int b, VecX& q, VecX& v);
   /// Soft body k's next state.

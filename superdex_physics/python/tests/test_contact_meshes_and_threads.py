@@ -110,11 +110,13 @@ def test_threaded_stepping_with_contact_matches_one_thread():
         scene = sdp.create_scene("pile")
         scene.set_gravity([0, 0, -G])
         boxes = pile(scene)
-        # two separate piles make two islands that the threads solve in parallel
-        far = [add_box(scene, f"far{k}", [5.0, 0, 0.12 + 0.21 * k], half=HALF) for k in range(4)]
+        # separate piles make islands that the threads solve in parallel; with more than 32
+        # collider pairs (every box with the ground, and the touching boxes), the narrow phase
+        # also runs in several chunks on the threads
+        far = [add_box(scene, f"far{p}_{k}", [5.0 * (p + 1), 0, 0.12 + 0.21 * k], half=HALF) for p in range(6) for k in range(4)]
         for _ in range(150):
             scene.step(0.01)
-        assert scene.get_solver_stats().num_islands >= 2
+        assert scene.get_solver_stats().num_islands >= 7
         results.append(np.concatenate([position(b) for b in boxes + far]))
         sdp.shutdown()
     np.testing.assert_array_equal(results[0], results[1])

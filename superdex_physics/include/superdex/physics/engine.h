@@ -34,7 +34,9 @@ int num_worker_threads();
 /// Runs work(i) for every i < count on the engine's worker threads (the oneTBB arena of
 /// initialize()), or in order on the calling thread when single-threaded. Returns when all are
 /// done; the first exception thrown by a work item is rethrown. Work items run concurrently, so
-/// each must touch its own scene (a scene's step may itself use the same threads).
+/// each must touch its own scene. Threads take the next item as they become free, so items given
+/// largest first end close together. A call made from inside a work item (a scene's step within
+/// a batch of scenes) runs its items in order on that thread.
 void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work);
 
 Scene create_scene(const std::string& name);
