@@ -48,21 +48,27 @@ def run_child(module: str, case: dict, timeout: float = 900.0) -> dict:
     return result
 
 
-def measure(module: str, case: dict, repeats: int, log=print) -> dict:
-    """Median over `repeats` children of every numeric field; the first run's other fields
-    (checks, notes) are kept as they are; the individual walls are kept in 'walls'."""
-    runs = []
-    for r in range(repeats):
-        runs.append(run_child(module, case))
-    merged = dict(runs[0])
-    for key, value in runs[0].items():
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            merged[key] = statistics.median(run[key] for run in runs)
-    merged["walls"] = [run.get("wall") for run in runs]
-    merged["repeats"] = repeats
-    derive(merged)
-    log(f"    {case.get('label', case)}: {summary(merged)}")
-    return merged
+def measure_cases(module: str, cases: list, repeats: int, log=print) -> list:
+    """Every case `repeats` times, in rounds (each round runs every case once), so that a drift of
+    the machine's speed during the run touches every case alike and their ratios stay fair. Each
+    case's result is the median over its runs of every numeric field; the first run's other
+    fields (checks, notes) are kept as they are; the individual walls are kept in 'walls'."""
+    runs = [[] for _ in cases]
+    for _ in range(repeats):
+        for k, case in enumerate(cases):
+            runs[k].append(run_child(module, case))
+    results = []
+    for case, case_runs in zip(cases, runs):
+        merged = dict(case_runs[0])
+        for key, value in case_runs[0].items():
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                merged[key] = statistics.median(run[key] for run in case_runs)
+        merged["walls"] = [run.get("wall") for run in case_runs]
+        merged["repeats"] = repeats
+        derive(merged)
+        log(f"    {case.get('label', case)}: {summary(merged)}")
+        results.append(merged)
+    return results
 
 
 def derive(m: dict) -> None:

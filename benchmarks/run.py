@@ -14,7 +14,8 @@ Scenes (benchmarks/scenes/s<N>_*.py; each builds its models from one description
 then the Google Benchmark micro-benchmarks of the hot kernels (benchmarks/cpp, target
 superdex_microbench, built in the project's build directory).
 
-Every measurement runs in a fresh process (harness.py); results are medians of --repeats runs.
+Every measurement runs in a fresh process (harness.py); results are medians of --repeats runs,
+taken in rounds (every case of a scene once per round).
 Writes benchmarks/RESULTS.md (or --out) and prints every measurement with its equivalence checks.
 --quick: tiny sizes, one repetition, a few steps: a smoke run whose numbers mean nothing.
 """
@@ -34,7 +35,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks import report  # noqa: E402
-from benchmarks.harness import BENCH, REPO, measure  # noqa: E402
+from benchmarks.harness import BENCH, REPO, measure_cases  # noqa: E402
 
 SCENES = {1: "s1_seed", 2: "s2_arm_box", 3: "s3_panda", 4: "s4_pile", 5: "s5_soft_block", 6: "s6_python_overhead",
           7: "s7_threads", 8: "s8_batched"}
@@ -97,9 +98,8 @@ def main():
     for number in numbers:
         module = importlib.import_module(f"benchmarks.scenes.{SCENES[number]}")
         print(f"== scene {number}: {module.TITLE}", flush=True)
-        results = []
-        for case in module.cases(opts):
-            results.append((case, measure(SCENES[number], case, opts.repeats, log=lambda s: print(s, flush=True))))
+        cases = module.cases(opts)
+        results = list(zip(cases, measure_cases(SCENES[number], cases, opts.repeats, log=lambda s: print(s, flush=True))))
         md, targets, notes = report.REPORTERS[number](results, opts)
         for name, ok, text in targets:
             print(f"  target {name}: {'met' if ok else 'NOT MET'} ({text})", flush=True)
