@@ -9,11 +9,12 @@ of the TCP: they are the only collision shapes, so the three simulators collide 
 
 from __future__ import annotations
 
-import importlib.metadata
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
+
+from superdex.robot_files import PANDA_URDF, example_robot_data_file
 
 from benchmarks.models import quat_xyzw_to_matrix, rpy_to_quat_xyzw, matrix_to_quat_xyzw
 
@@ -26,12 +27,7 @@ TIP_MASS = 0.01
 
 
 def urdf_path() -> Path:
-    dist = importlib.metadata.distribution("example-robot-data")
-    suffix = "robots/panda_description/urdf/panda.urdf"
-    for f in dist.files or []:
-        if str(f).replace("\\", "/").endswith(suffix):
-            return Path(dist.locate_file(f)).resolve()
-    raise FileNotFoundError(f"{suffix} is not part of example-robot-data {dist.version}")
+    return example_robot_data_file(PANDA_URDF)
 
 
 def _origin(el):

@@ -17,7 +17,6 @@ superdex.robotics) reaching goal points just above a table, at 50 Hz control and
 
 from __future__ import annotations
 
-import importlib.metadata
 import warnings
 from pathlib import Path
 
@@ -27,6 +26,7 @@ import superdex.physics as sdp
 import superdex.robotics as sdr
 from superdex.lab.env import SuperDexEnv
 from superdex.lab.task import BuiltScene, np_real, split_raw
+from superdex.robot_files import PANDA_URDF, example_robot_data_file
 
 READY = np.array([0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785])  # rad
 # joint drive gains (N m/rad, N m s/rad) of the velocity commands
@@ -43,12 +43,10 @@ GOAL_HIGH = np.array([0.55, 0.2, 0.50])
 
 def urdf_path() -> Path:
     """The Panda URDF shipped by the example-robot-data package."""
-    dist = importlib.metadata.distribution("example-robot-data")
-    suffix = "robots/panda_description/urdf/panda.urdf"
-    for f in dist.files or []:
-        if str(f).replace("\\", "/").endswith(suffix):
-            return Path(dist.locate_file(f)).resolve()
-    raise sdp.Error(f"{suffix} is not part of example-robot-data {dist.version}")
+    try:
+        return example_robot_data_file(PANDA_URDF)
+    except FileNotFoundError as e:
+        raise sdp.Error(str(e)) from None
 
 
 class PandaReachEnv(SuperDexEnv):
