@@ -61,16 +61,16 @@ int num_worker_threads() {
 }
 
 void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work) {
-  EngineData& e = engine_data();
-  oneapi::tbb::task_arena* arena = nullptr;
-  {
-    std::shared_lock lock(e.mutex);
-    arena = e.arena.get();
-  }
   // a call from inside a work item (a scene's step within a batch of scenes) runs in order on
   // its thread: the outer items already keep the threads busy
   thread_local int depth = 0;
-  if (!arena || count < 2 || depth > 0) {
+  oneapi::tbb::task_arena* arena = nullptr;
+  if (count > 1 && depth == 0) {
+    EngineData& e = engine_data();
+    std::shared_lock lock(e.mutex);
+    arena = e.arena.get();
+  }
+  if (!arena || arena->max_concurrency() < 2) {
     for (std::size_t i = 0; i < count; ++i) work(i);
     return;
   }

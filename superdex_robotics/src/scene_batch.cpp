@@ -5,6 +5,7 @@
 #include "superdex/robotics/scene_batch.h"
 
 #include <algorithm>
+#include <chrono>
 #include <set>
 #include <string>
 
@@ -28,6 +29,7 @@ struct SceneSlot {
   std::vector<servo::VelocityServoLaw> servos;  // VelocityServo: one per action column
   std::vector<double> q_target;                 // VelocityDrive: integrated target per column (rad or m)
   bool contact_valid = false;                   // the contact query has a completed step since the reset
+  double seconds = 0;                           // wall time of its last batch step (s)
 };
 
 void check_size(const std::vector<double>& v, size_t n, const char* field) {
@@ -41,6 +43,7 @@ void check_size(const std::vector<double>& v, size_t n, const char* field) {
 struct SceneBatch::Impl {
   SceneBatchSpec spec;
   std::vector<SceneSlot> slots;
+  std::vector<size_t> order;  // the order of the slots in the last step (longest first)
   int n = 0;  // action columns
 
   // the observation row of one scene
@@ -158,6 +161,7 @@ SceneBatch::SceneBatch(SceneBatchSpec spec, std::vector<SceneBatchMember> member
     for (int dof : b.spec.action_dofs) slot.q_target.push_back(q[dof]);
     b.slots.push_back(std::move(slot));
   }
+  b.order.resize(b.slots.size());
 }
 
 SceneBatch::~SceneBatch() = default;
@@ -198,13 +202,20 @@ void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* 
 
 void SceneBatch::step(const double* actions, real* obs_out) {
   Impl& b = *impl_;
-  physics::run_on_worker_threads(b.slots.size(), [&](size_t k) {
+  // the scenes that took longest last time go first, so that the threads finish close together
+  // (scenes in contact can cost many times more than free ones)
+  for (size_t k = 0; k < b.slots.size(); ++k) b.order[k] = k;
+  std::stable_sort(b.order.begin(), b.order.end(), [&](size_t x, size_t y) { return b.slots[x].seconds > b.slots[y].seconds; });
+  physics::run_on_worker_threads(b.slots.size(), [&](size_t i) {
+    const size_t k = b.order[i];
     SceneSlot& slot = b.slots[k];
+    const auto t0 = std::chrono::steady_clock::now();
     std::vector<double> a(b.n);
     b.clip(actions + k * b.n, a.data());
     for (int s = 0; s < b.spec.substeps; ++s) b.substep(slot, a.data());
     slot.contact_valid = true;
     b.observe(slot, obs_out + k * obs_size());
+    slot.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   });
 }
 
