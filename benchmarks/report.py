@@ -257,7 +257,8 @@ this run's.
   Fixed so far: the Hessian at the start of the step, computed for the stiffness damping, now also
   serves the first Newton iteration (one element pass per step instead of two), the element
   Hessian is assembled by 3 x 3 blocks, and CHOLMOD's OpenMP threads wait passively instead of
-  spinning. That took the physics-only row from 42.5 to 28.5 ms per step, but the
+  spinning. That took the physics-only row from 42.5 to 28.5 ms per step (in the runs that
+  made those changes; the machine's speed varies by up to a third between runs), but the
   seed runs did not get faster: while the ball presses, each step takes several Newton iterations
   and friction passes, each with a full Hessian and factorization. What remains: 10x and 30x real
   time mean 0.4 ms and 0.13 ms per step, about 100 times less than one Hessian and one
@@ -287,14 +288,23 @@ this run's.
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
   they are; the general path remains for everything else.
-- Scenes 7 and 8 (threads). Found: rigid islands above 96 DOFs were factored by CHOLMOD, whose
-  OpenMP team (spinning after each factorization) took the second core from a concurrent step of
-  another scene: two Python threads got no speedup (1.05x). Now those islands are factored
-  without OpenMP, and the soft bodies' CHOLMOD threads sleep when idle: Python threads went to
-  about 1.7x. Worker threads (islands of one scene in parallel) went from 1.79x to about 1.4x:
-  the island solves they parallelize became 3 to 4 times cheaper while collision detection and
-  the step's assembly stay serial (not profiled yet); the batched scenes of scene 8 (1.86x for
-  the seed task on the box when first measured, about 1.35x in this run) need the same look.
+- Scenes 7 and 8 (threads). Found, earlier: CHOLMOD's OpenMP team, spinning after each
+  factorization, took the second core from a concurrent step of another scene (two Python
+  threads: 1.05x). Rigid islands are now factored without OpenMP and the soft bodies' CHOLMOD
+  threads sleep when idle. Found, this run (per-phase timers in the step, and which thread solved
+  which island): with worker threads the range partitioner gave one thread most of the big
+  islands while the other waited, and collision detection and the commit ran serially. Fixed:
+  threads take the next item when free (greedy), islands go largest first, the narrow phase runs
+  in chunks of 16 pairs on the threads (joined in pair order: the contacts, and so the results,
+  are bitwise the same on 1 and 2 threads), and the soft-body steps, dynamics terms and narrow
+  phase share one parallel region; in a batch (scene 8) the scenes that took longest in the last
+  step go first, and a scene's own step runs on its thread. What remains: the seed task on the box
+  is about 14 us per scene-step, of which some 200 small allocations (malloc and free are a fifth
+  of the time); two threads of one process then slow each other down (two processes stepping the
+  same task side by side do not), and a preloaded scalable allocator narrowed the gap. Removing
+  the per-step allocations (workspaces kept across steps) is next. The machine's speed also drifts
+  by 10-20 % from minute to minute, so every case of a scene is measured in rounds and the ratios
+  compare neighbouring runs.
 """
 
 
