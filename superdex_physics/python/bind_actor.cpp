@@ -12,14 +12,14 @@ namespace superdex::python {
 namespace {
 
 // Writes `values` into the out-parameter (or a new numpy array when it is None) and returns it.
-nb::object fill_out(nb::handle out, const VecX& values, const std::string& arg) {
+nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg) {
   if (out.is_none()) return nb::cast(numpy_copy(values));
   real* dst = out_buffer(out, arg, static_cast<size_t>(values.size()));
   std::copy(values.data(), values.data() + values.size(), dst);
   return nb::borrow(out);
 }
 
-std::vector<int> read_indices(nb::handle obj, const std::string& arg) {
+std::vector<int> read_indices(nb::handle obj, std::string_view arg) {
   // a list or tuple of Python ints, without a conversion to numpy
   PyObject* o = obj.ptr();
   if (PyList_Check(o) || PyTuple_Check(o)) {
@@ -39,7 +39,7 @@ std::vector<int> read_indices(nb::handle obj, const std::string& arg) {
   std::vector<int> out(v.size());
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i]) || v[i] != std::floor(v[i]))
-      throw Error(arg + "[" + std::to_string(i) + "]: expected an integer DOF index");
+      throw Error(std::string(arg) + "[" + std::to_string(i) + "]: expected an integer DOF index");
     out[i] = static_cast<int>(v[i]);
   }
   return out;
@@ -113,7 +113,7 @@ void export_actor(nb::module_& m) {
       .def("set_external_forces_on_dofs", [](Actor& a, nb::handle dof_indices, nb::handle force_values) {
              const std::vector<int> dofs = read_indices(dof_indices, "set_external_forces_on_dofs: dof_indices");
              const VecX f = read_vector(force_values, "set_external_forces_on_dofs: force_values");
-             a.scene.set_external_forces_on_dofs(a.handle, dofs, std::vector<real>(f.data(), f.data() + f.size()));
+             a.scene.set_external_forces_on_dofs(a.handle, dofs, std::span<const real>(f.data(), static_cast<size_t>(f.size())));
            }, "dof_indices"_a, "force_values"_a,
            "Replaces the whole set of external generalized forces (N, N m); held until replaced or cleared.")
       .def("clear_external_forces", [](Actor& a) { a.scene.clear_external_forces(a.handle); })

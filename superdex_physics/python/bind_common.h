@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "superdex/physics/error.h"
@@ -30,12 +31,12 @@ NumpyArray numpy_copy(const real* data, std::initializer_list<size_t> shape);
 inline NumpyArray numpy_copy(const VecX& v) { return numpy_copy(v.data(), {static_cast<size_t>(v.size())}); }
 
 // Reads any sequence or array of numbers as a vector; `expected` < 0 accepts any length.
-VecX read_vector(nb::handle obj, const std::string& arg, long expected = -1);
-Vec3 read_vec3(nb::handle obj, const std::string& arg);
+VecX read_vector(nb::handle obj, std::string_view arg, long expected = -1);
+Vec3 read_vec3(nb::handle obj, std::string_view arg);
 
 // The writable, contiguous 1-D buffer of length `n` behind an out-parameter: a numpy array of
 // the build's dtype or a DynamicArrayReal. Raises superdex.physics.Error otherwise.
-real* out_buffer(nb::handle out, const std::string& arg, size_t n);
+real* out_buffer(nb::handle out, std::string_view arg, size_t n);
 
 // Python-facing rotation and transform values.
 struct Quaternion {

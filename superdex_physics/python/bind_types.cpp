@@ -52,11 +52,11 @@ bool read_vector_fast(nb::handle obj, VecX& out) {
 
 }  // namespace
 
-VecX read_vector(nb::handle obj, const std::string& arg, long expected) {
+VecX read_vector(nb::handle obj, std::string_view arg, long expected) {
   VecX fast;
   if (read_vector_fast(obj, fast)) {
     if (expected >= 0 && fast.size() != expected)
-      throw Error(arg + ": expected " + std::to_string(expected) + " values, got " + std::to_string(fast.size()));
+      throw Error(std::string(arg) + ": expected " + std::to_string(expected) + " values, got " + std::to_string(fast.size()));
     return fast;
   }
   nb::object arr;
@@ -65,28 +65,28 @@ VecX read_vector(nb::handle obj, const std::string& arg, long expected) {
     static const nb::handle np = nb::module_::import_("numpy").release();
     arr = np.attr("ascontiguousarray")(obj, "dtype"_a = np.attr("float64"));
   } catch (nb::python_error&) {
-    throw Error(arg + ": expected a sequence of numbers");
+    throw Error(std::string(arg) + ": expected a sequence of numbers");
   }
   auto a = nb::cast<nb::ndarray<const double, nb::c_contig>>(arr);
-  if (a.ndim() > 1) throw Error(arg + ": expected a 1-D sequence of numbers, got " + std::to_string(a.ndim()) + " dimensions");
+  if (a.ndim() > 1) throw Error(std::string(arg) + ": expected a 1-D sequence of numbers, got " + std::to_string(a.ndim()) + " dimensions");
   const long n = a.ndim() == 0 ? 1 : static_cast<long>(a.shape(0));
   if (expected >= 0 && n != expected)
-    throw Error(arg + ": expected " + std::to_string(expected) + " values, got " + std::to_string(n));
+    throw Error(std::string(arg) + ": expected " + std::to_string(expected) + " values, got " + std::to_string(n));
   VecX out(n);
   for (long i = 0; i < n; ++i) out[i] = static_cast<real>(a.data()[i]);
   return out;
 }
 
-Vec3 read_vec3(nb::handle obj, const std::string& arg) { return read_vector(obj, arg, 3); }
+Vec3 read_vec3(nb::handle obj, std::string_view arg) { return read_vector(obj, arg, 3); }
 
-real* out_buffer(nb::handle out, const std::string& arg, size_t n) {
+real* out_buffer(nb::handle out, std::string_view arg, size_t n) {
   // the common case first: a writable contiguous array of the right dtype and length
   nb::ndarray<real, nb::ndim<1>, nb::c_contig> fast;
   if (nb::try_cast(out, fast, false) && fast.shape(0) == n) return fast.data();
   if (nb::isinstance<DynamicArrayReal>(out)) {
     auto& d = nb::cast<DynamicArrayReal&>(out);
     if (d.values.size() != n)
-      throw Error(arg + ": expected a DynamicArrayReal of length " + std::to_string(n) + ", got length " + std::to_string(d.values.size()));
+      throw Error(std::string(arg) + ": expected a DynamicArrayReal of length " + std::to_string(n) + ", got length " + std::to_string(d.values.size()));
     return d.values.data();
   }
   const std::string expect = "a writable, contiguous numpy array of dtype " + std::string(real_dtype_name()) +
@@ -94,13 +94,13 @@ real* out_buffer(nb::handle out, const std::string& arg, size_t n) {
   // read-only arrays do not convert to a writable ndarray: name that defect first
   if (nb::hasattr(out, "flags") && nb::hasattr(out.attr("flags"), "writeable") &&
       !nb::cast<bool>(out.attr("flags").attr("writeable")))
-    throw Error(arg + ": expected " + expect + ", got a read-only array");
+    throw Error(std::string(arg) + ": expected " + expect + ", got a read-only array");
   nb::ndarray<> a;
-  if (!nb::try_cast(out, a, false)) throw Error(arg + ": expected " + expect + ", got " + nb::inst_name(out).c_str());
+  if (!nb::try_cast(out, a, false)) throw Error(std::string(arg) + ": expected " + expect + ", got " + nb::inst_name(out).c_str());
   if (a.dtype() != nb::dtype<real>() || a.ndim() != 1 || a.shape(0) != n || (n > 1 && a.stride(0) != 1)) {
     std::string got = "ndim " + std::to_string(a.ndim());
     if (a.ndim() == 1) got = "shape (" + std::to_string(a.shape(0)) + ",)";
-    throw Error(arg + ": expected " + expect + ", got " + got + (a.dtype() != nb::dtype<real>() ? " with another dtype" : ""));
+    throw Error(std::string(arg) + ": expected " + expect + ", got " + got + (a.dtype() != nb::dtype<real>() ? " with another dtype" : ""));
   }
   return static_cast<real*>(a.data());
 }

@@ -1,5 +1,6 @@
 // Scene methods that read and write one actor: poses, velocities, forces, articulation queries.
 
+#include <cstdint>
 #include <cmath>
 #include <utility>
 
@@ -133,29 +134,33 @@ int Scene::num_dofs(ActorHandle h) const {
   return r.soft ? static_cast<int>(r.soft->state.v.size()) : r.articulation->model.nv;
 }
 
-void Scene::set_external_forces_on_dofs(ActorHandle h, const std::vector<int>& dofs, const std::vector<real>& values) {
+void Scene::set_external_forces_on_dofs(ActorHandle h, std::span<const int> dofs, std::span<const real> values) {
   const char* what = "set_external_forces_on_dofs";
   SceneData& s = scene_data(handle_);
   ActorRef ref = lookup(s, h, what);
-  VecX* target = ref.soft ? &ref.soft->state.tau_external : nullptr;
-  Articulation* art = ref.soft ? nullptr : &whole(s, h, what);
-  const int nv = ref.soft ? static_cast<int>(target->size()) : art->model.nv;
+  VecX& target = ref.soft ? ref.soft->state.tau_external : whole(s, h, what).state.tau_external;
+  const int nv = ref.soft ? static_cast<int>(target.size()) : whole(s, h, what).model.nv;
   if (dofs.size() != values.size())
     throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but force_values has " +
                 std::to_string(values.size()));
-  VecX tau = VecX::Zero(nv);
-  std::vector<char> seen(nv, 0);
+  // every entry is checked before anything changes; a repeated DOF is found by a bit mask (a
+  // list when the actor has more than 64 DOFs)
+  std::uint64_t seen_mask = 0;
+  std::vector<char> seen(nv > 64 ? nv : 0, 0);
   for (size_t i = 0; i < dofs.size(); ++i) {
-    if (dofs[i] < 0 || dofs[i] >= nv)
-      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) +
+    const int d = dofs[i];
+    if (d < 0 || d >= nv)
+      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(d) +
                   " is out of range: the actor has " + std::to_string(nv) + " DOFs");
-    if (std::exchange(seen[dofs[i]], 1))
-      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(dofs[i]) + " appears twice");
+    const bool repeated = nv > 64 ? std::exchange(seen[d], 1) != 0 : (seen_mask >> d) & 1;
+    seen_mask |= nv > 64 ? 0 : std::uint64_t(1) << d;
+    if (repeated)
+      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(d) + " appears twice");
     if (!std::isfinite(values[i]))
       throw Error(std::string(what) + ": force_values[" + std::to_string(i) + "] is not finite (NaN or infinity)");
-    tau[dofs[i]] = values[i];
   }
-  (target ? *target : art->state.tau_external).swap(tau);
+  target.setZero(nv);
+  for (size_t i = 0; i < dofs.size(); ++i) target[dofs[i]] = values[i];
 }
 
 void Scene::clear_external_forces(ActorHandle h) {

@@ -81,6 +81,23 @@ def test_dof_index_out_of_range(scene):
         arm.set_external_forces_on_dofs([0.5], [1.0])
 
 
+def test_repeated_dof_on_an_actor_with_many_dofs_changes_nothing(scene):
+    # more than 64 DOFs: repeated indices are found by another path than on a small arm
+    from test_soft_contact import soft_block
+
+    block, nodes = soft_block(scene, cells=2)
+    n = block.get_num_dofs()
+    assert n > 64
+    block.set_external_forces_on_dofs([n - 1, 0], [2.0, 3.0])
+    with pytest.raises(sdp.Error, match=rf"dof_indices\[2\] = {n - 1} appears twice"):
+        block.set_external_forces_on_dofs([n - 1, 5, n - 1], [1.0, 1.0, 1.0])
+    with pytest.raises(sdp.Error, match=rf"dof_indices\[1\] = {n} is out of range: the actor has {n} DOFs"):
+        block.set_external_forces_on_dofs([5, n], [1.0, 1.0])
+    expected = np.zeros(n)
+    expected[[n - 1, 0]] = [2.0, 3.0]
+    np.testing.assert_allclose(block.get_external_forces(), expected)
+
+
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
 def test_non_finite_forces(scene, bad):
     arm = two_link_arm(scene)

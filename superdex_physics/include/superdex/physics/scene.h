@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "superdex/physics/articulation_desc.h"
@@ -219,9 +220,13 @@ class Scene {
   real mass(ActorHandle actor) const;
   int num_dofs(ActorHandle actor) const;
 
-  /// Replaces the whole set of external generalized forces (N or N m) on the given DOFs.
-  void set_external_forces_on_dofs(ActorHandle actor, const std::vector<int>& dof_indices,
-                                   const std::vector<real>& values);
+  /// Replaces the whole set of external generalized forces (N or N m) on the given DOFs; the
+  /// others become zero. Nothing changes when an index is out of range or repeated, or a value
+  /// is not finite.
+  void set_external_forces_on_dofs(ActorHandle actor, std::span<const int> dofs, std::span<const real> values);
+  void set_external_forces_on_dofs(ActorHandle actor, const std::vector<int>& dofs, const std::vector<real>& values) {
+    set_external_forces_on_dofs(actor, std::span<const int>(dofs), std::span<const real>(values));
+  }
   void clear_external_forces(ActorHandle actor);
   VecX external_forces(ActorHandle actor) const;
 
