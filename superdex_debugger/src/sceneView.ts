@@ -325,6 +325,9 @@ export class SceneView {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    // Resizing clears the drawing buffer: draw again at once rather than leave the view blank
+    // until the next scheduled render.
+    this.renderer.render(this.scene, this.camera);
     this.requestRender();
   }
 

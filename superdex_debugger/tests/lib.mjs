@@ -89,6 +89,19 @@ export function isNonBlank(s) {
   return s.drawnFraction > 0.01 && s.lumaStd > 3 && s.distinctColors >= 8;
 }
 
+/**
+ * Canvas statistics once the view shows content, or the last ones after timeoutMs: a render
+ * loop may be between a resize and its next draw at the moment of one reading.
+ */
+export async function settledCanvasStats(page, timeoutMs = 5000, selector = '#view canvas') {
+  const end = Date.now() + timeoutMs;
+  for (;;) {
+    const s = await canvasStats(page, selector);
+    if (isNonBlank(s) || Date.now() >= end) return s;
+    await page.waitForTimeout(100);
+  }
+}
+
 /** Prints the result object as one JSON line (the last line of stdout). */
 export function report(obj) {
   process.stdout.write(JSON.stringify(obj) + '\n');

@@ -8,7 +8,7 @@
 // pause (status paused and t unchanged over 1 s), step (status.step +1 exactly) and play
 // (status.t increases). Prints one JSON object as the last line of stdout; exits 0 unless the
 // browser could not run.
-import { canvasStats, isNonBlank, launchBrowser, parseArgs, report, sleep, waitFor } from './lib.mjs';
+import { settledCanvasStats, isNonBlank, launchBrowser, parseArgs, report, sleep, waitFor } from './lib.mjs';
 
 const { pos, opt } = parseArgs(process.argv.slice(2));
 const url = pos[0];
@@ -44,7 +44,7 @@ try {
 
   // The 3D view draws something.
   await page.waitForTimeout(500);
-  out.canvas = await canvasStats(page);
+  out.canvas = await settledCanvasStats(page);
   out.canvasNonBlank = isNonBlank(out.canvas);
 
   // Every requested link is a row of the tree.

@@ -9,7 +9,7 @@
 // of links drawn with their glTF render model (waits up to 5 s for `renderModelsDeclared`, the
 // links of the first scene's actors that have a `renderModel` in the file).
 import fs from 'node:fs';
-import { canvasStats, isNonBlank, launchBrowser, parseArgs, report, waitFor } from './lib.mjs';
+import { settledCanvasStats, isNonBlank, launchBrowser, parseArgs, report, waitFor } from './lib.mjs';
 
 const { pos, opt } = parseArgs(process.argv.slice(2));
 const [url, recording] = pos;
@@ -102,7 +102,7 @@ try {
   const modelCount = () => (typeof window.superdex.renderModelCount === 'function' ? window.superdex.renderModelCount() : null);
   if (out.renderModelsDeclared > 0) await waitFor(page, (n) => window.superdex.renderModelCount?.() >= n, out.renderModelsDeclared, 5000);
   out.renderModelCount = await page.evaluate(modelCount);
-  out.canvas = await canvasStats(page);
+  out.canvas = await settledCanvasStats(page);
   out.canvasNonBlank = isNonBlank(out.canvas);
   if (opt.screenshot) {
     await page.waitForTimeout(300);
