@@ -391,7 +391,7 @@ def h5_cases():
          r"mesh/coordinates: too large: shape \[6148914691236517206, 3\] holds more than 2147483648 values")
     # found by the mochi_h5 fuzz target (issue 9): a corrupt header makes HDF5 ask malloc for
     # petabytes; the refused allocation must end in sdp.Error (the fuzzer's input is kept as it is)
-    case(H, "fuzz_huge_metadata_allocation" + e, (REPO / "fuzz/regressions/mochi_h5_huge_metadata_allocation.mochi.h5").read_bytes(),
+    case(H, "fuzz_huge_metadata_allocation" + e, (REPO / "fuzz/regressions/mochi_h5/huge_metadata_allocation.mochi.h5").read_bytes(),
          r"box: is not a group")
     # ... and a shape that fits but that the 3 KB file cannot hold: 1.2 GB allocated for fill values
     case(H, "coordinates_not_stored" + e, h5_declared_only((50_000_000, 3)),
