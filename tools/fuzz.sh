@@ -6,6 +6,7 @@
 # the malformed corpus with its exact error (tools/make_malformed_corpus.py).
 #   tools/fuzz.sh [target ...]         all targets when none is named
 #   FUZZ_SECONDS=300 tools/fuzz.sh     seconds per target (default 30)
+#   FUZZ_JOBS=1 tools/fuzz.sh          targets fuzzed at the same time (default 2)
 # Inputs the fuzzer finds that reach new code go to build/fuzz/corpus/<target>/, not to the repo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,22 +27,37 @@ cmake --build "$dir" --parallel 2 --target "${targets[@]/%/_fuzzer}"
 mkdir -p "$dir/crashes" "$dir/logs"
 # leaks inside third-party libraries (each suppression says why)
 export LSAN_OPTIONS="suppressions=$PWD/tools/sanitizers/lsan.supp:print_suppressions=0"
-failed=()
-for t in "${targets[@]}"; do
+
+# Fuzzes one target; writes "ok" or "failed" to its result file.
+fuzz_one() {
+  local t=$1 log="$dir/logs/$1.log"
   mkdir -p "$dir/corpus/$t"
-  log="$dir/logs/$t.log"
   # the first corpus folder receives the new inputs; the committed seeds and the inputs that
   # once crashed (fuzz/regressions/<target>/) are only read
-  corpora=("$dir/corpus/$t" "fuzz/corpus/$t")
+  local corpora=("$dir/corpus/$t" "fuzz/corpus/$t")
   [[ -d "fuzz/regressions/$t" ]] && corpora+=("fuzz/regressions/$t")
   if "$dir/fuzz/${t}_fuzzer" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 \
        -artifact_prefix="$dir/crashes/$t-" "${corpora[@]}" >"$log" 2>&1; then
     echo "fuzz $t: ok ($(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | tail -1))"
+    echo ok >"$dir/logs/$t.result"
   else
     echo "fuzz $t: FAILED (log $log)"
     grep -A30 -m1 '^==[0-9]*==ERROR\|ERROR: libFuzzer\|runtime error' "$log" | head -40 || tail -40 "$log"
-    failed+=("$t")
+    echo failed >"$dir/logs/$t.result"
   fi
+}
+
+# FUZZ_JOBS targets at a time (default 2: one per core of the CI machine)
+jobs_max=${FUZZ_JOBS:-2}
+for t in "${targets[@]}"; do
+  rm -f "$dir/logs/$t.result"
+  while (($(jobs -rp | wc -l) >= jobs_max)); do wait -n || true; done
+  fuzz_one "$t" &
+done
+wait
+failed=()
+for t in "${targets[@]}"; do
+  [[ "$(cat "$dir/logs/$t.result" 2>/dev/null)" == ok ]] || failed+=("$t")
 done
 if ((${#failed[@]})); then
   echo "fuzzing found crashes in: ${failed[*]} (inputs in $dir/crashes/)" >&2

@@ -393,6 +393,10 @@ def h5_cases():
     # petabytes; the refused allocation must end in sdp.Error (the fuzzer's input is kept as it is)
     case(H, "fuzz_huge_metadata_allocation" + e, (REPO / "fuzz/regressions/mochi_h5/huge_metadata_allocation.mochi.h5").read_bytes(),
          r"box: is not a group")
+    # found by the mochi_h5 fuzz target (issue 9): a corrupt datatype of 1.7 GB per value, which HDF5
+    # allocated to convert a single value (1.8 GB resident for a 4.7 KB file)
+    case(H, "fuzz_huge_value_type" + e, (REPO / "fuzz/regressions/mochi_h5/huge_value_type.mochi.h5").read_bytes(),
+         r"mesh/coordinates: wrong type: floating-point numbers of 1768186226 bytes each \(expected at most 16\)")
     # ... and a shape that fits but that the 3 KB file cannot hold: 1.2 GB allocated for fill values
     case(H, "coordinates_not_stored" + e, h5_declared_only((50_000_000, 3)),
          r"mesh/coordinates: shape \[50000000, 3\] declares more values than the file \(\d+ bytes\) can hold \(corrupt file\?\)")

@@ -67,6 +67,7 @@ std::string dims_text(const std::vector<hsize_t>& dims) {
 
 constexpr size_t kMaxElements = size_t(1) << 31;
 constexpr size_t kMaxValuesPerFileByte = 2048;
+constexpr size_t kMaxValueBytes = 16;  // the widest numbers HDF5 describes (long double)
 
 }  // namespace
 
@@ -81,6 +82,13 @@ Reader::Reader(const std::string& path) : path_(path) {
 }
 
 void Reader::fail(const std::string& where, const std::string& what) const { throw Error(path_ + ": " + where + ": " + what); }
+
+void Reader::check_value_size(const std::string& where, hid_t type, H5T_class_t cls) const {
+  const size_t bytes = H5Tget_size(type);
+  if (bytes == 0 || bytes > kMaxValueBytes)
+    fail(where, "wrong type: " + class_name(cls) + " of " + std::to_string(bytes) + " bytes each (expected at most " +
+                    std::to_string(kMaxValueBytes) + ")");
+}
 
 size_t Reader::checked_count(const std::string& where, const std::vector<hsize_t>& dims) const {
   const size_t n = element_count(dims);
@@ -122,6 +130,7 @@ Numbers Reader::dataset(const std::string& path, bool integers) const {
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) fail(path, "wrong type: expected numbers, got " + class_name(cls));
   if (integers && cls != H5T_INTEGER) fail(path, "wrong type: expected integers, got " + class_name(cls));
+  check_value_size(path, type.get(), cls);
   Numbers out;
   out.integer_type = cls == H5T_INTEGER;
   if (!read_dims(space.get(), out.dims)) fail(path, "cannot read the dataset's shape");
@@ -142,6 +151,7 @@ Numbers Reader::attribute(const std::string& group, const std::string& name) con
   if (!type.valid() || !space.valid()) fail(where, "cannot read the attribute's type or shape");
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) fail(where, "wrong type: expected numbers, got " + class_name(cls));
+  check_value_size(where, type.get(), cls);
   Numbers out;
   out.integer_type = cls == H5T_INTEGER;
   if (!read_dims(space.get(), out.dims)) fail(where, "cannot read the attribute's shape");

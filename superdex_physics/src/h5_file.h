@@ -84,6 +84,9 @@ class Reader {
   // of the file: more than any compression achieves, so only a corrupt or hostile header that
   // declares data the file does not have is refused before it is allocated).
   std::size_t checked_count(const std::string& where, const std::vector<hsize_t>& dims) const;
+  // Fails unless each value of a numeric type is at most 16 bytes: a corrupt type can claim
+  // gigabytes per value, which HDF5 would allocate to convert one value to double.
+  void check_value_size(const std::string& where, hid_t type, H5T_class_t cls) const;
 
   std::string path_;
   std::uintmax_t file_bytes_ = 0;
