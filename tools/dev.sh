@@ -3,6 +3,9 @@
 # then builds incrementally into build/ (one build directory shared by Python and C++ tests).
 #   tools/dev.sh demo   run the main demo
 #   tools/dev.sh test   run every test: C++ (ctest) and Python (pytest, float and double builds)
+#   tools/dev.sh sanitize   the whole test suite under ASan + UBSan (+ LeakSanitizer for C++), build/asan
+#   tools/dev.sh fuzz [target ...]   build the libFuzzer targets (clang, build/fuzz) and fuzz each for
+#                       FUZZ_SECONDS (default 30)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -46,8 +49,16 @@ case "${1:-}" in
     echo "== Python tests (double build)"
     SUPERDEX_PRECISION=double uv run pytest -q
     ;;
+  sanitize)
+    shift
+    exec bash tools/sanitize.sh "$@"
+    ;;
+  fuzz)
+    shift
+    exec bash tools/fuzz.sh "$@"
+    ;;
   *)
-    echo "usage: tools/dev.sh demo|test" >&2
+    echo "usage: tools/dev.sh demo|test|sanitize|fuzz" >&2
     exit 2
     ;;
 esac
