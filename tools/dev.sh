@@ -2,7 +2,8 @@
 # The project's entry points. Each command installs what is missing first (tools/bootstrap.sh),
 # then builds incrementally into build/ (one build directory shared by Python and C++ tests).
 #   tools/dev.sh demo   run the main demo
-#   tools/dev.sh test   run every test: C++ (ctest) and Python (pytest, float and double builds)
+#   tools/dev.sh test   run every test: C++ (ctest), Python (pytest, float and double builds), and
+#                       the fuzz targets for 30 s each (tools/fuzz.sh)
 #   tools/dev.sh sanitize   the whole test suite under ASan + UBSan (+ LeakSanitizer for C++), build/asan
 #   tools/dev.sh fuzz [target ...]   build the libFuzzer targets (clang, build/fuzz) and fuzz each for
 #                       FUZZ_SECONDS (default 30)
@@ -48,6 +49,12 @@ case "${1:-}" in
     SUPERDEX_PRECISION=float uv run pytest -q
     echo "== Python tests (double build)"
     SUPERDEX_PRECISION=double uv run pytest -q
+    # every fuzz target for 30 s, two at a time (clang build in build/fuzz: about 6 minutes from
+    # scratch on 2 cores, under a minute with ccache warm; fuzzing about 2.5 minutes). mochi_h5 is
+    # left out while HDF5 itself still crashes on an input it finds (fuzz/known_crashes/README.md):
+    # any run could find it again and fail CI on a bug that cannot be fixed here
+    echo "== Fuzzing (tools/fuzz.sh)"
+    bash tools/fuzz.sh bot_json prefab_json urdf obj stl ply recording debugger_message
     ;;
   sanitize)
     shift
