@@ -57,7 +57,7 @@ struct Loader {
   const fs::path root;
   std::vector<std::string>* warnings;
   PrefabResult result;
-  std::vector<ShapeHandle> shapes;
+  std::vector<ShapeHandle> shapes;  // made for the actors; released when the load ends
   int depth = 0;
 
   std::optional<real> opt_number(const json& e, const char* key, const std::string& file, const std::string& path) {
@@ -257,6 +257,7 @@ struct Loader {
     const Transform X_WL = place(local_pose(e, file, path));
     try {
       const ShapeHandle shape = create_tet_mesh_shape(std::move(*mesh), source + ".shape");
+      shapes.push_back(shape);
       result.actors.push_back(scene.create_soft_actor(prefixed(e.at("name").get<std::string>()), shape, material, X_WL, fixed));
     } catch (const Error& err) {
       const std::string msg = err.what();
@@ -363,6 +364,13 @@ PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::stri
                                  const PrefabParams& params, std::vector<std::string>* warnings) {
   if (!(params.scale > 0) || !std::isfinite(params.scale)) throw Error("add_to_scene: scale must be a positive number");
   Loader loader{scene, fs::path(root_path), warnings, {}, {}};
+  // The actors keep their own geometry (a rigid actor a copy, a soft actor the shared tet mesh),
+  // so the engine-wide shapes made for them are released, loaded or not: kept, they piled up in
+  // the shape registry with every load (a duck's whole tet mesh per load; found by
+  // memory_cycles_test, issue 9).
+  auto release_shapes = [&] {
+    for (ShapeHandle h : loader.shapes) release_shape(h);
+  };
   try {
     try {
       loader.load(fs::path(prefab_path), params);
@@ -374,8 +382,10 @@ PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::stri
     // all or nothing
     for (ActorHandle h : loader.result.actors)
       if (scene.has_actor(h)) scene.destroy_actor(h);
+    release_shapes();
     throw;
   }
+  release_shapes();
   return loader.result;
 }
 
