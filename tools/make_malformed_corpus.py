@@ -233,6 +233,13 @@ def prefab_cases():
          r"prefabs\[0\]\.path: prefab file '.*prefab/absent\.mochi_prefab' does not exist")
     case(P, "nested_includes_itself" + e, prefab(prefabs=[{"name": "me", "path": "./nested_includes_itself.mochi_prefab"}]),
          r"nest more than 16 deep")
+    # found by the prefab_json fuzz target (issue 9): a file name longer than the system allows made
+    # std::filesystem throw from the existence check instead of the loader naming the field
+    long_name = "./" + "v" * 300 + ".mochi_prefab"
+    case(P, "nested_path_too_long" + e, prefab(prefabs=[{"name": "inner", "path": long_name}]),
+         r"prefabs\[0\]\.path: prefab file '.*prefab/v{300}\.mochi_prefab' does not exist")
+    case(P, "shape_path_too_long" + e, prefab(rigid=[box_actor(shape="./" + "s" * 300 + ".obj")]),
+         r"actors\.rigid\[0\]\.shape: shape file '.*prefab/s{300}\.obj' does not exist")
     case(P, "nested_negative_scale" + e, prefab(prefabs=[{"name": "inner", "path": "./valid_box.mochi_prefab", "scale": -2}]),
          r"prefabs\[0\]\.scale: must be positive")
     case(P, "scene_gravity_two_values" + e, prefab(rigid=[box_actor()], scene={"gravity": [0, -9.81]}),

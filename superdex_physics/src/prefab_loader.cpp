@@ -9,6 +9,7 @@
 #include "superdex/physics/articulation_json.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/error.h"
+#include "superdex/physics/file_path.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/prefab.h"
 
@@ -149,7 +150,7 @@ struct Loader {
         nested.scale = s * ns;
         nested.world_from_prefab = place(local_pose(e, file, path));
         const fs::path nested_path = resolve(e.at("path").get<std::string>(), dir, root, file, path + ".path");
-        if (!fs::is_regular_file(nested_path)) fail(file, path + ".path", "prefab file '" + nested_path.string() + "' does not exist");
+        if (!is_existing_file(nested_path)) fail(file, path + ".path", "prefab file '" + nested_path.string() + "' does not exist");
         load(nested_path, nested);
       }
     }
@@ -169,7 +170,7 @@ struct Loader {
     const json& sh = e.at("shape");
     if (sh.is_string()) {
       const fs::path p = resolve(sh.get<std::string>(), dir, root, file, path + ".shape");
-      if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+      if (!is_existing_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
       ShapeBake bake;
       bake.scale = Vec3::Constant(s);
       try {
@@ -217,7 +218,7 @@ struct Loader {
     if (!e.contains("name") || !e.at("name").is_string()) fail(file, path + ".name", "required: a string");
     if (!e.contains("shape") || !e.at("shape").is_string()) fail(file, path + ".shape", "required: a .mochi.h5 file with a tetrahedral mesh/");
     const fs::path p = resolve(e.at("shape").get<std::string>(), dir, root, file, path + ".shape");
-    if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+    if (!is_existing_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
     ShapeBake bake;
     bake.scale = Vec3::Constant(s);
     std::optional<TetMesh> mesh;
@@ -340,7 +341,7 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
       fs::path model_path(link.render_model);
       if (model_path.is_relative()) model_path = fs::path(base_dir) / model_path;
       const std::string field = "links[" + std::to_string(i) + "].renderModel";
-      if (!fs::is_regular_file(model_path)) fail(source, field, "render model '" + model_path.string() + "' does not exist");
+      if (!is_existing_file(model_path)) fail(source, field, "render model '" + model_path.string() + "' does not exist");
       if (model_path.extension() != ".glb") fail(source, field, "render models are binary glTF (.glb) files, got '" + model_path.string() + "'");
       link.render_model = model_path.lexically_normal().string();
       if (scale != 1) link.render_model_scale *= scale;
@@ -348,7 +349,7 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
     if (link.shape_file.empty()) continue;
     fs::path shape_path(link.shape_file);
     if (shape_path.is_relative()) shape_path = fs::path(base_dir) / shape_path;
-    if (!fs::is_regular_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
+    if (!is_existing_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
     ShapeBake bake;
     bake.scale = link.shape_scale * scale;
     try {
