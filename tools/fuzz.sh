@@ -7,6 +7,9 @@
 #   tools/fuzz.sh [target ...]         all targets when none is named
 #   FUZZ_SECONDS=300 tools/fuzz.sh     seconds per target (default 30)
 #   FUZZ_JOBS=1 tools/fuzz.sh          targets fuzzed at the same time (default 2)
+#   FUZZ_RUNS=50000 tools/fuzz.sh      a reproducible campaign instead: this many inputs per target
+#                                      from random seed FUZZ_SEED (default 1), starting from the
+#                                      committed corpora only, so every machine runs the same inputs
 # Inputs the fuzzer finds that reach new code go to build/fuzz/corpus/<target>/, not to the repo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,9 +37,15 @@ fuzz_one() {
   mkdir -p "$dir/corpus/$t"
   # the first corpus folder receives the new inputs; the committed seeds and the inputs that
   # once crashed (fuzz/regressions/<target>/) are only read
-  local corpora=("$dir/corpus/$t" "fuzz/corpus/$t")
+  local corpora=("$dir/corpus/$t" "fuzz/corpus/$t") budget=(-max_total_time="$seconds")
+  # a reproducible campaign neither reads nor keeps the inputs of earlier runs
+  if [[ -n "${FUZZ_RUNS:-}" ]]; then
+    corpora[0]="$dir/corpus-runs/$t"
+    rm -rf "${corpora[0]}" && mkdir -p "${corpora[0]}"
+    budget=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}")
+  fi
   [[ -d "fuzz/regressions/$t" ]] && corpora+=("fuzz/regressions/$t")
-  if "$dir/fuzz/${t}_fuzzer" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 \
+  if "$dir/fuzz/${t}_fuzzer" "${budget[@]}" -timeout=20 -rss_limit_mb=2048 \
        -artifact_prefix="$dir/crashes/$t-" "${corpora[@]}" >"$log" 2>&1; then
     echo "fuzz $t: ok ($(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | tail -1))"
     echo ok >"$dir/logs/$t.result"
