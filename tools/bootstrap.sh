@@ -9,6 +9,8 @@ APT_PACKAGES=(
   libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libhdf5-dev libtbb-dev
   libsuitesparse-dev libopenblas-dev
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
+  # the fuzz targets (tools/fuzz.sh): clang and its libFuzzer and sanitizer runtimes
+  clang libclang-rt-14-dev
 )
 # the debugger page: Node.js and npm build it, chromium runs its tests (playwright-core); a
 # machine may already have them from elsewhere (a Node.js package that bundles npm)

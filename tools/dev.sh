@@ -2,7 +2,11 @@
 # The project's entry points. Each command installs what is missing first (tools/bootstrap.sh),
 # then builds incrementally into build/ (one build directory shared by Python and C++ tests).
 #   tools/dev.sh demo   run the main demo
-#   tools/dev.sh test   run every test: C++ (ctest) and Python (pytest, float and double builds)
+#   tools/dev.sh test   run every test: C++ (ctest), Python (pytest, float and double builds), and
+#                       the fuzz targets for 30 s each (tools/fuzz.sh)
+#   tools/dev.sh sanitize   the whole test suite under ASan + UBSan (+ LeakSanitizer for C++), build/asan
+#   tools/dev.sh fuzz [target ...]   build the libFuzzer targets (clang, build/fuzz) and fuzz each for
+#                       FUZZ_SECONDS (default 30)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,9 +49,25 @@ case "${1:-}" in
     SUPERDEX_PRECISION=float uv run pytest -q
     echo "== Python tests (double build)"
     SUPERDEX_PRECISION=double uv run pytest -q
+    # every fuzz target, two at a time, for a reproducible campaign of 150,000 inputs from a fixed
+    # random seed, so that CI does not pass or fail by chance (clang build in build/fuzz: about 6
+    # minutes from scratch on 2 cores, under a minute with ccache warm; fuzzing about 4 minutes).
+    # Open-ended fuzzing is tools/dev.sh fuzz (FUZZ_SECONDS per target, new seeds each run). mochi_h5 is
+    # left out while HDF5 itself still crashes on an input it finds (fuzz/known_crashes/README.md):
+    # any run could find it again and fail CI on a bug that cannot be fixed here
+    echo "== Fuzzing (tools/fuzz.sh)"
+    FUZZ_RUNS=150000 FUZZ_SEED=1 bash tools/fuzz.sh bot_json prefab_json urdf obj stl ply recording debugger_message
+    ;;
+  sanitize)
+    shift
+    exec bash tools/sanitize.sh "$@"
+    ;;
+  fuzz)
+    shift
+    exec bash tools/fuzz.sh "$@"
     ;;
   *)
-    echo "usage: tools/dev.sh demo|test" >&2
+    echo "usage: tools/dev.sh demo|test|sanitize|fuzz" >&2
     exit 2
     ;;
 esac

@@ -233,6 +233,13 @@ def prefab_cases():
          r"prefabs\[0\]\.path: prefab file '.*prefab/absent\.mochi_prefab' does not exist")
     case(P, "nested_includes_itself" + e, prefab(prefabs=[{"name": "me", "path": "./nested_includes_itself.mochi_prefab"}]),
          r"nest more than 16 deep")
+    # found by the prefab_json fuzz target (issue 9): a file name longer than the system allows made
+    # std::filesystem throw from the existence check instead of the loader naming the field
+    long_name = "./" + "v" * 300 + ".mochi_prefab"
+    case(P, "nested_path_too_long" + e, prefab(prefabs=[{"name": "inner", "path": long_name}]),
+         r"prefabs\[0\]\.path: prefab file '.*prefab/v{300}\.mochi_prefab' does not exist")
+    case(P, "shape_path_too_long" + e, prefab(rigid=[box_actor(shape="./" + "s" * 300 + ".obj")]),
+         r"actors\.rigid\[0\]\.shape: shape file '.*prefab/s{300}\.obj' does not exist")
     case(P, "nested_negative_scale" + e, prefab(prefabs=[{"name": "inner", "path": "./valid_box.mochi_prefab", "scale": -2}]),
          r"prefabs\[0\]\.scale: must be positive")
     case(P, "scene_gravity_two_values" + e, prefab(rigid=[box_actor()], scene={"gravity": [0, -9.81]}),
@@ -370,9 +377,39 @@ def truncated_h5(path):
     path.write_bytes(data[: len(data) // 2])
 
 
+def h5_declared_only(shape, dtype="f8", extra=None):
+    """A writer of a file whose mesh/coordinates dataset declares `shape` but stores no data (chunked,
+    no chunk written: HDF5 would hand back fill values); `extra` adds datasets."""
+    def write(path):
+        with h5py.File(path, "w", track_order=False) as f:
+            f.create_dataset("mesh/coordinates", shape=shape, dtype=dtype, chunks=(1, 3), track_times=False)
+            f.create_dataset("mesh/connectivity", data=CUBE_T, track_times=False)
+            for name, data in (extra or {}).items():
+                f.create_dataset(name, data=data, track_times=False)
+    return write
+
+
 def h5_cases():
     H = "h5"
     e = ".mochi.h5"
+    # found for issue 9 (reading the h5 reader while writing its fuzz target): a shape whose value count overflows 64 bits wrapped to 2 values
+    # and the reader then sized the mesh from the shape (std::length_error escaped, not an Error)
+    case(H, "coordinates_count_overflows" + e, h5_declared_only((6148914691236517206, 3)),
+         r"mesh/coordinates: too large: shape \[6148914691236517206, 3\] holds more than 2147483648 values")
+    # found by the mochi_h5 fuzz target (issue 9): a corrupt header makes HDF5 ask malloc for
+    # petabytes; the refused allocation must end in sdp.Error (the fuzzer's input is kept as it is)
+    case(H, "fuzz_huge_metadata_allocation" + e, (REPO / "fuzz/regressions/mochi_h5/huge_metadata_allocation.mochi.h5").read_bytes(),
+         r"box: is not a group")
+    # found by the mochi_h5 fuzz target (issue 9): a corrupt datatype of 1.7 GB per value, which HDF5
+    # allocated to convert a single value (1.8 GB resident for a 4.7 KB file)
+    case(H, "fuzz_huge_value_type" + e, (REPO / "fuzz/regressions/mochi_h5/huge_value_type.mochi.h5").read_bytes(),
+         r"mesh/coordinates: wrong type: floating-point numbers of 1768186226 bytes each \(expected at most 16\)")
+    # ... and a shape that fits but that the 3 KB file cannot hold: 1.2 GB allocated for fill values
+    case(H, "coordinates_not_stored" + e, h5_declared_only((50_000_000, 3)),
+         r"mesh/coordinates: shape \[50000000, 3\] declares more values than the file \(\d+ bytes\) can hold \(corrupt file\?\)")
+    # a uint64 index beyond the range of long long was converted for the message (undefined)
+    case(H, "connectivity_uint64_max" + e, h5(mesh(t=np.where(CUBE_T == 7, np.iinfo(np.uint64).max, CUBE_T).astype(np.uint64))),
+         r"mesh/connectivity: index 1\.84467e\+19 at row 3 out of range: the mesh has 8 nodes")
     case(H, "text_file" + e, "mesh: cube\n", r"not an HDF5 file \(or unreadable\)")
     case(H, "empty" + e, b"", r"not an HDF5 file \(or unreadable\)")
     case(H, "truncated" + e, truncated_h5, r"cannot open the HDF5 file \(corrupt or unreadable\)")
@@ -465,6 +502,17 @@ def mesh_cases():
     case("ply", "face_index_out_of_range.ply", ply_header(8, 12) + ply_body_ascii(t=np.where(CUBE_T == 7, 40, CUBE_T)), r"face_index_out_of_range\.ply:21: face 3 has vertex index 40 out of range: the file has 8 vertices", loader="mesh")
     case("ply", "face_list_count_255.ply", ply_header(8, 1, fmt="binary_little_endian") + b"".join(struct.pack("<3f", *p) for p in CUBE_V) + struct.pack("<B", 255) + b"\0" * 12,
          r"the file ends early, in element 'face' record 0", loader="mesh")
+    # found for issue 9 (reading the PLY reader while writing its fuzz target): list lengths and indices of ASCII files beyond any PLY integer
+    # type, or infinite, were converted to integers (undefined behaviour)
+    case("ply", "list_length_infinite.ply", ply_header(8, 1) + ply_body_ascii(t=[]) + b"inf 0 1 2\n",
+         r"list_length_infinite\.ply:18: expected an integer, got 'inf' in element 'face' record 0", loader="mesh")
+    case("ply", "list_length_1e300.ply", ply_header(8, 1) + ply_body_ascii(t=[]) + b"1e300 0 1 2\n",
+         r"list_length_1e300\.ply:18: expected an integer, got '1e300' in element 'face' record 0", loader="mesh")
+    # faces declared before a huge vertex element: an index past the range of int was converted
+    case("ply", "vertex_index_beyond_int.ply",
+         b"ply\nformat ascii 1.0\nelement face 1\nproperty list uchar uint vertex_indices\nelement vertex 10000000000\n"
+         b"property float x\nproperty float y\nproperty float z\nend_header\n3 0 1 3000000000\n",
+         r"vertex_index_beyond_int\.ply:10: face 0 has vertex index 3000000000 out of range: the file has 10000000000 vertices", loader="mesh")
     case("ply", "unknown_property_type.ply", ply_header(8, 12, vprops="property quad x\nproperty float y\nproperty float z\n") + ply_body_ascii(),
          r"unknown_property_type\.ply:4: unknown property type 'quad'", loader="mesh")
     case("ply", "no_x_property.ply", ply_header(8, 12, vprops="property float a\nproperty float y\nproperty float z\n") + ply_body_ascii(),

@@ -17,6 +17,7 @@
 #include "request_policy.h"
 #include "server_core.h"
 #include "superdex/physics/error.h"
+#include "superdex/physics/file_path.h"
 #include "websocket_session.h"
 
 #ifndef SUPERDEX_DEBUGGER_UI_DIR
@@ -169,7 +170,7 @@ struct DebugServer::Impl {
   int launch(int port, std::unique_ptr<ServerCore> new_core) {
     if (core) throw Error("debug server: already started on port " + std::to_string(core->port));
     if (port < 0 || port > 65535) throw Error("debug server: port must be in 0..65535, got " + std::to_string(port));
-    if (!std::filesystem::is_regular_file(std::filesystem::path(ui_dir) / "index.html"))
+    if (!is_existing_file(std::filesystem::path(ui_dir) / "index.html"))
       throw Error("debug server: the debugger UI is not built (no index.html in '" + ui_dir +
                   "'); build it with `npm run build` in superdex_debugger/ or set the UI directory");
     new_core->ui_dir = ui_dir;

@@ -23,7 +23,9 @@ struct JointRow {
 struct ArticulationTerms {
   MatX A;                        // nv x nv
   VecX r;                        // nv
-  Eigen::LLT<MatX> A_llt;
+  // factored from an empty matrix until computed: a default-constructed LLT leaves its status
+  // uninitialized, and copying the terms of a body without DOFs read it (UBSan, issue 9)
+  Eigen::LLT<MatX> A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
   double seconds = 0;            // time spent computing these
 };

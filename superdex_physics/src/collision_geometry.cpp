@@ -14,6 +14,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// the deduction guide C++20 makes implicit; clang before 17 (the fuzz build) still needs it
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Closest point on the capsule's segment (local z axis) to p.
 Vec3 segment_closest(real half_length, const Vec3& p) {

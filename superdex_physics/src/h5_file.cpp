@@ -6,6 +6,7 @@
 #include <cstring>
 #include <functional>
 #include <filesystem>
+#include <limits>
 
 #include "superdex/physics/error.h"
 
@@ -47,25 +48,56 @@ bool read_dims(hid_t space, std::vector<hsize_t>& dims) {
   return rank == 0 || H5Sget_simple_extent_dims(space, dims.data(), nullptr) >= 0;
 }
 
+// The number of values of a shape, or SIZE_MAX when the product overflows (a corrupt header).
 size_t element_count(const std::vector<hsize_t>& dims) {
   size_t n = 1;
-  for (hsize_t d : dims) n *= static_cast<size_t>(d);
+  for (hsize_t d : dims) {
+    if (d == 0) return 0;
+    if (n > std::numeric_limits<size_t>::max() / d) return std::numeric_limits<size_t>::max();
+    n *= static_cast<size_t>(d);
+  }
   return n;
 }
 
+std::string dims_text(const std::vector<hsize_t>& dims) {
+  std::string s = "[";
+  for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
+  return s + "]";
+}
+
 constexpr size_t kMaxElements = size_t(1) << 31;
+constexpr size_t kMaxValuesPerFileByte = 2048;
+constexpr size_t kMaxValueBytes = 16;  // the widest numbers HDF5 describes (long double)
 
 }  // namespace
 
 Reader::Reader(const std::string& path) : path_(path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": file not found");
+  file_bytes_ = std::filesystem::file_size(path, ec);
+  if (ec) file_bytes_ = 0;
   if (H5Fis_hdf5(path.c_str()) <= 0) throw Error(path + ": not an HDF5 file (or unreadable)");
   file_ = Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file_.valid()) throw Error(path + ": cannot open the HDF5 file (corrupt or unreadable)");
 }
 
 void Reader::fail(const std::string& where, const std::string& what) const { throw Error(path_ + ": " + where + ": " + what); }
+
+void Reader::check_value_size(const std::string& where, hid_t type, H5T_class_t cls) const {
+  const size_t bytes = H5Tget_size(type);
+  if (bytes == 0 || bytes > kMaxValueBytes)
+    fail(where, "wrong type: " + class_name(cls) + " of " + std::to_string(bytes) + " bytes each (expected at most " +
+                    std::to_string(kMaxValueBytes) + ")");
+}
+
+size_t Reader::checked_count(const std::string& where, const std::vector<hsize_t>& dims) const {
+  const size_t n = element_count(dims);
+  if (n > kMaxElements) fail(where, "too large: shape " + dims_text(dims) + " holds more than " + std::to_string(kMaxElements) + " values");
+  if (n / kMaxValuesPerFileByte > file_bytes_)
+    fail(where, "shape " + dims_text(dims) + " declares more values than the file (" + std::to_string(file_bytes_) +
+                    " bytes) can hold (corrupt file?)");
+  return n;
+}
 
 bool Reader::has(const std::string& path) const {
   // H5Lexists needs every intermediate group to exist: check component by component
@@ -98,11 +130,11 @@ Numbers Reader::dataset(const std::string& path, bool integers) const {
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) fail(path, "wrong type: expected numbers, got " + class_name(cls));
   if (integers && cls != H5T_INTEGER) fail(path, "wrong type: expected integers, got " + class_name(cls));
+  check_value_size(path, type.get(), cls);
   Numbers out;
   out.integer_type = cls == H5T_INTEGER;
   if (!read_dims(space.get(), out.dims)) fail(path, "cannot read the dataset's shape");
-  const size_t n = element_count(out.dims);
-  if (n > kMaxElements) fail(path, "too large (" + std::to_string(n) + " values)");
+  const size_t n = checked_count(path, out.dims);
   out.values.resize(n);
   if (n > 0 && H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()) < 0)
     fail(path, "cannot read the data (corrupt file?)");
@@ -119,11 +151,11 @@ Numbers Reader::attribute(const std::string& group, const std::string& name) con
   if (!type.valid() || !space.valid()) fail(where, "cannot read the attribute's type or shape");
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) fail(where, "wrong type: expected numbers, got " + class_name(cls));
+  check_value_size(where, type.get(), cls);
   Numbers out;
   out.integer_type = cls == H5T_INTEGER;
   if (!read_dims(space.get(), out.dims)) fail(where, "cannot read the attribute's shape");
-  const size_t n = element_count(out.dims);
-  if (n > kMaxElements) fail(where, "too large");
+  const size_t n = checked_count(where, out.dims);
   out.values.resize(n);
   if (n > 0 && H5Aread(attr.get(), H5T_NATIVE_DOUBLE, out.values.data()) < 0) fail(where, "cannot read the attribute (corrupt file?)");
   return out;

@@ -6,6 +6,8 @@
 
 #include <hdf5.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -77,7 +79,17 @@ class Reader {
   [[noreturn]] void fail(const std::string& where, const std::string& what) const;
 
  private:
+  // Fails unless a dataset or attribute of shape `dims` can be read: its value count must fit
+  // in memory and in what the file could hold (kept below 2^31, and below 2048 values per byte
+  // of the file: more than any compression achieves, so only a corrupt or hostile header that
+  // declares data the file does not have is refused before it is allocated).
+  std::size_t checked_count(const std::string& where, const std::vector<hsize_t>& dims) const;
+  // Fails unless each value of a numeric type is at most 16 bytes: a corrupt type can claim
+  // gigabytes per value, which HDF5 would allocate to convert one value to double.
+  void check_value_size(const std::string& where, hid_t type, H5T_class_t cls) const;
+
   std::string path_;
+  std::uintmax_t file_bytes_ = 0;
   Id file_;
 };
 

@@ -18,6 +18,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// the deduction guide C++20 makes implicit; clang before 17 (the fuzz build) still needs it
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 bool finite(const Vec3& v) { return v.allFinite(); }
 }  // namespace

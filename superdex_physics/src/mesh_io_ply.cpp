@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "mesh_io_detail.h"
 #include "superdex/physics/mesh_io.h"
@@ -152,7 +153,9 @@ class BodyReader {
       const std::string_view tok = tokens_[next_token_++];
       double x;
       if (!mesh_io::parse_number(tok, x)) fail(path_, line_, "malformed number " + mesh_io::quote(tok) + " in " + where());
-      if (is_integer_type(t) && std::isfinite(x) && x != std::floor(x))
+      // integers beyond 32 bits (no PLY integer type holds them), infinity or NaN would not
+      // survive the conversions of list lengths and indices
+      if (is_integer_type(t) && !(std::isfinite(x) && x == std::floor(x) && std::abs(x) <= 4294967295.0))
         fail(path_, line_, "expected an integer, got " + mesh_io::quote(tok) + " in " + where());
       return x;
     }
@@ -203,8 +206,13 @@ TriangleMesh read_ply_file(const std::string& path) {
 
   TriangleMesh mesh;
   BodyReader body(path, bytes, header);
+  // vertex indices are ints: a larger count declared in the header cannot all be referenced
+  const double max_index = static_cast<double>(std::min<long long>(num_vertices, std::numeric_limits<int>::max()));
   for (const Element& e : header.elements) {
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    // another element without properties has nothing to read (an empty line per record in ASCII,
+    // no bytes in binary): skipping it keeps a huge declared count from looping without end
+    if (e.properties.empty() && !is_vertex && !is_face) continue;
     int xyz[3] = {-1, -1, -1}, index_list = -1;
     for (size_t k = 0; k < e.properties.size(); ++k) {
       const Property& p = e.properties[k];
@@ -233,7 +241,7 @@ TriangleMesh read_ply_file(const std::string& path) {
         for (long long i = 0; i < static_cast<long long>(n); ++i) {
           const double v = body.value(prop.value_type);
           if (static_cast<int>(k) != index_list) continue;
-          if (!(v >= 0 && v < static_cast<double>(num_vertices)))
+          if (!(v >= 0 && v < max_index))
             fail(path, body.line(), "face " + std::to_string(r) + " has vertex index " + std::to_string(static_cast<long long>(v)) +
                                         " out of range: the file has " + std::to_string(num_vertices) + " vertices");
           polygon.push_back(static_cast<int>(v));

@@ -37,6 +37,15 @@ void require_finite(const Reader& r, const std::string& where, const std::vector
     if (!std::isfinite(values[i])) r.fail(where, std::string(std::isnan(values[i]) ? "NaN" : "infinite value") + " at " + position(i));
 }
 
+// An index stored in the file (read as a double), as text; a value beyond the range of long long
+// (a uint64 dataset) is printed as a number rather than converted, which would be undefined.
+std::string index_text(double v) {
+  if (v >= -9.2e18 && v <= 9.2e18) return std::to_string(static_cast<long long>(v));
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
 std::string flat_position(size_t i) { return "index " + std::to_string(i); }
 
 // A numeric attribute of exactly `n` finite values.
@@ -77,7 +86,7 @@ MochiMesh read_mesh(const Reader& r, const std::string& g) {
   m.connectivity.resize(e.values.size());
   for (size_t i = 0; i < e.values.size(); ++i) {
     if (!(e.values[i] >= 0 && e.values[i] < n))
-      r.fail(epath, "index " + std::to_string(static_cast<long long>(e.values[i])) + " at row " + std::to_string(i / e.dims[1]) +
+      r.fail(epath, "index " + index_text(e.values[i]) + " at row " + std::to_string(i / e.dims[1]) +
                         " out of range: the mesh has " + std::to_string(m.coordinates.size()) + " nodes");
     m.connectivity[i] = static_cast<int>(e.values[i]);
   }
@@ -89,7 +98,7 @@ MochiMesh read_mesh(const Reader& r, const std::string& g) {
       r.fail(npath, "wrong shape: expected a list of node indices, got " + dims_text(cn.dims));
     for (size_t i = 0; i < cn.values.size(); ++i) {
       if (!(cn.values[i] >= 0 && cn.values[i] < n))
-        r.fail(npath, "node " + std::to_string(static_cast<long long>(cn.values[i])) + " at index " + std::to_string(i) +
+        r.fail(npath, "node " + index_text(cn.values[i]) + " at index " + std::to_string(i) +
                           " out of range: the mesh has " + std::to_string(m.coordinates.size()) + " nodes");
       m.constrained_nodes.push_back(static_cast<int>(cn.values[i]));
     }

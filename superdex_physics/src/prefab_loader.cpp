@@ -9,6 +9,7 @@
 #include "superdex/physics/articulation_json.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/error.h"
+#include "superdex/physics/file_path.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/prefab.h"
 
@@ -57,7 +58,7 @@ struct Loader {
   const fs::path root;
   std::vector<std::string>* warnings;
   PrefabResult result;
-  std::vector<ShapeHandle> shapes;
+  std::vector<ShapeHandle> shapes;  // made for the actors; released when the load ends
   int depth = 0;
 
   std::optional<real> opt_number(const json& e, const char* key, const std::string& file, const std::string& path) {
@@ -149,7 +150,7 @@ struct Loader {
         nested.scale = s * ns;
         nested.world_from_prefab = place(local_pose(e, file, path));
         const fs::path nested_path = resolve(e.at("path").get<std::string>(), dir, root, file, path + ".path");
-        if (!fs::is_regular_file(nested_path)) fail(file, path + ".path", "prefab file '" + nested_path.string() + "' does not exist");
+        if (!is_existing_file(nested_path)) fail(file, path + ".path", "prefab file '" + nested_path.string() + "' does not exist");
         load(nested_path, nested);
       }
     }
@@ -169,7 +170,7 @@ struct Loader {
     const json& sh = e.at("shape");
     if (sh.is_string()) {
       const fs::path p = resolve(sh.get<std::string>(), dir, root, file, path + ".shape");
-      if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+      if (!is_existing_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
       ShapeBake bake;
       bake.scale = Vec3::Constant(s);
       try {
@@ -217,7 +218,7 @@ struct Loader {
     if (!e.contains("name") || !e.at("name").is_string()) fail(file, path + ".name", "required: a string");
     if (!e.contains("shape") || !e.at("shape").is_string()) fail(file, path + ".shape", "required: a .mochi.h5 file with a tetrahedral mesh/");
     const fs::path p = resolve(e.at("shape").get<std::string>(), dir, root, file, path + ".shape");
-    if (!fs::is_regular_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
+    if (!is_existing_file(p)) fail(file, path + ".shape", "shape file '" + p.string() + "' does not exist");
     ShapeBake bake;
     bake.scale = Vec3::Constant(s);
     std::optional<TetMesh> mesh;
@@ -257,6 +258,7 @@ struct Loader {
     const Transform X_WL = place(local_pose(e, file, path));
     try {
       const ShapeHandle shape = create_tet_mesh_shape(std::move(*mesh), source + ".shape");
+      shapes.push_back(shape);
       result.actors.push_back(scene.create_soft_actor(prefixed(e.at("name").get<std::string>()), shape, material, X_WL, fixed));
     } catch (const Error& err) {
       const std::string msg = err.what();
@@ -339,7 +341,7 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
       fs::path model_path(link.render_model);
       if (model_path.is_relative()) model_path = fs::path(base_dir) / model_path;
       const std::string field = "links[" + std::to_string(i) + "].renderModel";
-      if (!fs::is_regular_file(model_path)) fail(source, field, "render model '" + model_path.string() + "' does not exist");
+      if (!is_existing_file(model_path)) fail(source, field, "render model '" + model_path.string() + "' does not exist");
       if (model_path.extension() != ".glb") fail(source, field, "render models are binary glTF (.glb) files, got '" + model_path.string() + "'");
       link.render_model = model_path.lexically_normal().string();
       if (scale != 1) link.render_model_scale *= scale;
@@ -347,7 +349,7 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
     if (link.shape_file.empty()) continue;
     fs::path shape_path(link.shape_file);
     if (shape_path.is_relative()) shape_path = fs::path(base_dir) / shape_path;
-    if (!fs::is_regular_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
+    if (!is_existing_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
     ShapeBake bake;
     bake.scale = link.shape_scale * scale;
     try {
@@ -363,6 +365,13 @@ PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::stri
                                  const PrefabParams& params, std::vector<std::string>* warnings) {
   if (!(params.scale > 0) || !std::isfinite(params.scale)) throw Error("add_to_scene: scale must be a positive number");
   Loader loader{scene, fs::path(root_path), warnings, {}, {}};
+  // The actors keep their own geometry (a rigid actor a copy, a soft actor the shared tet mesh),
+  // so the engine-wide shapes made for them are released, loaded or not: kept, they piled up in
+  // the shape registry with every load (a duck's whole tet mesh per load; found by
+  // memory_cycles_test, issue 9).
+  auto release_shapes = [&] {
+    for (ShapeHandle h : loader.shapes) release_shape(h);
+  };
   try {
     try {
       loader.load(fs::path(prefab_path), params);
@@ -374,8 +383,10 @@ PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::stri
     // all or nothing
     for (ActorHandle h : loader.result.actors)
       if (scene.has_actor(h)) scene.destroy_actor(h);
+    release_shapes();
     throw;
   }
+  release_shapes();
   return loader.result;
 }
 

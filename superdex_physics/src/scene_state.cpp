@@ -52,6 +52,8 @@ class Reader {
  private:
   void take(void* dst, size_t n, const char* what) {
     if (pos_ + n > bytes_.size()) throw Error(std::string("restore_state: the state is truncated (reading ") + what + ")");
+    // an empty vector (a body without DOFs) has no storage: memcpy must not see its null pointer
+    if (n == 0) return;
     std::memcpy(dst, bytes_.data() + pos_, n);
     pos_ += n;
   }

@@ -9,6 +9,7 @@
 #include "superdex/robotics/builtin_components.h"
 
 #include "superdex/physics/error.h"
+#include "superdex/physics/file_path.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/handles.h"
 
@@ -35,7 +36,7 @@ std::string resolve_params(const std::string& params, const std::string& base_di
   if (first == std::string::npos || params[first] == '{') return params;
   fs::path p(params.substr(first));
   if (p.is_relative() && !base_dir.empty()) p = fs::path(base_dir) / p;
-  if (!fs::is_regular_file(p)) throw Error(where + ": params file '" + p.string() + "' does not exist");
+  if (!is_existing_file(p)) throw Error(where + ": params file '" + p.string() + "' does not exist");
   return fs::absolute(p).lexically_normal().string();
 }
 

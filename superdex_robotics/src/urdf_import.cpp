@@ -60,6 +60,7 @@
 #include <sstream>
 
 #include "superdex/physics/error.h"
+#include "superdex/physics/file_path.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/robotics/bot_prefab.h"
 
@@ -226,7 +227,7 @@ class UrdfImporter {
   // ------------------------------------------------------------------ document
 
   void load_document() {
-    if (!fs::is_regular_file(path_)) fail_file("cannot open the URDF file (does it exist?)");
+    if (!is_existing_file(path_)) fail_file("cannot open the URDF file (does it exist?)");
     const tinyxml2::XMLError err = doc_.LoadFile(path_.c_str());
     if (err != tinyxml2::XML_SUCCESS)
       fail_file("not a valid XML file: " + std::string(doc_.ErrorStr() ? doc_.ErrorStr() : doc_.ErrorName()));
