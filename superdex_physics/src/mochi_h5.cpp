@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "crash_isolation.h"
 #include "h5_file.h"
 #include "superdex/physics/error.h"
 
@@ -182,10 +183,8 @@ MochiMaterial read_material(const Reader& r, const std::optional<MochiMesh>& mes
   return m;
 }
 
-}  // namespace
-
-MochiH5 read_mochi_h5(const std::string& path) {
-  auto guard = h5::lock();
+// Reads every group present, checking each; HDF5 lock held by the caller.
+MochiH5 read_checked(const std::string& path) {
   const Reader r(path);
   MochiH5 out;
   if (r.has("mesh")) out.mesh = read_mesh(r, "mesh");
@@ -218,6 +217,15 @@ MochiH5 read_mochi_h5(const std::string& path) {
     out.plane = p;
   }
   return out;
+}
+
+}  // namespace
+
+MochiH5 read_mochi_h5(const std::string& path) {
+  auto guard = h5::lock();
+  // HDF5 itself can crash on a corrupt file (fuzz/regressions/mochi_h5/): try it in a child first
+  try_in_child_process(path, [&] { (void)read_checked(path); }, "the HDF5 library");
+  return read_checked(path);
 }
 
 namespace {
