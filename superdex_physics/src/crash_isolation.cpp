@@ -2,6 +2,7 @@
 
 #include "crash_isolation.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -50,12 +52,25 @@ std::set<FileIdentity>& passed_files() {
   return files;
 }
 
-// In the child: crash signals end it at once (no handler of the parent, nor a sanitizer's, turns
-// them into a report and an exit code), without a core file.
+// In the child: crash signals end it at once where the runtime allows (a sanitizer may keep its
+// own handler, which exits with an error status instead), without a core file, and silently:
+// the parent reports the crash as an Error.
 void die_plainly_on_faults() {
   for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) signal(sig, SIG_DFL);
   const rlimit no_core{0, 0};
   setrlimit(RLIMIT_CORE, &no_core);
+  const int null_fd = open("/dev/null", O_WRONLY);
+  if (null_fd >= 0) {
+    dup2(null_fd, STDOUT_FILENO);
+    dup2(null_fd, STDERR_FILENO);
+    close(null_fd);
+  }
+}
+
+std::string seconds_text(double s) {
+  std::ostringstream os;
+  os << s;
+  return os.str();
 }
 
 }  // namespace
@@ -94,7 +109,7 @@ void try_in_child_process(const std::string& path, const std::function<void()>& 
       kill(pid, SIGKILL);
       waitpid(pid, &status, 0);
       throw Error(path + ": " + library + " did not finish reading the file within " +
-                  std::to_string(static_cast<int>(timeout_seconds)) + " s (corrupt file?)");
+                  seconds_text(timeout_seconds) + " s (corrupt file?)");
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::microseconds(20000));
@@ -103,7 +118,7 @@ void try_in_child_process(const std::string& path, const std::function<void()>& 
     throw Error(path + ": " + library + " crashed reading the file (signal " + std::to_string(WTERMSIG(status)) + ": " +
                 strsignal(WTERMSIG(status)) + "): corrupt file?");
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error(path + ": " + library + " failed reading the file (the checking process exited with status " +
+    throw Error(path + ": " + library + " crashed reading the file (exit status " +
                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "): corrupt file?");
   std::lock_guard<std::mutex> g(passed_mutex);
   passed_files().insert(id);
