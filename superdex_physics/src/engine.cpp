@@ -1,6 +1,8 @@
 // Engine lifecycle and the scene and shape registries.
 
+#include <algorithm>
 #include <atomic>
+#include <numeric>
 #include <mutex>
 #include <thread>
 
@@ -90,6 +92,13 @@ void run_on_worker_threads(std::size_t count, const std::function<void(std::size
       --depth;
     });
   });
+}
+
+void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work) {
+  std::vector<std::size_t> order(costs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
+  run_on_worker_threads(order.size(), [&](std::size_t i) { work(order[i]); });
 }
 
 namespace {

@@ -345,16 +345,13 @@ void Scene::step_dynamics(real dt) {
     sparse_cache[k] = &slot;
   }
   s.sparse_systems = std::move(sparse_systems);
-  // largest islands first (by contacts and DOFs), so that the threads finish close together
-  std::vector<size_t> by_size(islands.size());
-  std::vector<size_t> island_size(islands.size());
+  // an island's size (contacts and DOFs) estimates its cost: largest first
+  std::vector<double> island_size(islands.size());
   for (size_t k = 0; k < islands.size(); ++k) {
-    by_size[k] = k;
-    island_size[k] = islands[k].contacts.size() + islands[k].soft_contacts.size();
+    island_size[k] = static_cast<double>(islands[k].contacts.size() + islands[k].soft_contacts.size());
     for (int b : islands[k].bodies) island_size[k] += num_dofs[b];
     for (int b : islands[k].soft_bodies) island_size[k] += soft_free[b];
   }
-  std::stable_sort(by_size.begin(), by_size.end(), [&](size_t x, size_t y) { return island_size[x] > island_size[y]; });
   std::vector<IslandSolution> solutions(islands.size());
   std::vector<VecX> q_next(n), v_next(n), efforts_next(n);
   // the next states of island k's bodies (committed below, once every island is checked)
@@ -367,8 +364,7 @@ void Scene::step_dynamics(real dt) {
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
     }
   };
-  parallel(islands.size(), [&](size_t i) {
-    const size_t k = by_size[i];
+  run_on_worker_threads_costliest_first(island_size, [&](size_t k) {
     solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
     next_states(k);
   });

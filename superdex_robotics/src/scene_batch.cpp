@@ -43,7 +43,7 @@ void check_size(const std::vector<double>& v, size_t n, const char* field) {
 struct SceneBatch::Impl {
   SceneBatchSpec spec;
   std::vector<SceneSlot> slots;
-  std::vector<size_t> order;  // the order of the slots in the last step (longest first)
+  std::vector<double> last_seconds;  // each slot's last step wall time (s), the order of the next
   int n = 0;  // action columns
 
   // the observation row of one scene
@@ -161,7 +161,7 @@ SceneBatch::SceneBatch(SceneBatchSpec spec, std::vector<SceneBatchMember> member
     for (int dof : b.spec.action_dofs) slot.q_target.push_back(q[dof]);
     b.slots.push_back(std::move(slot));
   }
-  b.order.resize(b.slots.size());
+  b.last_seconds.resize(b.slots.size());
 }
 
 SceneBatch::~SceneBatch() = default;
@@ -204,10 +204,8 @@ void SceneBatch::step(const double* actions, real* obs_out) {
   Impl& b = *impl_;
   // the scenes that took longest last time go first, so that the threads finish close together
   // (scenes in contact can cost many times more than free ones)
-  for (size_t k = 0; k < b.slots.size(); ++k) b.order[k] = k;
-  std::stable_sort(b.order.begin(), b.order.end(), [&](size_t x, size_t y) { return b.slots[x].seconds > b.slots[y].seconds; });
-  physics::run_on_worker_threads(b.slots.size(), [&](size_t i) {
-    const size_t k = b.order[i];
+  for (size_t k = 0; k < b.slots.size(); ++k) b.last_seconds[k] = b.slots[k].seconds;
+  physics::run_on_worker_threads_costliest_first(b.last_seconds, [&](size_t k) {
     SceneSlot& slot = b.slots[k];
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<double> a(b.n);

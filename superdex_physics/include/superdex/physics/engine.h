@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ int num_worker_threads();
 /// largest first end close together. A call made from inside a work item (a scene's step within
 /// a batch of scenes) runs its items in order on that thread.
 void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work);
+/// Runs work(k) for every k < costs.size() as run_on_worker_threads does, costliest first (by
+/// costs[k], in any unit; equal costs in index order), so that the threads finish close together.
+void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work);
 
 Scene create_scene(const std::string& name);
 /// Destroys a scene; no other thread may be stepping or using that scene.
