@@ -138,8 +138,9 @@ void Scene::set_external_forces_on_dofs(ActorHandle h, std::span<const int> dofs
   const char* what = "set_external_forces_on_dofs";
   SceneData& s = scene_data(handle_);
   ActorRef ref = lookup(s, h, what);
-  VecX& target = ref.soft ? ref.soft->state.tau_external : whole(s, h, what).state.tau_external;
-  const int nv = ref.soft ? static_cast<int>(target.size()) : whole(s, h, what).model.nv;
+  Articulation* articulation = ref.soft ? nullptr : &whole(s, h, what);
+  VecX& target = ref.soft ? ref.soft->state.tau_external : articulation->state.tau_external;
+  const int nv = ref.soft ? static_cast<int>(target.size()) : articulation->model.nv;
   if (dofs.size() != values.size())
     throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but force_values has " +
                 std::to_string(values.size()));
