@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <map>
 
 #include "contact_block.h"
 #include "kinematics.h"
@@ -13,6 +12,37 @@
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+// Working storage of solve_island, kept per thread across calls and steps so that solving a small
+// island allocates little: every member is cleared or resized before use, keeping its capacity.
+struct IslandScratch {
+  std::vector<int> body_offset;   // by articulation index: first variable, or -1 when not in the island
+  std::vector<int> soft_offset;   // by soft step index: first variable
+  std::vector<SoftStep*> soft;
+  MatX A;
+  VecX r, v_start;
+  ConstraintRows rows;
+  std::vector<Eigen::Triplet<real>> J_entries;
+  // world Jacobians of the links touched by contacts, computed once per link
+  struct LinkJacobian {
+    int body, link;
+    MatXR J_WL;
+  };
+  std::vector<LinkJacobian> link_jacobians;
+  size_t link_jacobians_used = 0;
+  MatX J_point, Jc, AinvJct;  // one contact side: point Jacobian, in the contact frame, A^-1 Jc^T
+  std::vector<Mat3> frames;
+  std::vector<real> contact_mu;
+};
+
+IslandScratch& island_scratch() {
+  thread_local IslandScratch scratch;
+  return scratch;
+}
+
+}  // namespace
 
 bool island_is_sparse(const SceneData& s, const Island& island, const SolverParams& params) {
   if (!island.soft_bodies.empty()) return false;
@@ -27,12 +57,17 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
                             std::shared_ptr<SparseNewtonSystem>* sparse_cache) {
   const auto t0 = std::chrono::steady_clock::now();
   IslandSolution out;
+  IslandScratch& w = island_scratch();
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
-  std::map<int, int> offset, soft_offset;
+  std::vector<int>& offset = w.body_offset;
+  std::vector<int>& soft_offset = w.soft_offset;
+  offset.assign(s.articulations.size(), -1);
+  soft_offset.assign(soft_steps.size(), -1);
   int n = 0;
   for (int b : island.bodies) offset[b] = n, n += s.articulations[b]->model.nv;
   const int n_rigid = n;
-  std::vector<SoftStep*> soft;
+  std::vector<SoftStep*>& soft = w.soft;
+  soft.clear();
   for (int k : island.soft_bodies) {
     soft.push_back(soft_steps[k].get());
     soft_offset[k] = n;
@@ -45,8 +80,11 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   const int num_contacts = static_cast<int>(island.contacts.size() + island.soft_contacts.size());
   m += 3 * num_contacts;
 
-  MatX A = MatX::Zero(n_rigid, n_rigid);
-  VecX r(n), v_start(n);
+  MatX& A = w.A;
+  VecX &r = w.r, &v_start = w.v_start;
+  A.setZero(n_rigid, n_rigid);
+  r.resize(n);
+  v_start.resize(n);
   for (int b : island.bodies) {
     const int o = offset[b], nb = s.articulations[b]->model.nv;
     A.block(o, o, nb, nb) = terms[b].A;
@@ -60,8 +98,10 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     r.segment(o, soft[j]->size()) = soft[j]->r;
     v_start.segment(o, soft[j]->size()) = soft[j]->v0;
   }
-  ConstraintRows rows;
-  std::vector<Eigen::Triplet<real>> J_entries;
+  ConstraintRows& rows = w.rows;
+  std::vector<Eigen::Triplet<real>>& J_entries = w.J_entries;
+  rows.blocks.clear();
+  J_entries.clear();
   rows.blocks.reserve(joint_rows + num_contacts);
   int row = 0;
   for (int b : island.bodies)
@@ -78,33 +118,44 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     }
 
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
-  std::map<std::pair<int, int>, MatXR> link_jacobians;
+  w.link_jacobians_used = 0;
+  // the linear-velocity Jacobian of point p_W of a link, into w.J_point (3 x nv)
   auto point_jacobian = [&](int body, int link, const Vec3& p_W) {
     const Articulation& a = *s.articulations[body];
-    auto it = link_jacobians.find({body, link});
-    if (it == link_jacobians.end()) {
-      MatXR J;
-      link_jacobian_world(a.model, a.kin, link, J);
-      it = link_jacobians.emplace(std::make_pair(body, link), std::move(J)).first;
+    IslandScratch::LinkJacobian* found = nullptr;
+    for (size_t k = 0; k < w.link_jacobians_used && !found; ++k)
+      if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) found = &w.link_jacobians[k];
+    if (!found) {
+      if (w.link_jacobians_used == w.link_jacobians.size()) w.link_jacobians.emplace_back();
+      found = &w.link_jacobians[w.link_jacobians_used++];
+      found->body = body;
+      found->link = link;
+      link_jacobian_world(a.model, a.kin, link, found->J_WL);
     }
-    const MatXR& J = it->second;
-    return MatX(J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>());
+    const MatXR& J = found->J_WL;
+    w.J_point.noalias() = J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>();
   };
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with its
   // Delassus block and free-motion normal velocity
   auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Mat3& W, real& vn_free) {
     const int nb = s.articulations[body]->model.nv;
     if (nb == 0) return;
-    const MatX Jc = sign * R_C.transpose() * point_jacobian(body, link, p_W);
-    const int o = offset.at(body);
+    point_jacobian(body, link, p_W);
+    MatX& Jc = w.Jc;
+    Jc.noalias() = (sign * R_C.transpose()) * w.J_point;
+    const int o = offset[body];
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < nb; ++k)
         if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
-    W += Jc * terms[body].A_llt.solve(Jc.transpose());
+    w.AinvJct = Jc.transpose();
+    terms[body].A_llt.solveInPlace(w.AinvJct);
+    W.noalias() += Jc * w.AinvJct;
     vn_free += Jc.row(2).dot(v_start.segment(o, nb));
   };
-  std::vector<Mat3> frames;
-  std::vector<real> contact_mu;
+  std::vector<Mat3>& frames = w.frames;
+  std::vector<real>& contact_mu = w.contact_mu;
+  frames.clear();
+  contact_mu.clear();
   // the frictional block of a contact with Delassus block W and free-motion normal velocity
   auto push_contact_block = [&](const ContactMaterial& material, real phi, const Mat3& W, real vn_free) {
     ConstraintBlock blk = frictional_contact_block(material, phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
@@ -132,7 +183,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     frames.push_back(R_C);
     Mat3 W = Mat3::Zero();
     real vn_free = 0;
-    const int o = soft_offset.at(c.soft);
+    const int o = soft_offset[c.soft];
     for (int j = 0; j < 3; ++j) {
       if (c.nodes[j] < 0 || c.weights[j] == 0 || st.pattern.free_of_dof[3 * c.nodes[j]] < 0) continue;
       const real w = c.weights[j];

@@ -3,13 +3,15 @@
 // linear-algebra backend. An Algebra provides:
 //
 //   int n(); VecX diagonal();                 size, and the diagonal of A (for scaling)
-//   VecX A_mul(x), J_mul(x), Jt_mul(y);       products with A and the constraint Jacobian
+//   A_mul(x, out), J_mul(x, out), Jt_mul(y, out)
+//                                             products with A and the constraint Jacobian, into
+//                                             `out` (resized as needed; its storage is reused)
 //   bool smooth();                            whether the objective has a smooth non-quadratic
 //                                             part e(v) (soft bodies' elastic energy)
 //   void add_smooth_gradient(v, g);           g += grad e(v)
 //   void factor(rows, G, v);                  factors H = A + J^T G J + hess e(v)
 //   real smooth_curvature(dv);                dv^T hess e(v) dv at the last factored v
-//   VecX solve(b);                            H^-1 b
+//   solve(b, x);                              x = H^-1 b
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +23,17 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
+// The loop's vectors, kept per thread across calls so that a solve allocates only its result.
+struct NewtonScratch {
+  VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
+  std::vector<Eigen::Matrix<real, 3, 3>> G;
+};
+
+inline NewtonScratch& newton_scratch() {
+  thread_local NewtonScratch scratch;
+  return scratch;
+}
+
 template <class Algebra>
 ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, VecX v) {
   const int n = alg.n();
@@ -29,13 +42,19 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
   ConvexResult out;
   out.v = std::move(v);
   out.gamma.setZero(m);
+  NewtonScratch& w = newton_scratch();
   // diagonal scaling so that the stopping test is independent of units and masses
-  const VecX D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
+  VecX& D = w.D;
+  D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
   const real r_norm = (D.asDiagonal() * r).norm();
 
-  VecX vc(m), grad(n), dv(n), dvc(m), jc(n), smooth_grad(n);
-  VecX vc_alpha(m), gamma_alpha(m), v_alpha;  // line-search trial points
-  std::vector<Eigen::Matrix<real, 3, 3>> G(rows.blocks.size());
+  VecX &vc = w.vc, &grad = w.grad, &dv = w.dv, &dvc = w.dvc, &jc = w.jc, &smooth_grad = w.smooth_grad;
+  VecX &Av_r = w.Av_r, &Adv = w.Adv;
+  VecX &vc_alpha = w.vc_alpha, &gamma_alpha = w.gamma_alpha, &v_alpha = w.v_alpha;  // line-search trial points
+  for (VecX* x : {&vc, &dvc, &vc_alpha, &gamma_alpha}) x->resize(m);
+  for (VecX* x : {&grad, &dv, &jc, &smooth_grad, &Av_r, &Adv}) x->resize(n);
+  std::vector<Eigen::Matrix<real, 3, 3>>& G = w.G;
+  G.resize(rows.blocks.size());
 
   // impulses and Hessian blocks at the current constraint velocities
   auto respond = [&](const VecX& velocities, VecX& gamma) {
@@ -47,13 +66,14 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
   int stalled = 0;
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
-      vc = alg.J_mul(out.v);
+      alg.J_mul(out.v, vc);
       respond(vc, out.gamma);
-      jc = alg.Jt_mul(out.gamma);
+      alg.Jt_mul(out.gamma, jc);
     } else {
       jc.setZero(n);
     }
-    const VecX Av_r = alg.A_mul(out.v) - r;
+    alg.A_mul(out.v, Av_r);
+    Av_r -= r;
     grad = Av_r - jc;
     real scale = std::max(r_norm, (D.asDiagonal() * jc).norm());
     if (smooth) {
@@ -82,11 +102,13 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
     if (it == params.max_newton_iterations) break;
     // Newton direction from the Hessian A + J^T G J (+ the smooth term's)
     alg.factor(rows, G, out.v);
-    dv = -alg.solve(grad);
-    if (m > 0) dvc = alg.J_mul(dv);
+    alg.solve(grad, dv);
+    dv = -dv;
+    if (m > 0) alg.J_mul(dv, dvc);
     // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
     const real a0 = dv.dot(Av_r);
-    const real a1 = dv.dot(alg.A_mul(dv));
+    alg.A_mul(dv, Adv);
+    const real a1 = dv.dot(Adv);
     const real curvature = smooth ? alg.smooth_curvature(dv) : real(0);
     const real slope_ref = smooth ? std::abs(grad.dot(dv)) : std::abs(a0);
     // the contact problem is piecewise quadratic and its line search nearly exact; with the
@@ -96,7 +118,7 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
     auto dphi = [&](real alpha, real* ddphi) {
       real d = a0 + alpha * a1, dd = a1 + curvature;
       if (m > 0) {
-        vc_alpha = vc + alpha * dvc;
+        vc_alpha.noalias() = vc + alpha * dvc;
         respond(vc_alpha, gamma_alpha);
         d -= dvc.dot(gamma_alpha);
         for (size_t k = 0; k < rows.blocks.size(); ++k) {
@@ -110,7 +132,7 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
         }
       }
       if (smooth) {
-        v_alpha = out.v + alpha * dv;
+        v_alpha.noalias() = out.v + alpha * dv;
         smooth_grad.setZero(n);
         alg.add_smooth_gradient(v_alpha, smooth_grad);
         d += dv.dot(smooth_grad);
@@ -137,7 +159,7 @@ ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, con
     if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
       // no further progress is possible at this precision
       if (m > 0) {
-        vc = alg.J_mul(out.v);
+        alg.J_mul(out.v, vc);
         respond(vc, out.gamma);
       }
       out.iterations = it + 1;

@@ -103,15 +103,29 @@ SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen
 
 namespace {
 
+// Storage of DenseAlgebra, kept per thread across solves.
+struct DenseScratch {
+  MatX J, H, GJ;
+  Eigen::LLT<MatX> llt;
+};
+
+DenseScratch& dense_scratch() {
+  thread_local DenseScratch scratch;
+  return scratch;
+}
+
 // Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
 class DenseAlgebra {
  public:
-  DenseAlgebra(const MatX& A, const SparseRowMat& J) : A_(A), J_(J) {}
+  DenseAlgebra(const MatX& A, const SparseRowMat& J)
+      : A_(A), J_(dense_scratch().J), H_(dense_scratch().H), GJ_(dense_scratch().GJ), llt_(dense_scratch().llt) {
+    J_ = J;
+  }
   int n() const { return static_cast<int>(A_.rows()); }
   VecX diagonal() const { return A_.diagonal(); }
-  VecX A_mul(const VecX& x) const { return A_ * x; }
-  VecX J_mul(const VecX& x) const { return J_ * x; }
-  VecX Jt_mul(const VecX& y) const { return J_.transpose() * y; }
+  void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
+  void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
+  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
   // factors H = A + J^T G J (G block diagonal, blocks of `rows`)
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
@@ -119,22 +133,25 @@ class DenseAlgebra {
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
     H_ = A_;
     if (J_.rows() > 0) {
-      MatX GJ(J_.rows(), J_.cols());
+      GJ_.resize(J_.rows(), J_.cols());
       for (size_t k = 0; k < rows.blocks.size(); ++k) {
         const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-        GJ.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+        GJ_.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
       }
-      H_.noalias() += J_.transpose() * GJ;
+      H_.noalias() += J_.transpose() * GJ_;
     }
     llt_.compute(H_);
   }
-  VecX solve(const VecX& b) const { return llt_.solve(b); }
+  void solve(const VecX& b, VecX& x) const {
+    x = b;
+    llt_.solveInPlace(x);
+  }
 
  private:
   const MatX& A_;
-  MatX J_;
-  MatX H_;
-  Eigen::LLT<MatX> llt_;
+  MatX& J_;
+  MatX &H_, &GJ_;
+  Eigen::LLT<MatX>& llt_;
 };
 
 // Sparse linear algebra for the Newton loop: sparse A and J, H on a pattern analysed once.
@@ -144,9 +161,9 @@ class SparseAlgebra {
       : A_(A), J_(J), Jt_(J.transpose()), system_(system) {}
   int n() const { return static_cast<int>(A_.rows()); }
   VecX diagonal() const { return A_.diagonal(); }
-  VecX A_mul(const VecX& x) const { return A_ * x; }
-  VecX J_mul(const VecX& x) const { return J_ * x; }
-  VecX Jt_mul(const VecX& y) const { return Jt_ * y; }
+  void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
+  void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
+  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = Jt_ * y; }
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
@@ -155,7 +172,7 @@ class SparseAlgebra {
     if (!system_) system_ = std::make_shared<SparseNewtonSystem>(A_, rows);
     system_->factor(rows, G);
   }
-  VecX solve(const VecX& b) const { return system_->solve(b); }
+  void solve(const VecX& b, VecX& x) const { x = system_->solve(b); }
 
  private:
   const SparseMat& A_;

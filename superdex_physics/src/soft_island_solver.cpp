@@ -34,15 +34,14 @@ class SoftAlgebra {
     for (size_t k = 0; k < soft_.size(); ++k) d.segment(offset_[k], soft_[k]->size()) = soft_[k]->A.diagonal();
     return d;
   }
-  VecX A_mul(const VecX& x) const {
-    VecX y(n_);
+  void A_mul(const VecX& x, VecX& y) const {
+    y.resize(n_);
     y.head(nr_).noalias() = A_r_ * x.head(nr_);
     for (size_t k = 0; k < soft_.size(); ++k)
       y.segment(offset_[k], soft_[k]->size()) = soft_[k]->A * x.segment(offset_[k], soft_[k]->size());
-    return y;
   }
-  VecX J_mul(const VecX& x) const { return J_ * x; }
-  VecX Jt_mul(const VecX& y) const { return Jt_ * y; }
+  void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
+  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = Jt_ * y; }
   bool smooth() const { return true; }
   void add_smooth_gradient(const VecX& v, VecX& g) const {
     for (size_t k = 0; k < soft_.size(); ++k)
@@ -103,8 +102,8 @@ class SoftAlgebra {
     first_factor_ = false;
   }
 
-  VecX solve(const VecX& b) const {
-    VecX x(n_);
+  void solve(const VecX& b, VecX& x) const {
+    x.resize(n_);
     if (nr_ > 0) {
       VecX br = b.head(nr_);
       for (size_t k = 0; k < soft_.size(); ++k)
@@ -116,7 +115,6 @@ class SoftAlgebra {
       if (nr_ > 0) bk.noalias() -= B_[k] * x.head(nr_);
       x.segment(offset_[k], soft_[k]->size()) = soft_[k]->body.pattern->cholesky.solve(bk);
     }
-    return x;
   }
 
  private:
