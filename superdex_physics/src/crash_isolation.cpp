@@ -18,6 +18,7 @@
 #include <thread>
 #include <utility>
 
+#include "fnv_hash.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/real.h"
 
@@ -34,15 +35,16 @@ using FileIdentity = std::pair<std::uint64_t, std::uint64_t>;
 bool identify(const std::string& path, FileIdentity& id) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
-  std::uint64_t h = 14695981039346656037ull, n = 0;
+  Fnv1a64 h;
+  std::uint64_t n = 0;
   char buf[1 << 16];
   while (in) {
     in.read(buf, sizeof buf);
     const std::streamsize got = in.gcount();
-    for (std::streamsize i = 0; i < got; ++i) h = (h ^ static_cast<unsigned char>(buf[i])) * 1099511628211ull;
+    h.bytes(buf, static_cast<size_t>(got));
     n += static_cast<std::uint64_t>(got);
   }
-  id = {n, h};
+  id = {n, h.value};
   return true;
 }
 

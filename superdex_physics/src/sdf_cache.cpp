@@ -11,6 +11,7 @@
 #include <cstring>
 #include <unistd.h>
 
+#include "fnv_hash.h"
 #include "sdf_internal.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mochi_h5.h"
@@ -20,13 +21,15 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// Two FNV-1a streams with different bases: a 128-bit key, plenty against accidental collisions.
+// FNV-1a and a second, differently based and mixed stream: a 128-bit key, plenty against
+// accidental collisions.
 struct Hasher {
-  std::uint64_t a = 14695981039346656037ull, b = 0x6c62272e07bb0142ull;
+  Fnv1a64 a;
+  std::uint64_t b = 0x6c62272e07bb0142ull;
   void bytes(const void* data, size_t n) {
+    a.bytes(data, n);
     const auto* p = static_cast<const unsigned char*>(data);
     for (size_t i = 0; i < n; ++i) {
-      a = (a ^ p[i]) * 1099511628211ull;
       b = (b ^ (p[i] ^ 0x5a)) * 0x100000001b3ull;
       b ^= b >> 31;
     }
@@ -66,7 +69,7 @@ std::string sdf_cache_key(const TriangleMesh& mesh, const SdfOptions& options) {
   h.value(static_cast<std::int32_t>(options.resolution));
   h.value(static_cast<std::int32_t>(options.padding_cells));
   char text[33];
-  std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(h.a), static_cast<unsigned long long>(h.b));
+  std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(h.a.value), static_cast<unsigned long long>(h.b));
   return std::string(text) + ".mochi.h5";
 }
 
