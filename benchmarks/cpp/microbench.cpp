@@ -3,7 +3,8 @@
 /// kinematics, mass matrix and bias forces of revolute chains (7 and 30 DOFs), collision (one
 /// box-box manifold; the whole narrow and broad phase of a settled 50-box pile), the convex
 /// contact solve (a dense island of boxes in contact), FEM assembly (energy, gradient and
-/// projected Hessian of Neo-Hookean tetrahedra), and whole steps of the 50-box pile for scale.
+/// projected Hessian of Neo-Hookean tetrahedra), the signed distance grid of a 1280-triangle
+/// sphere at 32^3 cells, and whole steps of the 50-box pile for scale.
 /// Built by `cmake --build <build dir> --target superdex_microbench`; run by benchmarks/run.py.
 
 #include <benchmark/benchmark.h>
@@ -17,11 +18,13 @@
 #include "dynamics.h"
 #include "fem_elasticity.h"
 #include "kinematics.h"
+#include "mesh_builders.h"
 #include "newton_solver.h"
 #include "scene_data.h"
 #include "spatial.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/scene.h"
+#include "superdex/physics/sdf.h"
 
 namespace sp = superdex::physics;
 using sp::real;
@@ -249,6 +252,18 @@ void BM_FemTetAssembly(benchmark::State& st) {
   st.counters["tets"] = static_cast<double>(rest.size());
 }
 BENCHMARK(BM_FemTetAssembly)->Unit(benchmark::kMicrosecond);
+
+// The signed distance grid of a mesh shape, computed once per new mesh (then cached on disk):
+// a 1280-triangle icosphere on a 32^3 grid with 3 cells of padding.
+void BM_ComputeSdf(benchmark::State& st) {
+  const sp::TriangleMesh sphere = sp::test::icosphere(3, 1.0);
+  for (auto _ : st) {
+    const sp::SdfGrid g = sp::compute_sdf(sphere, {32, 3}, "sphere");
+    benchmark::DoNotOptimize(g.values.data());
+  }
+  st.counters["triangles"] = static_cast<double>(sphere.triangles.size());
+}
+BENCHMARK(BM_ComputeSdf)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
