@@ -10,6 +10,8 @@
 #   FUZZ_RUNS=50000 tools/fuzz.sh      a reproducible campaign instead: this many inputs per target
 #                                      from random seed FUZZ_SEED (default 1), starting from the
 #                                      committed corpora only, so every machine runs the same inputs
+#   FUZZ_RUNS=50000 tools/fuzz.sh urdf mochi_h5:3000
+#                                      a target's own count of inputs after a colon
 # Inputs the fuzzer finds that reach new code go to build/fuzz/corpus/<target>/, not to the repo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +20,15 @@ export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 seconds=${FUZZ_SECONDS:-30}
 dir=build/fuzz
 all=(bot_json prefab_json urdf mochi_h5 obj stl ply recording debugger_message)
-targets=("${@:-${all[@]}}")
+specs=("${@:-${all[@]}}")
+# target names without their run counts, and the counts by name
+targets=()
+declare -A runs_of=()
+for spec in "${specs[@]}"; do
+  t=${spec%%:*}
+  targets+=("$t")
+  [[ "$spec" == *:* ]] && runs_of[$t]=${spec#*:}
+done
 
 # -O1 -g: fast enough to fuzz, quick to build, line numbers in reports; asserts stay on
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
@@ -42,7 +52,7 @@ fuzz_one() {
   if [[ -n "${FUZZ_RUNS:-}" ]]; then
     corpora[0]="$dir/corpus-runs/$t"
     rm -rf "${corpora[0]}" && mkdir -p "${corpora[0]}"
-    budget=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}")
+    budget=(-runs="${runs_of[$t]:-$FUZZ_RUNS}" -seed="${FUZZ_SEED:-1}")
   fi
   [[ -d "fuzz/regressions/$t" ]] && corpora+=("fuzz/regressions/$t")
   if "$dir/fuzz/${t}_fuzzer" "${budget[@]}" -timeout=20 -rss_limit_mb=2048 \
