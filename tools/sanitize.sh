@@ -41,7 +41,7 @@ for precision in "${precisions[@]}"; do
   echo "== Python tests under ASan + UBSan ($precision build)"
   # --capture=sys: pytest captures Python's output only, so a sanitizer report written to the
   # process's stderr is shown even when it ends the process
-  SUPERDEX_PRECISION=$precision SUPERDEX_NATIVE_DIR="$PWD/$dir/python" \
+  SUPERDEX_SANITIZED=1 SUPERDEX_PRECISION=$precision SUPERDEX_NATIVE_DIR="$PWD/$dir/python" \
   SKBUILD_EDITABLE_SKIP="${normal_build:+$PWD/$normal_build}" \
   ASAN_OPTIONS="detect_leaks=0:$asan_common" \
   LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \

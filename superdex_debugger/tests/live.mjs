@@ -1,11 +1,12 @@
 // Live check of the debugger page against a running debug server (or the mock with --live).
 //
 //   node tests/live.mjs URL [--screenshot PATH] [--links base_link,link_1,link_2,ball]
-//                           [--signal force_sensor] [--timeout S]
+//                           [--signal force_sensor] [--timeout S] [--settle S]
 //
 // Opens URL (1400x900) and measures: the 3D canvas has content, the given link names are in the
 // scene tree, a chart of a signal containing the --signal text is drawn with > 5 points; then
-// pause (status paused and t unchanged over 1 s), step (status.step +1 exactly) and play
+// pause (status paused and, once the step in flight has ended (--settle, default 0.3 s), t
+// unchanged over 1 s), step (status.step +1 exactly) and play
 // (status.t increases). Prints one JSON object as the last line of stdout; exits 0 unless the
 // browser could not run.
 import { settledCanvasStats, isNonBlank, launchBrowser, parseArgs, report, sleep, waitFor } from './lib.mjs';
@@ -15,6 +16,8 @@ const url = pos[0];
 const links = String(opt.links ?? 'base_link,link_1,link_2,ball').split(',').map((s) => s.trim()).filter(Boolean);
 const signalText = opt.signal ?? 'force_sensor';
 const timeoutMs = Number(opt.timeout ?? 20) * 1000;
+// a pause takes effect after the step in flight: longer than one step of the simulation
+const settleMs = Number(opt.settle ?? 0.3) * 1000;
 const out = { ok: false, url };
 
 if (!url) {
@@ -75,10 +78,10 @@ try {
   out.signalNames = await page.evaluate(() => window.superdex.signalNames());
   out.signalPlotted = Boolean(chart && out.plottedSignals.includes(chart.name) && chart.points > 5);
 
-  // Pause: the state becomes paused and t does not move for 1 s.
+  // Pause: the state becomes paused and, once the step in flight has ended, t does not move for 1 s.
   await page.evaluate(() => window.superdex.control('pause'));
   out.pausedState = Boolean(await waitFor(page, () => window.superdex.status()?.state === 'paused', null, 5000));
-  await sleep(300);
+  await sleep(settleMs);
   out.tPaused0 = (await status(page))?.t ?? null;
   await sleep(1000);
   const sp = await status(page);
@@ -88,8 +91,8 @@ try {
   // Step: exactly one step.
   out.stepBefore = (await status(page))?.step ?? null;
   await page.evaluate(() => window.superdex.control('step'));
-  await waitFor(page, (s0) => window.superdex.status()?.step !== s0, out.stepBefore, 5000);
-  await sleep(500);
+  await waitFor(page, (s0) => window.superdex.status()?.step !== s0, out.stepBefore, Math.max(5000, settleMs));
+  await sleep(Math.max(500, settleMs));
   const ss = await status(page);
   out.stepAfter = ss?.step ?? null;
   out.stateAfterStep = ss?.state ?? null;
@@ -100,7 +103,7 @@ try {
   const framesBeforePlay = await page.evaluate(() => window.superdex.frameCount());
   await page.evaluate(() => window.superdex.control('play'));
   await sleep(1000);
-  await waitFor(page, (t0) => (window.superdex.status()?.t ?? -Infinity) > t0, out.tPlay0, 5000);
+  await waitFor(page, (t0) => (window.superdex.status()?.t ?? -Infinity) > t0, out.tPlay0, Math.max(5000, settleMs));
   const sr = await status(page);
   out.tPlay1 = sr?.t ?? null;
   out.stateAfterPlay = sr?.state ?? null;

@@ -28,6 +28,8 @@ REPO = Path(__file__).resolve().parents[3]
 EXAMPLE = REPO / "superdex_robotics" / "examples" / "advanced" / "example_custom_components.py"
 UI = REPO / "superdex_debugger"
 LINKS = ["base_link", "link_1", "link_2", "ball"]
+# tools/sanitize.sh runs the suite with the sanitized engine, many times slower: waits are longer
+SLOW = 5 if os.environ.get("SUPERDEX_SANITIZED") == "1" else 1
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -56,7 +58,7 @@ def start_and_read_url(cmd, env, marker):
     threading.Thread(target=lambda: [lines.put(l) for l in proc.stdout], daemon=True).start()
     while True:
         try:
-            line = lines.get(timeout=300)
+            line = lines.get(timeout=300 * SLOW)
         except queue.Empty:
             proc.kill()
             pytest.fail(f"{cmd} printed no URL")
@@ -66,22 +68,26 @@ def start_and_read_url(cmd, env, marker):
 
 
 def run_node(script, *args):
+    # the browser does not load the sanitizer runtimes preloaded into the Python processes
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
     result = subprocess.run(["node", str(UI / "tests" / script), *map(str, args)], capture_output=True, text=True,
-                            timeout=600, cwd=UI)
+                            timeout=600 * SLOW, cwd=UI, env=env)
     assert result.returncode == 0, result.stderr
     return json.loads(result.stdout.strip().splitlines()[-1])
 
 
 def test_the_page_attaches_to_the_seed_example_and_controls_it(tmp_path):
     # the seed waits for the page up to SUPERDEX_DEBUGGER_WAIT (a browser starting on a busy machine)
-    proc, url, _ = start_and_read_url([sys.executable, str(EXAMPLE)], headless_env(SUPERDEX_DEBUGGER_WAIT="120"),
+    proc, url, _ = start_and_read_url([sys.executable, str(EXAMPLE)], headless_env(SUPERDEX_DEBUGGER_WAIT=str(120 * SLOW)),
                                       "superdex.debugger: open")
     try:
         shot = screenshot_path(tmp_path, "debugger_live.png")
+        # --settle: a pause takes effect after the step in flight (one seed step: milliseconds, or
+        # seconds under the sanitizers)
         r = run_node("live.mjs", url, "--screenshot", shot, "--links", ",".join(LINKS), "--signal", "force_sensor",
-                     "--timeout", 120)
+                     "--timeout", 120 * SLOW, "--settle", 0.3 if SLOW == 1 else 8)
         # closing the page ends the seed's `while debugger.is_attached()` loop
-        _, stderr = proc.communicate(timeout=120)
+        _, stderr = proc.communicate(timeout=120 * SLOW)
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -103,7 +109,7 @@ def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
     recording = tmp_path / "seed.jsonl"
     env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_DURATION="0.6",
                        SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
-    subprocess.run([sys.executable, str(EXAMPLE)], env=env, check=True, capture_output=True, timeout=900, cwd=REPO)
+    subprocess.run([sys.executable, str(EXAMPLE)], env=env, check=True, capture_output=True, timeout=900 * SLOW, cwd=REPO)
     lines = [json.loads(l) for l in recording.read_text().splitlines()]
     frames = [l for l in lines if l["type"] == "frame"]
     (arm,) = [l for l in lines if l["type"] == "actor" and l["name"] == "example_bot_2dof"]
