@@ -2,9 +2,14 @@
 
 The resident set size after the cycles stays within 5 % of its value after a warm-up, and
 every Python component object the framework created has been released (weak references die).
+Under AddressSanitizer (SUPERDEX_SANITIZED=1, tools/sanitize.sh) the resident size is not
+compared: ASan keeps freed memory in its quarantine (256 MB) before reusing it, so the process
+grows until the quarantine is full whatever the engine does; leaks there are LeakSanitizer's to
+find (the C++ memory-cycles test).
 """
 
 import gc
+import os
 import weakref
 from pathlib import Path
 
@@ -19,8 +24,6 @@ WARMUP = 1_000
 def rss_bytes() -> int:
     # second field of /proc/self/statm: resident pages
     pages = int(Path("/proc/self/statm").read_text().split()[1])
-    import os
-
     return pages * os.sysconf("SC_PAGE_SIZE")
 
 
@@ -56,6 +59,7 @@ def test_create_destroy_cycles_keep_memory_flat(scene):
             baseline = rss_bytes()
     gc.collect()
     final = rss_bytes()
-    assert final <= baseline * 1.05, f"RSS grew from {baseline / 2**20:.1f} MiB to {final / 2**20:.1f} MiB"
+    if os.environ.get("SUPERDEX_SANITIZED") != "1":
+        assert final <= baseline * 1.05, f"RSS grew from {baseline / 2**20:.1f} MiB to {final / 2**20:.1f} MiB"
     assert all(r() is None for r in refs), "Python components were released"
     assert scene.get_actors() == []
