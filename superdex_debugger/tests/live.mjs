@@ -5,8 +5,8 @@
 //
 // Opens URL (1400x900) and measures: the 3D canvas has content, the given link names are in the
 // scene tree, a chart of a signal containing the --signal text is drawn with > 5 points; then
-// pause (status paused and, once the step in flight has ended (--settle, default 0.3 s), t
-// unchanged over 1 s), step (status.step +1 exactly) and play
+// pause (status paused, and at most the step in flight ends after it: --settle, default 0.3 s,
+// plus 1 s), step (status.step +1 exactly) and play
 // (status.t increases). Prints one JSON object as the last line of stdout; exits 0 unless the
 // browser could not run.
 import { settledCanvasStats, isNonBlank, launchBrowser, parseArgs, report, sleep, waitFor } from './lib.mjs';
@@ -78,15 +78,20 @@ try {
   out.signalNames = await page.evaluate(() => window.superdex.signalNames());
   out.signalPlotted = Boolean(chart && out.plottedSignals.includes(chart.name) && chart.points > 5);
 
-  // Pause: the state becomes paused and, once the step in flight has ended, t does not move for 1 s.
+  // Pause: the state becomes paused; the step in flight when the pause arrived may still end
+  // (a step is never cut short), and no step after it: over the next settle + 1 s the step count
+  // moves by at most one from its value at the acknowledgement.
   await page.evaluate(() => window.superdex.control('pause'));
   out.pausedState = Boolean(await waitFor(page, () => window.superdex.status()?.state === 'paused', null, 5000));
+  out.stepAtPause = (await status(page))?.step ?? null;
   await sleep(settleMs);
   out.tPaused0 = (await status(page))?.t ?? null;
   await sleep(1000);
   const sp = await status(page);
   out.tPaused1 = sp?.t ?? null;
-  out.pauseHolds = out.pausedState && sp?.state === 'paused' && out.tPaused0 !== null && out.tPaused0 === out.tPaused1;
+  out.stepPaused = sp?.step ?? null;
+  out.pauseHolds = out.pausedState && sp?.state === 'paused' && out.stepAtPause !== null && out.stepPaused !== null &&
+    out.stepPaused - out.stepAtPause <= 1;
 
   // Step: exactly one step.
   out.stepBefore = (await status(page))?.step ?? null;

@@ -83,7 +83,7 @@ def test_the_page_attaches_to_the_seed_example_and_controls_it(tmp_path):
     try:
         shot = screenshot_path(tmp_path, "debugger_live.png")
         # --settle: a pause takes effect after the step in flight (one seed step: milliseconds, or
-        # seconds under the sanitizers)
+        # seconds under the sanitizers), waited for before the single-step check
         r = run_node("live.mjs", url, "--screenshot", shot, "--links", ",".join(LINKS), "--signal", "force_sensor",
                      "--timeout", 120 * SLOW, "--settle", 0.3 if SLOW == 1 else 8)
         # closing the page ends the seed's `while debugger.is_attached()` loop
@@ -96,7 +96,8 @@ def test_the_page_attaches_to_the_seed_example_and_controls_it(tmp_path):
     assert r["canvasNonBlank"], details
     assert r["treeHasLinks"], details
     assert r["signalPlotted"] and "force_sensor" in r["signalName"], details
-    assert r["pauseHolds"] and r["tPaused0"] == r["tPaused1"], details
+    # the step in flight when the pause arrived may end; none after it
+    assert r["pauseHolds"] and r["stepPaused"] - r["stepAtPause"] <= 1, details
     assert r["stepAdvancesOne"] and r["stepAfter"] == r["stepBefore"] + 1, details
     assert r["playResumes"] and r["tPlay1"] > r["tPlay0"], details
     assert not r.get("pageErrors"), details
