@@ -36,6 +36,9 @@ ASAN_OPTIONS="detect_leaks=1:$asan_common" LSAN_OPTIONS="suppressions=$supp/lsan
 # The Python package loads the sanitized modules from SUPERDEX_NATIVE_DIR (python/superdex/_native.py);
 # the sanitizer runtimes must be loaded before the interpreter's own libraries (LD_PRELOAD).
 # CPython keeps its objects alive at exit by design, so leak detection is off for Python.
+# SUPERDEX_SANITIZED=1 tells the tests that the engine runs many times slower and that ASan holds
+# freed memory in its quarantine: they wait longer, run the seed example for one press instead of
+# four, start node and chromium without the sanitizer runtimes, and do not compare resident sizes.
 normal_build=$(ls -td build/cp* 2>/dev/null | head -1)
 for precision in "${precisions[@]}"; do
   echo "== Python tests under ASan + UBSan ($precision build)"
