@@ -5,14 +5,23 @@
 serves the scene debugger's page in replay mode for a recording (docs/recording_format.md): the
 page shows every frame of the run with a timeline, with no simulation running. It opens the
 page in a browser where one can be opened and prints the URL otherwise (over SSH, forward the
-port: `ssh -L N:127.0.0.1:N host`). Ctrl-C stops it.
+port: `ssh -L N:127.0.0.1:N host`). Ctrl-C (SIGINT) or SIGTERM stops it, also when it was started
+as a background job of a script (which starts with SIGINT ignored).
 """
 
 import argparse
 import os
+import signal
 import sys
 import time
 import webbrowser
+
+
+def _stop_on_signals() -> None:
+    """SIGINT and SIGTERM raise KeyboardInterrupt, whatever disposition the process inherited (a
+    shell starts background jobs with SIGINT ignored, and Python then keeps it ignored)."""
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, signal.default_int_handler)
 
 
 def _view(args) -> int:
@@ -34,6 +43,7 @@ def _view(args) -> int:
         except webbrowser.Error:
             opened = False
     port = server.get_port()
+    _stop_on_signals()  # before the URL is printed: whoever reads it may stop the server at once
     print(f"superdex view: replaying {args.recording} at {url}" + ("" if opened else f" (over SSH: ssh -L {port}:127.0.0.1:{port} <this host>)"),
           flush=True)
     try:

@@ -134,3 +134,40 @@ def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
     assert r["renderModelsDeclared"] == 1 and r["renderModelCount"] == 1, details
     assert r["canvasNonBlank"], details
     assert proc.returncode == 0
+
+
+RECORD_A_BALL = """
+import sys
+import superdex.physics as sdp
+sdp.initialize()
+scene = sdp.create_scene("recorded")
+scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+sdp.start_recording(sys.argv[1], 0.0)
+for _ in range(20):
+    scene.step(0.01)
+sdp.stop_recording()
+sdp.shutdown()
+"""
+
+
+def ignore_sigint():
+    # as a shell starts a background job (`cmd &` in a script): SIGINT ignored
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_superdex_view_stops_on_a_signal_even_started_with_sigint_ignored(tmp_path, stop):
+    recording = tmp_path / "ball.jsonl"
+    subprocess.run([sys.executable, "-c", RECORD_A_BALL, str(recording)], check=True, capture_output=True,
+                   timeout=300 * SLOW, cwd=REPO)
+    cmd = [sys.executable, "-m", "superdex", "view", str(recording), "--no-browser", "--port", "0"]
+    proc = subprocess.Popen(cmd, env=headless_env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO,
+                            preexec_fn=ignore_sigint)
+    try:
+        line = proc.stdout.readline()
+        assert "superdex view: replaying" in line, line + proc.stderr.read()
+        proc.send_signal(stop)
+        assert proc.wait(timeout=30 * SLOW) == 0
+    finally:
+        proc.kill()
+        proc.wait()
