@@ -228,11 +228,24 @@ std::vector<Transform> Scene::link_transforms(ActorHandle h) const {
   return out;
 }
 
+Transform Scene::link_transform(ActorHandle h, int link) const {
+  const Articulation& a = whole(scene_data(handle_), h, "link_transform");
+  if (link < 0 || link >= static_cast<int>(a.kin.X_WL.size()))
+    throw Error("link_transform: link " + std::to_string(link) + " is out of range (the articulation has " +
+                std::to_string(a.kin.X_WL.size()) + " links)");
+  return to_transform(a.kin.X_WL[link]);
+}
+
 VecX Scene::pose(ActorHandle h) const {
+  VecX out;
+  pose(h, out);
+  return out;
+}
+
+void Scene::pose(ActorHandle h, VecX& out) const {
   const Articulation& a = whole(scene_data(handle_), h, "get_articulated_pose");
-  VecX pose(a.model.nv);
-  pose_from_q(a.model, a.state.q, pose.data());
-  return pose;
+  out.resize(a.model.nv);
+  pose_from_q(a.model, a.state.q, out.data());
 }
 
 void Scene::set_pose(ActorHandle h, const VecX& pose) {
@@ -245,6 +258,10 @@ void Scene::set_pose(ActorHandle h, const VecX& pose) {
 }
 
 VecX Scene::joint_velocities(ActorHandle h) const { return whole(scene_data(handle_), h, "get_articulated_joint_velocities").state.v; }
+
+void Scene::joint_velocities(ActorHandle h, VecX& out) const {
+  out = whole(scene_data(handle_), h, "get_articulated_joint_velocities").state.v;
+}
 
 void Scene::set_joint_velocities(ActorHandle h, const VecX& v) {
   const char* what = "set_articulated_joint_velocities";

@@ -114,6 +114,30 @@ TEST_F(ValidationTest, UnknownAndDestroyedActorHandles) {
   EXPECT_ERROR(scene().destroy_actor(art), "does not exist");
 }
 
+TEST_F(ValidationTest, StateReadsIntoVectorsAndOneLinkTransform) {
+  const ActorHandle art = scene().create_articulated_actor(valid_chain(), "chain");
+  VecX pose0(2);
+  pose0 << real(0.3), real(-0.7);
+  scene().set_pose(art, pose0);
+  VecX v0(2);
+  v0 << real(1.5), real(-2);
+  scene().set_joint_velocities(art, v0);
+  // the reads into a given vector equal the returned ones, whatever the vector held before
+  VecX q = VecX::Constant(5, real(9)), v;
+  scene().pose(art, q);
+  scene().joint_velocities(art, v);
+  EXPECT_EQ(q, scene().pose(art));
+  EXPECT_EQ(v, v0);
+  const std::vector<Transform> all = scene().link_transforms(art);
+  for (int link = 0; link < 3; ++link) {
+    const Transform one = scene().link_transform(art, link);
+    EXPECT_EQ(one.translation, all[link].translation) << "link " << link;
+    EXPECT_EQ(one.rotation.coeffs(), all[link].rotation.coeffs()) << "link " << link;
+  }
+  EXPECT_ERROR(scene().link_transform(art, 3), "link_transform", "link 3", "3 links");
+  EXPECT_ERROR(scene().link_transform(art, -1), "link_transform", "link -1");
+}
+
 TEST_F(ValidationTest, StepRejectsNonPositiveDt) {
   EXPECT_ERROR(scene().step(0), "dt");
   EXPECT_ERROR(scene().step(-0.01), "dt");

@@ -50,12 +50,15 @@ struct SceneBatch::Impl {
   void observe(const SceneSlot& slot, real* row) const {
     const Scene& scene = slot.member.scene;
     const ActorHandle art = slot.member.articulation;
-    const VecX q = scene.pose(art), v = scene.joint_velocities(art);
+    // kept per thread: a batch step observes every scene of its thread into the same vectors
+    thread_local VecX q, v;
+    scene.pose(art, q);
+    scene.joint_velocities(art, v);
     for (int j = 0; j < n; ++j) {
       row[j] = q[spec.action_dofs[j]];
       row[n + j] = v[spec.action_dofs[j]];
     }
-    const Vec3 p_WE = scene.link_transforms(art)[spec.observed_link].translation;
+    const Vec3 p_WE = scene.link_transform(art, spec.observed_link).translation;
     const Vec3 f_C_W = slot.member.contact_actor != 0 && slot.contact_valid ? scene.contact_force(slot.member.contact_actor) : Vec3::Zero();
     for (int k = 0; k < 3; ++k) {
       row[2 * n + k] = p_WE[k];
@@ -69,8 +72,10 @@ struct SceneBatch::Impl {
     const ActorHandle art = slot.member.articulation;
     const real dt = static_cast<real>(spec.dt);
     if (spec.mode == BatchActionMode::VelocityServo) {
-      const VecX v = scene.joint_velocities(art);
-      std::vector<real> efforts(n);
+      thread_local VecX v;
+      thread_local std::vector<real> efforts;
+      scene.joint_velocities(art, v);
+      efforts.resize(n);
       for (int j = 0; j < n; ++j) efforts[j] = static_cast<real>(slot.servos[j].step(a[j], v[spec.action_dofs[j]], spec.dt));
       scene.set_external_forces_on_dofs(art, spec.action_dofs, efforts);
     } else {
@@ -208,7 +213,8 @@ void SceneBatch::step(const double* actions, real* obs_out) {
   physics::run_on_worker_threads_costliest_first(b.last_seconds, [&](size_t k) {
     SceneSlot& slot = b.slots[k];
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<double> a(b.n);
+    thread_local std::vector<double> a;
+    a.resize(b.n);
     b.clip(actions + k * b.n, a.data());
     for (int s = 0; s < b.spec.substeps; ++s) b.substep(slot, a.data());
     slot.contact_valid = true;

@@ -236,11 +236,17 @@ class Scene {
   ArticulatedShapeInfo articulated_shape_info(ActorHandle articulation) const;
   /// World-from-link transforms in link order.
   std::vector<Transform> link_transforms(ActorHandle articulation) const;
+  /// World-from-link transform of the link with index `link` (in link order).
+  Transform link_transform(ActorHandle articulation, int link) const;
   /// DOF-sized pose: joint values; spherical and free rotations as rotation vectors (rad).
   VecX pose(ActorHandle articulation) const;
+  /// The same into `out` (resized; no allocation when it has the size already).
+  void pose(ActorHandle articulation, VecX& out) const;
   /// Sets the pose (all DOFs) and zeroes nothing else.
   void set_pose(ActorHandle articulation, const VecX& pose);
   VecX joint_velocities(ActorHandle articulation) const;
+  /// The same into `out` (resized; no allocation when it has the size already).
+  void joint_velocities(ActorHandle articulation, VecX& out) const;
   void set_joint_velocities(ActorHandle articulation, const VecX& v);
   /// J_WL of a link (6 x num_dofs, linear rows first, world axes, at the link origin).
   MatXR link_jacobian(ActorHandle link) const;
