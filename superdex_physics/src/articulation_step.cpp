@@ -20,22 +20,26 @@ real near_rigid_factor(const SolverParams& params) {
 namespace {
 
 // Joint limit and Coulomb friction rows; w is the effective compliance (A^-1)_kk of DOF k.
-std::vector<JointRow> joint_rows(const ArticulationModel& model, const ArticulationState& state,
-                                 const Eigen::LLT<MatX>& A_llt, real dt, const SolverParams& params) {
-  std::vector<JointRow> rows;
-  rows.reserve(4 * model.joints.size());  // at most a lower and an upper limit, a drive and friction
+// Appends to t.joint_rows, from t.A_llt.
+void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const SolverParams& params,
+                ArticulationTerms& t) {
+  std::vector<JointRow>& rows = t.joint_rows;
+  const Eigen::LLT<MatX>& A_llt = t.A_llt;
   const real near_rigid = near_rigid_factor(params);
   // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1, computed once when needed
-  VecX A_inv_diagonal;
+  MatX& L_inv = t.L_inv;
+  VecX& A_inv_diagonal = t.A_inv_diagonal;
+  bool have_diagonal = false;
   for (const JointModel& j : model.joints) {
     if (j.nv != 1) continue;
     const bool limited = j.has_lower || j.has_upper;
     if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
     const int k = j.v_offset;
-    if (A_inv_diagonal.size() == 0) {
-      MatX L_inv = MatX::Identity(model.nv, model.nv);
+    if (!have_diagonal) {
+      L_inv.setIdentity(model.nv, model.nv);
       A_llt.matrixL().solveInPlace(L_inv);
-      A_inv_diagonal = L_inv.colwise().squaredNorm().transpose();
+      A_inv_diagonal.noalias() = L_inv.colwise().squaredNorm().transpose();
+      have_diagonal = true;
     }
     const real w = A_inv_diagonal[k];
     const real q = state.q[j.q_offset];
@@ -78,7 +82,6 @@ std::vector<JointRow> joint_rows(const ArticulationModel& model, const Articulat
       rows.push_back({k, 1, b});
     }
   }
-  return rows;
 }
 
 // A single free body's gyroscopic torque w x (I w), explicit in the bias forces, lets a tumbling
@@ -140,22 +143,34 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
 
 }  // namespace
 
-ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
+void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t) {
   const auto t0 = std::chrono::steady_clock::now();
   const ArticulationModel& model = a.model;
-  ArticulationTerms t;
-  if (model.nv == 0) return t;
-  t.A = mass_matrix(model, a.kin);
-  const VecX c = bias_forces(model, a.state, a.kin, g_W);
+  t.joint_rows.clear();
+  t.seconds = 0;
+  if (model.nv == 0) {
+    t.A.resize(0, 0);
+    t.r.resize(0);
+    t.A_llt.compute(t.A);
+    return;
+  }
+  mass_matrix(model, a.kin, t.A);
+  bias_forces(model, a.state, a.kin, g_W, t.c);
   // (M + dt D) v+ = M v + dt (tau - c): viscous joint friction integrated implicitly
-  t.r = t.A * a.state.v + dt * (a.state.tau_external - c);
+  t.r.noalias() = t.A * a.state.v;
+  t.r.noalias() += dt * (a.state.tau_external - t.c);
   for (const JointModel& j : model.joints)
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
-  t.joint_rows = joint_rows(model, a.state, t.A_llt, dt, params);
+  joint_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
+  ArticulationTerms t;
+  articulation_terms(a, g_W, dt, params, t);
   return t;
 }
 

@@ -28,9 +28,16 @@ struct ArticulationTerms {
   Eigen::LLT<MatX> A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
   double seconds = 0;            // time spent computing these
+  // working storage: bias forces, A's inverse Cholesky factor and the diagonal of A^-1
+  VecX c;
+  MatX L_inv;
+  VecX A_inv_diagonal;
 };
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params);
+// The same into `t`, whose matrices and row list keep their storage (no allocation when the
+// articulation's terms had the same sizes last time).
+void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t);
 
 // Near-rigid compliance factor beta^2 / (4 pi^2).
 real near_rigid_factor(const SolverParams& params);

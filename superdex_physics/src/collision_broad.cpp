@@ -82,7 +82,15 @@ bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider&
 
 ContactPairs find_contact_pairs(const SceneData& s, real margin, real dt) {
   ContactPairs out;
+  find_contact_pairs(s, margin, dt, out);
+  return out;
+}
+
+void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& out) {
   out.margin = margin;
+  out.posed.clear();
+  out.planes.clear();
+  out.pairs.clear();
   std::vector<PosedCollider>& posed = out.posed;
   // posed colliders and their world bounds, grown by the margin
   for (size_t b = 0; b < s.articulations.size(); ++b) {
@@ -101,7 +109,8 @@ ContactPairs find_contact_pairs(const SceneData& s, real margin, real dt) {
     }
   }
   // sweep and prune along x
-  std::vector<int> order(posed.size());
+  std::vector<int>& order = out.order;
+  order.resize(posed.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int i, int j) {
     if (posed[i].box.min.x() != posed[j].box.min.x()) return posed[i].box.min.x() < posed[j].box.min.x();
@@ -115,11 +124,11 @@ ContactPairs find_contact_pairs(const SceneData& s, real margin, real dt) {
   std::sort(out.pairs.begin(), out.pairs.end());
   for (size_t pl = 0; pl < out.planes.size(); ++pl)
     for (size_t i = 0; i < posed.size(); ++i) out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
-  return out;
 }
 
 void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out) {
-  std::vector<ContactPoint> points;
+  // one pair's points, cleared before each pair; its capacity is kept per thread
+  thread_local std::vector<ContactPoint> points;
   const size_t end = std::min(pairs.pairs.size(), (chunk + 1) * ContactPairs::kPairsPerChunk);
   for (size_t k = chunk * ContactPairs::kPairsPerChunk; k < end; ++k) {
     const auto [i, j] = pairs.pairs[k];
@@ -138,12 +147,17 @@ void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, 
 }
 
 std::vector<Contact> join_contacts(const std::vector<std::vector<Contact>>& chunks) {
+  std::vector<Contact> contacts;
+  join_contacts(chunks, contacts);
+  return contacts;
+}
+
+void join_contacts(const std::vector<std::vector<Contact>>& chunks, std::vector<Contact>& contacts) {
   size_t total = 0;
   for (const auto& c : chunks) total += c.size();
-  std::vector<Contact> contacts;
+  contacts.clear();
   contacts.reserve(total);
   for (const auto& c : chunks) contacts.insert(contacts.end(), c.begin(), c.end());
-  return contacts;
 }
 
 std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {

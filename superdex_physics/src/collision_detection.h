@@ -36,6 +36,7 @@ struct ContactPairs {
   static constexpr size_t kPairsPerChunk = 16;
   std::vector<PosedCollider> posed, planes;
   std::vector<std::pair<int, int>> pairs;
+  std::vector<int> order;  // the sweep's order of `posed` (working storage)
   real margin = 0;  // contact margin (m)
   size_t num_chunks() const { return (pairs.size() + kPairsPerChunk - 1) / kPairsPerChunk; }
 };
@@ -44,10 +45,13 @@ struct ContactPairs {
 // within `dt` at their current speeds (speculative contact), overlap; every collider is paired
 // with every plane.
 ContactPairs find_contact_pairs(const SceneData& scene, real margin, real dt);
+// The same into `out`, whose vectors keep their storage.
+void find_contact_pairs(const SceneData& scene, real margin, real dt, ContactPairs& out);
 // Narrow phase of one chunk of the pairs: appends the chunk's contacts to `out`, in pair order.
 void collide_pairs(const SceneData& scene, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out);
 // The chunks' contacts joined in chunk order (the same list whatever the number of threads).
 std::vector<Contact> join_contacts(const std::vector<std::vector<Contact>>& chunks);
+void join_contacts(const std::vector<std::vector<Contact>>& chunks, std::vector<Contact>& out);
 // All contact candidates (broad phase, then the narrow phase on the worker threads), in a
 // deterministic order.
 std::vector<Contact> detect_contacts(const SceneData& scene, real margin, real dt);

@@ -2,6 +2,7 @@
 // capsule and plane pairs and sphere/capsule against any distance field; otherwise the
 // surface samples of each shape against the other's signed-distance field.
 
+#include <array>
 #include <cmath>
 
 #include "collision_detection.h"
@@ -67,19 +68,32 @@ void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, cons
   cq = q0 + d2 * t;
 }
 
+// Ball centres of a rounded shape (world), on the stack: at most a capsule's 17.
+struct BallCentres {
+  static constexpr int kMaxSegments = 16;
+  std::array<Vec3, kMaxSegments + 1> centre;
+  int count = 0;
+  void push_back(const Vec3& c) { centre[count++] = c; }
+  const Vec3& front() const { return centre[0]; }
+  const Vec3& back() const { return centre[count - 1]; }
+  const Vec3* begin() const { return centre.data(); }
+  const Vec3* end() const { return centre.data() + count; }
+};
+
 // The balls that make a rounded shape: one for a sphere; for a capsule the segment ends and
 // interior balls no further apart than the radius (so that its side meets edges and faces).
-bool rounded_balls(const LinkCollider& c, const SpatialTransform& X_WS, std::vector<Vec3>& centres, real& radius) {
+bool rounded_balls(const LinkCollider& c, const SpatialTransform& X_WS, BallCentres& centres, real& radius) {
+  centres.count = 0;
   if (auto* s = std::get_if<SphereShape>(&c.shape)) {
-    centres = {X_WS.R * s->center + X_WS.p};
+    centres.push_back(X_WS.R * s->center + X_WS.p);
     radius = s->radius;
     return true;
   }
   if (auto* s = std::get_if<CapsuleShape>(&c.shape)) {
     const int segments = std::max(1, static_cast<int>(std::ceil(2 * s->half_length / std::max(s->radius, real(1e-6)))));
-    centres.clear();
-    for (int k = 0; k <= std::min(segments, 16); ++k) {
-      const real z = -s->half_length + 2 * s->half_length * k / std::min(segments, 16);
+    const int used = std::min(segments, BallCentres::kMaxSegments);
+    for (int k = 0; k <= used; ++k) {
+      const real z = -s->half_length + 2 * s->half_length * k / used;
       centres.push_back(X_WS.R * Vec3(0, 0, z) + X_WS.p);
     }
     radius = s->radius;
@@ -125,7 +139,7 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
     flip_into(tmp, out);
     return;
   }
-  std::vector<Vec3> balls_a, balls_b;
+  BallCentres balls_a, balls_b;
   real ra = 0, rb = 0;
   const bool a_round = rounded_balls(a, X_WA, balls_a, ra);
   const bool b_round = rounded_balls(b, X_WB, balls_b, rb);
@@ -136,7 +150,7 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
       if (phi < margin) out.push_back({p - pl.n * (r + phi / 2), pl.n, phi});
     };
     if (std::holds_alternative<SphereShape>(a.shape)) {
-      add(balls_a[0], ra);
+      add(balls_a.front(), ra);
     } else if (auto* cap = std::get_if<CapsuleShape>(&a.shape)) {
       // a segment's closest points to a plane are its ends
       add(X_WA.R * Vec3(0, 0, -cap->half_length) + X_WA.p, ra);
@@ -155,7 +169,7 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
   const bool a_sphere = std::holds_alternative<SphereShape>(a.shape), b_sphere = std::holds_alternative<SphereShape>(b.shape);
   const auto* a_cap = std::get_if<CapsuleShape>(&a.shape);
   const auto* b_cap = std::get_if<CapsuleShape>(&b.shape);
-  if (a_sphere && b_sphere) return ball_vs_ball(balls_a[0], ra, balls_b[0], rb, margin, out);
+  if (a_sphere && b_sphere) return ball_vs_ball(balls_a.front(), ra, balls_b.front(), rb, margin, out);
   if (a_cap && (b_sphere || b_cap)) {
     // closest points of the two cores, then two balls
     const Vec3 a0 = X_WA.R * Vec3(0, 0, -a_cap->half_length) + X_WA.p, a1 = X_WA.R * Vec3(0, 0, a_cap->half_length) + X_WA.p;

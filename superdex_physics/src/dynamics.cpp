@@ -5,10 +5,17 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& state,
-                      const ArticulationKinematics& kin, const VecX& a, const Vec3& g_W) {
+namespace {
+
+// Recursive Newton-Euler into tau (resized); a null `a` is zero acceleration. The link
+// accelerations and forces are kept per thread, so that repeated calls do not allocate.
+void rnea(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin, const VecX* a,
+          const Vec3& g_W, VecX& tau) {
   const int n = model.num_links;
-  std::vector<Vec6> A(n), F(n);
+  thread_local std::vector<Vec6> A, F;
+  A.resize(n);
+  F.resize(n);
+  auto accel = [&](int k) { return a ? (*a)[k] : real(0); };
   // forward pass: link accelerations
   for (int i : model.order) {
     const JointModel& j = model.joints[i];
@@ -17,7 +24,7 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
     Vec6 vJ = Vec6::Zero(), aJ = Vec6::Zero();
     for (int c = 0; c < j.nv; ++c) {
       vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
-      aJ += kin.S[i].col(c) * a[j.v_offset + c];
+      aJ += kin.S[i].col(c) * accel(j.v_offset + c);
     }
     Vec6 A_i = aJ + cross_motion(kin.V_L[i], vJ);
     // a Free joint's S changes with its rotation: Sdot qdot = (-w x (R^T v), 0)
@@ -30,21 +37,36 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
     F[i] = I.apply(A_net) + cross_force(kin.V_L[i], I.apply(kin.V_L[i]));
   }
   // backward pass: project onto joint axes and accumulate into parents
-  VecX tau(model.nv);
+  tau.resize(model.nv);
   for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
     const int i = *it;
     const JointModel& j = model.joints[i];
     // armature (rotor inertia) acts on the joint acceleration directly, as in mass_matrix()
-    for (int c = 0; c < j.nv; ++c) tau[j.v_offset + c] = kin.S[i].col(c).dot(F[i]) + j.armature * a[j.v_offset + c];
+    for (int c = 0; c < j.nv; ++c) tau[j.v_offset + c] = kin.S[i].col(c).dot(F[i]) + j.armature * accel(j.v_offset + c);
     const int p = model.parent[i];
     if (p >= 0) F[p] += kin.X_PL[i].apply_force(F[i]);
   }
+}
+
+}  // namespace
+
+VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& state,
+                      const ArticulationKinematics& kin, const VecX& a, const Vec3& g_W) {
+  VecX tau;
+  rnea(model, state, kin, &a, g_W, tau);
   return tau;
 }
 
 VecX bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
                  const Vec3& g_W) {
-  return inverse_dynamics(model, state, kin, VecX::Zero(model.nv), g_W);
+  VecX c;
+  rnea(model, state, kin, nullptr, g_W, c);
+  return c;
+}
+
+void bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
+                 const Vec3& g_W, VecX& c) {
+  rnea(model, state, kin, nullptr, g_W, c);
 }
 
 namespace {
@@ -86,9 +108,16 @@ struct OriginInertia {
 }  // namespace
 
 MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin) {
+  MatX M;
+  mass_matrix(model, kin, M);
+  return M;
+}
+
+void mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin, MatX& M) {
   const int n = model.num_links;
-  // composite inertias, leaves first, each expressed in its own link frame
-  std::vector<OriginInertia> Ic(n);
+  // composite inertias, leaves first, each expressed in its own link frame (kept per thread)
+  thread_local std::vector<OriginInertia> Ic;
+  Ic.resize(n);
   for (int i = 0; i < n; ++i) Ic[i] = OriginInertia::of(model.inertia[i]);
   for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
     const int i = *it, p = model.parent[i];
@@ -96,7 +125,7 @@ MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
   }
   // column by column: the force that a unit motion of DOF (i, c) needs, carried up the tree and
   // projected onto each ancestor joint's motion subspace
-  MatX M = MatX::Zero(model.nv, model.nv);
+  M.setZero(model.nv, model.nv);
   for (int i = 0; i < n; ++i) {
     const JointModel& ji = model.joints[i];
     for (int c = 0; c < ji.nv; ++c) {
@@ -112,7 +141,6 @@ MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
       M(col, col) += ji.armature;
     }
   }
-  return M;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -16,10 +16,15 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
 // Bias forces c(q, v) (N, N m): inverse dynamics at zero acceleration.
 VecX bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
                  const Vec3& g_W);
+// The same into c (resized; no allocation when it has the size already).
+void bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
+                 const Vec3& g_W, VecX& c);
 
 // Joint-space mass matrix M(q) (nv x nv) by the composite rigid body algorithm, armature
 // added on the diagonal.
 MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin);
+// The same into M (resized; no allocation when it has the size already).
+void mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin, MatX& M);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

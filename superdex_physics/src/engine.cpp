@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <array>
 #include <numeric>
 #include <mutex>
 #include <thread>
@@ -44,6 +45,7 @@ void shutdown() {
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
   e.scenes.clear();
+  ++e.scenes_version;
   e.shapes.clear();
   e.tet_meshes.clear();
   e.arena.reset();
@@ -95,9 +97,21 @@ void run_on_worker_threads(std::size_t count, const std::function<void(std::size
 }
 
 void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work) {
-  std::vector<std::size_t> order(costs.size());
+  // the order on the stack when it is short (a scene's islands), so that a step does not allocate
+  constexpr std::size_t kOnStack = 32;
+  std::array<std::size_t, kOnStack> small;
+  std::vector<std::size_t> large;
+  if (costs.size() > kOnStack) large.resize(costs.size());
+  const std::span<std::size_t> order = costs.size() > kOnStack ? std::span<std::size_t>(large) : std::span<std::size_t>(small.data(), costs.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
+  const auto costlier = [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; };
+  if (costs.size() > kOnStack) {
+    std::stable_sort(order.begin(), order.end(), costlier);
+  } else {
+    // stable insertion sort (std::stable_sort takes a temporary buffer from the heap)
+    for (std::size_t i = 1; i < order.size(); ++i)
+      for (std::size_t j = i; j > 0 && costlier(order[j], order[j - 1]); --j) std::swap(order[j], order[j - 1]);
+  }
   run_on_worker_threads(order.size(), [&](std::size_t i) { work(order[i]); });
 }
 
@@ -116,6 +130,7 @@ Scene create_scene(const std::string& name) {
   scene->name = name;
   const SceneHandle h = scene->handle;
   e.scenes.emplace(h, std::move(scene));
+  ++e.scenes_version;
   return Scene(h);
 }
 
@@ -123,6 +138,7 @@ void destroy_scene(SceneHandle handle) {
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
   if (e.scenes.erase(handle) == 0) throw Error("destroy_scene: scene " + std::to_string(handle) + " does not exist (already destroyed?)");
+  ++e.scenes_version;
 }
 
 bool scene_exists(SceneHandle handle) {
@@ -133,10 +149,22 @@ bool scene_exists(SceneHandle handle) {
 
 SceneData& scene_data(SceneHandle handle) {
   EngineData& e = engine_data();
+  // this thread's last lookup, valid while no scene was created or destroyed since: the calls of
+  // one scene's step and of its batch row then read only the version, which every thread keeps
+  // in its cache, instead of writing to the lock's cache line (two threads stepping scenes would
+  // pass that line back and forth a dozen times per step)
+  struct LastLookup {
+    SceneHandle handle = 0;
+    std::uint64_t version = 0;
+    SceneData* data = nullptr;
+  };
+  thread_local LastLookup last;
+  if (last.data && last.handle == handle && last.version == e.scenes_version.load(std::memory_order_acquire)) return *last.data;
   std::shared_lock lock(e.mutex);
   auto it = e.scenes.find(handle);
   if (it == e.scenes.end())
     throw Error("scene " + std::to_string(handle) + " does not exist (it was destroyed, or the engine was shut down)");
+  last = {handle, e.scenes_version.load(std::memory_order_relaxed), it->second.get()};
   return *it->second;
 }
 

@@ -13,36 +13,48 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-namespace {
-
-// Working storage of solve_island, kept per thread across calls and steps so that solving a small
-// island allocates little: every member is cleared or resized before use, keeping its capacity.
-struct IslandScratch {
-  std::vector<int> body_offset;   // by articulation index: first variable, or -1 when not in the island
-  std::vector<int> soft_offset;   // by soft step index: first variable
-  std::vector<SoftStep*> soft;
-  MatX A;
-  VecX r, v_start;
-  ConstraintRows rows;
-  std::vector<Eigen::Triplet<real>> J_entries;
-  // world Jacobians of the links touched by contacts, computed once per link
-  struct LinkJacobian {
-    int body, link;
-    MatXR J_WL;
-  };
-  std::vector<LinkJacobian> link_jacobians;
-  size_t link_jacobians_used = 0;
-  MatX J_point, Jc, AinvJct;  // one contact side: point Jacobian, in the contact frame, A^-1 Jc^T
-  std::vector<Mat3> frames;
-  std::vector<real> contact_mu;
-};
-
-IslandScratch& island_scratch() {
-  thread_local IslandScratch scratch;
-  return scratch;
+// A counting sort by row (stable), then by column within each row by insertion (rows hold a few
+// entries).
+void assemble_row_major(SparseRowMat& J, int m, int n, const std::vector<Eigen::Triplet<real>>& entries,
+                        std::vector<Eigen::Triplet<real>>& by_row, std::vector<int>& row_start) {
+  row_start.assign(m + 1, 0);
+  for (const auto& e : entries) ++row_start[e.row() + 1];
+  for (int i = 0; i < m; ++i) row_start[i + 1] += row_start[i];
+  by_row.resize(entries.size());
+  {
+    std::vector<int>& next = row_start;  // advanced while filling, restored below
+    for (const auto& e : entries) by_row[next[e.row()]++] = e;
+    for (int i = m; i > 0; --i) next[i] = next[i - 1];
+    next[0] = 0;
+  }
+  if (J.rows() != m || J.cols() != n || !J.isCompressed()) J.resize(m, n);
+  J.data().clear();
+  J.resizeNonZeros(static_cast<Eigen::Index>(entries.size()));
+  int* outer = J.outerIndexPtr();
+  int* inner = J.innerIndexPtr();
+  real* value = J.valuePtr();
+  int nnz = 0;
+  for (int i = 0; i < m; ++i) {
+    outer[i] = nnz;
+    const int first = nnz;
+    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const int col = by_row[k].col();
+      // insert col into this row's sorted columns, or add to its entry
+      int at = nnz;
+      while (at > first && inner[at - 1] > col) --at;
+      if (at > first && inner[at - 1] == col) {
+        value[at - 1] += by_row[k].value();
+        continue;
+      }
+      for (int j = nnz; j > at; --j) inner[j] = inner[j - 1], value[j] = value[j - 1];
+      inner[at] = col;
+      value[at] = by_row[k].value();
+      ++nnz;
+    }
+  }
+  outer[m] = nnz;
+  J.resizeNonZeros(nnz);
 }
-
-}  // namespace
 
 bool island_is_sparse(const SceneData& s, const Island& island, const SolverParams& params) {
   if (!island.soft_bodies.empty()) return false;
@@ -51,13 +63,11 @@ bool island_is_sparse(const SceneData& s, const Island& island, const SolverPara
   return dofs > params.dense_island_max_dofs;
 }
 
-IslandSolution solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
-                            const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                            std::shared_ptr<SparseNewtonSystem>* sparse_cache) {
+void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
+                  const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  IslandSolution out;
-  IslandScratch& w = island_scratch();
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
   std::vector<int>& offset = w.body_offset;
   std::vector<int>& soft_offset = w.soft_offset;
@@ -122,7 +132,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   // the linear-velocity Jacobian of point p_W of a link, into w.J_point (3 x nv)
   auto point_jacobian = [&](int body, int link, const Vec3& p_W) {
     const Articulation& a = *s.articulations[body];
-    IslandScratch::LinkJacobian* found = nullptr;
+    IslandWorkspace::LinkJacobian* found = nullptr;
     for (size_t k = 0; k < w.link_jacobians_used && !found; ++k)
       if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) found = &w.link_jacobians[k];
     if (!found) {
@@ -200,8 +210,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   }
 
   // same-row entries of a contact with both bodies on one articulation add up
-  rows.J.resize(m, n);
-  rows.J.setFromTriplets(J_entries.begin(), J_entries.end());
+  assemble_row_major(rows.J, m, n, J_entries, w.J_by_row, w.J_row_start);
 
   // small islands: dense algebra; large ones: sparse, on one pattern for every pass; with soft
   // bodies: block elimination. The first solve starts from the free motion A^-1 r, or, when
@@ -209,7 +218,7 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
   // from one step to the next, and the problem is convex, so any start converges.
   if (num_contacts > 0)
     for (int b : island.bodies) v_start.segment(offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
-  SparseMat A_sparse;
+  SparseMat& A_sparse = w.A_sparse;
   std::shared_ptr<SparseNewtonSystem> system;
   const bool sparse = island_is_sparse(s, island, params);
   if (sparse) {
@@ -226,11 +235,13 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     // the last step's pattern and analysis, when this island has kept its structure
     if (sparse_cache && *sparse_cache && (*sparse_cache)->reuse(A_sparse, rows)) system = *sparse_cache;
   }
-  auto solve = [&] {
-    if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, params);
-    return sparse ? solve_convex(A_sparse, r, rows, params, v_start, system) : solve_convex(A, r, rows, params, v_start);
+  // every path leaves its result in w.newton.result
+  auto solve = [&]() -> ConvexResult& {
+    if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, params, w.newton);
+    return sparse ? solve_convex(A_sparse, r, rows, params, v_start, system, w.newton)
+                  : solve_convex(A, r, rows, params, v_start, w.newton);
   };
-  ConvexResult sol = solve();
+  ConvexResult& sol = solve();
   // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
   // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
   const int first_contact = static_cast<int>(rows.blocks.size()) - num_contacts;
@@ -255,33 +266,40 @@ IslandSolution solve_island(const SceneData& s, const Island& island, const std:
     if (pass > 0 && change <= params.friction_pass_tolerance * scale) break;
     const int previous = sol.iterations;
     v_start = sol.v;  // each pass starts from the last solution (a nearby problem)
-    sol = solve();
+    solve();          // into sol
     sol.iterations += previous;
   }
   if (sparse_cache) *sparse_cache = system;
   out.iterations = sol.iterations;
   out.residual = sol.residual;
   out.converged = sol.converged;
+  out.active_rows = 0;
   for (int i = 0; i < joint_rows; ++i) out.active_rows += sol.gamma[i] != 0;
-  for (int b : island.bodies) out.v.push_back(sol.v.segment(offset[b], s.articulations[b]->model.nv));
-  for (size_t j = 0; j < soft.size(); ++j)
-    out.soft_v.push_back(soft[j]->full_velocity(sol.v.segment(soft_offset[island.soft_bodies[j]], soft[j]->size())));
-  // joint drive impulses back to efforts, per body
+  // the result vectors keep their storage from the last step (the same island, mostly)
+  out.v.resize(island.bodies.size());
+  out.drive_efforts.resize(island.bodies.size());
   int jr = 0;
-  for (int b : island.bodies) {
-    VecX efforts = VecX::Zero(s.articulations[b]->model.nv);
+  for (size_t j = 0; j < island.bodies.size(); ++j) {
+    const int b = island.bodies[j], nb = s.articulations[b]->model.nv;
+    out.v[j] = sol.v.segment(offset[b], nb);
+    // joint drive impulses back to efforts
+    VecX& efforts = out.drive_efforts[j];
+    efforts.setZero(nb);
     for (const JointRow& row : terms[b].joint_rows) {
       if (row.drive) efforts[row.dof] += row.sign * sol.gamma[jr] / dt;
       ++jr;
     }
-    out.drive_efforts.push_back(std::move(efforts));
   }
+  out.soft_v.resize(soft.size());
+  for (size_t j = 0; j < soft.size(); ++j)
+    out.soft_v[j] = soft[j]->full_velocity(sol.v.segment(soft_offset[island.soft_bodies[j]], soft[j]->size()));
+  out.contact_force.clear();
+  out.soft_contact_force.clear();
   for (size_t k = 0; k < island.contacts.size(); ++k)
     out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
   for (size_t k = island.contacts.size(); k < frames.size(); ++k)
     out.soft_contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return out;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -23,17 +23,52 @@ struct IslandSolution {
   double seconds = 0;
 };
 
+// Working storage of one island's solve, kept across steps (SceneData::island_workspaces, by
+// island index) so that solving an island of the same shape as last step's allocates little, and
+// islands solved at the same time never share it. Every member is cleared or resized before use,
+// keeping its capacity.
+struct IslandWorkspace {
+  std::vector<int> body_offset;   // by articulation index: first variable, or -1 when not in the island
+  std::vector<int> soft_offset;   // by soft step index: first variable
+  std::vector<SoftStep*> soft;
+  MatX A;
+  SparseMat A_sparse;  // A on the sparse path
+  VecX r, v_start;
+  ConstraintRows rows;
+  std::vector<Eigen::Triplet<real>> J_entries, J_by_row;  // J's triplets as made, and ordered by row
+  std::vector<int> J_row_start;
+  // world Jacobians of the links touched by contacts, computed once per link
+  struct LinkJacobian {
+    int body, link;
+    MatXR J_WL;
+  };
+  std::vector<LinkJacobian> link_jacobians;
+  size_t link_jacobians_used = 0;
+  MatX J_point, Jc, AinvJct;  // one contact side: point Jacobian, in the contact frame, A^-1 Jc^T
+  std::vector<Mat3> frames;
+  std::vector<real> contact_mu;
+  NewtonScratch newton;
+};
+
+// J (m x n, row-major, compressed) from triplets, as SparseMatrix::setFromTriplets builds it
+// (columns sorted within a row, duplicates summed in the order given), in J's own storage and
+// the given scratch vectors: no allocation once they have grown to the problem's size.
+void assemble_row_major(SparseRowMat& J, int m, int n, const std::vector<Eigen::Triplet<real>>& entries,
+                        std::vector<Eigen::Triplet<real>>& by_row, std::vector<int>& row_start);
+
 // Whether the island is solved on the sparse path: rigid only, with more than
 // params.dense_island_max_dofs DOFs. Such islands keep their Newton pattern across steps.
 bool island_is_sparse(const SceneData& scene, const Island& island, const SolverParams& params);
 
-// `soft_steps` holds one problem per scene soft body (null for those without free DOFs).
+// Solves one island into `out`, whose vectors keep their storage across calls.
+// `soft_steps` holds one problem per scene soft body (null for those without free DOFs); `w` is
+// this island's working storage.
 // `sparse_cache` (may be null) holds the sparse Newton pattern of this island's bodies from the
 // last step: reused when the structure is unchanged, replaced otherwise.
-IslandSolution solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
-                            const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                            const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                            std::shared_ptr<SparseNewtonSystem>* sparse_cache = nullptr);
+void solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
+                  const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -22,5 +22,13 @@ std::vector<Island> build_islands(const std::vector<int>& num_dofs, const std::v
                                   const std::vector<int>& soft_free_dofs = {},
                                   const std::vector<SoftContact>& soft_contacts = {});
 
+// Working storage of build_islands.
+struct IslandScratch {
+  std::vector<int> dofs, parent, index_of_root;
+};
+// The same into `islands`, whose elements keep their lists' storage across calls.
+void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts, const std::vector<int>& soft_free_dofs,
+                   const std::vector<SoftContact>& soft_contacts, std::vector<Island>& islands, IslandScratch& scratch);
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

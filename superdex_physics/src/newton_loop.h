@@ -2,7 +2,7 @@
 // Newton's method with exact line search for the convex implicit step (newton_solver.h), on any
 // linear-algebra backend. An Algebra provides:
 //
-//   int n(); VecX diagonal();                 size, and the diagonal of A (for scaling)
+//   int n(); diagonal(out);                   size, and the diagonal of A (for scaling)
 //   A_mul(x, out), J_mul(x, out), Jt_mul(y, out)
 //                                             products with A and the constraint Jacobian, into
 //                                             `out` (resized as needed; its storage is reused)
@@ -23,29 +23,23 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-// The loop's vectors, kept per thread across calls so that a solve allocates only its result.
-struct NewtonScratch {
-  VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
-  std::vector<Eigen::Matrix<real, 3, 3>> G;
-};
-
-inline NewtonScratch& newton_scratch() {
-  thread_local NewtonScratch scratch;
-  return scratch;
-}
-
+// The loop's vectors are w's (newton_solver.h), and so is its result, w.result.
 template <class Algebra>
-ConvexResult newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, VecX v) {
+ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, const VecX& v_start,
+                     NewtonScratch& w) {
   const int n = alg.n();
   const int m = rows.size();
   const bool smooth = alg.smooth();
-  ConvexResult out;
-  out.v = std::move(v);
+  ConvexResult& out = w.result;
+  out.v = v_start;
   out.gamma.setZero(m);
-  NewtonScratch& w = newton_scratch();
+  out.iterations = 0;
+  out.residual = 0;
+  out.converged = false;
   // diagonal scaling so that the stopping test is independent of units and masses
   VecX& D = w.D;
-  D = alg.diagonal().cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
+  alg.diagonal(D);
+  D = D.cwiseMax(real(1e-12)).cwiseSqrt().cwiseInverse();
   const real r_norm = (D.asDiagonal() * r).norm();
 
   VecX &vc = w.vc, &grad = w.grad, &dv = w.dv, &dvc = w.dvc, &jc = w.jc, &smooth_grad = w.smooth_grad;

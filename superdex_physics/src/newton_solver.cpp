@@ -103,26 +103,14 @@ SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen
 
 namespace {
 
-// Storage of DenseAlgebra, kept per thread across solves.
-struct DenseScratch {
-  MatX J, H, GJ;
-  Eigen::LLT<MatX> llt;
-};
-
-DenseScratch& dense_scratch() {
-  thread_local DenseScratch scratch;
-  return scratch;
-}
-
 // Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
 class DenseAlgebra {
  public:
-  DenseAlgebra(const MatX& A, const SparseRowMat& J)
-      : A_(A), J_(dense_scratch().J), H_(dense_scratch().H), GJ_(dense_scratch().GJ), llt_(dense_scratch().llt) {
+  DenseAlgebra(const MatX& A, const SparseRowMat& J, NewtonScratch& w) : A_(A), J_(w.J), H_(w.H), GJ_(w.GJ), llt_(w.llt) {
     J_ = J;
   }
   int n() const { return static_cast<int>(A_.rows()); }
-  VecX diagonal() const { return A_.diagonal(); }
+  void diagonal(VecX& out) const { out = A_.diagonal(); }
   void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
   void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
   void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
@@ -160,7 +148,7 @@ class SparseAlgebra {
   SparseAlgebra(const SparseMat& A, const SparseRowMat& J, std::shared_ptr<SparseNewtonSystem>& system)
       : A_(A), J_(J), Jt_(J.transpose()), system_(system) {}
   int n() const { return static_cast<int>(A_.rows()); }
-  VecX diagonal() const { return A_.diagonal(); }
+  void diagonal(VecX& out) const { out = A_.diagonal(); }
   void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
   void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
   void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = Jt_ * y; }
@@ -185,26 +173,28 @@ class SparseAlgebra {
 
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params) {
-  return solve_convex(A, r, rows, params, A_llt.solve(r));
+  NewtonScratch scratch;
+  return solve_convex(A, r, rows, params, A_llt.solve(r), scratch);
 }
 
-ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start) {
-  DenseAlgebra alg(A, rows.J);
-  return newton(alg, r, rows, params, v_start);
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                           const VecX& v_start, NewtonScratch& scratch) {
+  DenseAlgebra alg(A, rows.J, scratch);
+  return newton(alg, r, rows, params, v_start, scratch);
 }
 
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
   SparseCholesky A_chol;
   A_chol.compute(A);
   std::shared_ptr<SparseNewtonSystem> system;
-  return solve_convex(A, r, rows, params, A_chol.solve(r), system);
+  NewtonScratch scratch;
+  return solve_convex(A, r, rows, params, A_chol.solve(r), system, scratch);
 }
 
-ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system) {
+ConvexResult& solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                           const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system, NewtonScratch& scratch) {
   SparseAlgebra alg(A, rows.J, system);
-  return newton(alg, r, rows, params, v_start);
+  return newton(alg, r, rows, params, v_start, scratch);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

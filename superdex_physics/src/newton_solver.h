@@ -11,6 +11,7 @@
 // line search converges in a few iterations, and the reported impulses are exactly those
 // applied.
 
+#include <Eigen/Cholesky>
 #include <Eigen/Sparse>
 #include <memory>
 #include <vector>
@@ -65,13 +66,25 @@ struct ConvexResult {
   bool converged = false;
 };
 
+// Working storage of the Newton loop and of its dense algebra, and its result. Kept by the caller
+// across solves (one per island, SceneData::island_workspaces): a solve of the same size as the
+// last one does not allocate. Every member is resized before use.
+struct NewtonScratch {
+  ConvexResult result;  // the last solve's
+  VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
+  std::vector<Eigen::Matrix<real, 3, 3>> G;
+  MatX J, H, GJ;  // dense algebra: J as a dense matrix, the Hessian, G J
+  Eigen::LLT<MatX> llt;
+};
+
 // Solves the problem from the unconstrained optimum A^-1 r with dense linear algebra (small
 // problems). `A_llt` is A's Cholesky factor.
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
                           const SolverParams& params);
-// The same from v_start (a warm start: the solution of a nearby problem).
-ConvexResult solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start);
+// The same from v_start (a warm start: the solution of a nearby problem), in `scratch`; the
+// result is scratch.result.
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                           const VecX& v_start, NewtonScratch& scratch);
 // The same with sparse linear algebra (large islands): Newton steps use a sparse Cholesky
 // factorization of A + J^T G J.
 ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
@@ -79,8 +92,8 @@ ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRow
 // Newton iteration when empty, else it must hold A's and rows' structure and values (built for
 // them, or SparseNewtonSystem::reuse()d; blocks may differ in kind and parameters).
 class SparseNewtonSystem;
-ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                          const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system);
+ConvexResult& solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+                           const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system, NewtonScratch& scratch);
 
 // J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.
 SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 #include <chrono>
+#include <functional>
 #include <tuple>
 #include <cmath>
 
@@ -12,6 +13,7 @@
 #include "soft_contact.h"
 #include "soft_body.h"
 #include "step_guard.h"
+#include "step_workspace.h"
 #include "kinematics.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
@@ -298,45 +300,60 @@ void Scene::step_dynamics(real dt) {
   const size_t n = s.articulations.size();
   const auto parallel = run_on_worker_threads;
 
+  if (!s.step_workspace) s.step_workspace = std::make_shared<StepWorkspace>();
+  StepWorkspace& ws = *s.step_workspace;
+
   // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem
   // (the costliest items, first), the dynamics terms of every body and the narrow phase
   const auto t1 = Clock::now();
-  const ContactPairs pairs = find_contact_pairs(s, s.params.contact_margin, dt);
+  ContactPairs& pairs = ws.pairs;
+  find_contact_pairs(s, s.params.contact_margin, dt, pairs);
   double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
   const size_t num_soft = s.soft_bodies.size();
   std::vector<std::unique_ptr<SoftStep>> soft_steps(num_soft);
-  std::vector<int> soft_free(num_soft, 0);
+  std::vector<int>& soft_free = ws.soft_free;
+  soft_free.assign(num_soft, 0);
   for (size_t k = 0; k < num_soft; ++k)
     for (char pinned : s.soft_bodies[k]->model.pinned) soft_free[k] += pinned ? 0 : 3;
-  std::vector<ArticulationTerms> terms(n);
-  std::vector<std::vector<Contact>> chunk_contacts(pairs.num_chunks());
-  std::vector<double> chunk_seconds(pairs.num_chunks());
-  parallel(num_soft + n + pairs.num_chunks(), [&](size_t i) {
+  std::vector<ArticulationTerms>& terms = ws.terms;
+  terms.resize(n);
+  std::vector<std::vector<Contact>>& chunk_contacts = ws.chunk_contacts;
+  chunk_contacts.resize(pairs.num_chunks());
+  for (auto& chunk : chunk_contacts) chunk.clear();
+  std::vector<double>& chunk_seconds = ws.chunk_seconds;
+  chunk_seconds.assign(pairs.num_chunks(), 0);
+  const auto prepare = [&](size_t i) {
     if (i < num_soft) {
       if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt);
     } else if (i < num_soft + n) {
-      terms[i - num_soft] = articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params);
+      articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params, terms[i - num_soft]);
     } else {
       const size_t c = i - num_soft - n;
       const auto t = Clock::now();
       collide_pairs(s, pairs, c, chunk_contacts[c]);
       chunk_seconds[c] = std::chrono::duration<double>(Clock::now() - t).count();
     }
-  });
+  };
+  // by reference: a std::function holds a reference without allocating (the lambda is too large)
+  parallel(num_soft + n + pairs.num_chunks(), std::cref(prepare));
   // 2. the contact list, and soft contacts
   const auto t2 = Clock::now();
-  const std::vector<Contact> contacts = join_contacts(chunk_contacts);
+  std::vector<Contact>& contacts = ws.contacts;
+  join_contacts(chunk_contacts, contacts);
   const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
   time_collision += std::chrono::duration<double>(Clock::now() - t2).count();
   for (double seconds : chunk_seconds) time_collision += seconds;
   // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
-  std::vector<int> num_dofs(n);
+  std::vector<int>& num_dofs = ws.num_dofs;
+  num_dofs.resize(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
-  const std::vector<Island> islands = build_islands(num_dofs, contacts, soft_free, soft_contacts);
+  std::vector<Island>& islands = ws.islands;
+  build_islands(num_dofs, contacts, soft_free, soft_contacts, islands, ws.island_scratch);
   // each large rigid island gets its slot of the sparse pattern cache (kept for islands that
   // still exist, by their bodies); the map is complete before the parallel solves
   std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
-  std::vector<std::shared_ptr<SparseNewtonSystem>*> sparse_cache(islands.size(), nullptr);
+  std::vector<std::shared_ptr<SparseNewtonSystem>*>& sparse_cache = ws.sparse_cache;
+  sparse_cache.assign(islands.size(), nullptr);
   for (size_t k = 0; k < islands.size(); ++k) {
     if (!island_is_sparse(s, islands[k], s.params)) continue;
     auto previous = s.sparse_systems.find(islands[k].bodies);
@@ -346,14 +363,22 @@ void Scene::step_dynamics(real dt) {
   }
   s.sparse_systems = std::move(sparse_systems);
   // an island's size (contacts and DOFs) estimates its cost: largest first
-  std::vector<double> island_size(islands.size());
+  std::vector<double>& island_size = ws.island_size;
+  island_size.resize(islands.size());
   for (size_t k = 0; k < islands.size(); ++k) {
     island_size[k] = static_cast<double>(islands[k].contacts.size() + islands[k].soft_contacts.size());
     for (int b : islands[k].bodies) island_size[k] += num_dofs[b];
     for (int b : islands[k].soft_bodies) island_size[k] += soft_free[b];
   }
-  std::vector<IslandSolution> solutions(islands.size());
-  std::vector<VecX> q_next(n), v_next(n), efforts_next(n);
+  if (s.island_workspaces.size() < islands.size()) s.island_workspaces.resize(islands.size());
+  for (size_t k = 0; k < islands.size(); ++k)
+    if (!s.island_workspaces[k]) s.island_workspaces[k] = std::make_shared<IslandWorkspace>();
+  std::vector<IslandSolution>& solutions = ws.solutions;
+  solutions.resize(islands.size());
+  std::vector<VecX>&q_next = ws.q_next, &v_next = ws.v_next, &efforts_next = ws.efforts_next;
+  q_next.resize(n);
+  v_next.resize(n);
+  efforts_next.resize(n);
   // the next states of island k's bodies (committed below, once every island is checked)
   auto next_states = [&](size_t k) {
     for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
@@ -364,10 +389,12 @@ void Scene::step_dynamics(real dt) {
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
     }
   };
-  run_on_worker_threads_costliest_first(island_size, [&](size_t k) {
-    solutions[k] = solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, sparse_cache[k]);
+  const auto solve = [&](size_t k) {
+    solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, *s.island_workspaces[k], sparse_cache[k],
+                 solutions[k]);
     next_states(k);
-  });
+  };
+  run_on_worker_threads_costliest_first(island_size, std::cref(solve));
 
   // 4. next states; a fault (non-finite, unconverged) raises before anything is committed, or
   // is clamped (step_guard.h)
@@ -400,9 +427,10 @@ void Scene::step_dynamics(real dt) {
   for (size_t b = 0; b < n; ++b) {
     if (num_dofs[b] == 0) continue;
     Articulation& a = *s.articulations[b];
-    a.drive_efforts = std::move(efforts_next[b]);
-    a.state.q = std::move(q_next[b]);
-    a.state.v = std::move(v_next[b]);
+    // swapped: the old state's storage serves the next step's
+    a.drive_efforts.swap(efforts_next[b]);
+    a.state.q.swap(q_next[b]);
+    a.state.v.swap(v_next[b]);
     refresh_kinematics(a);
   }
 

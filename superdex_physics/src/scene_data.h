@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <atomic>
 #include <shared_mutex>
 #include <unordered_map>
 
@@ -20,6 +21,8 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 class SparseNewtonSystem;  // sparse_newton_system.h
+struct IslandWorkspace;    // island_solver.h
+struct StepWorkspace;      // step_workspace.h
 
 struct Articulation {
   ActorHandle handle = 0;
@@ -90,6 +93,11 @@ struct SceneData {
   // sparse Newton patterns of the last step's large islands, by their sorted body indices
   // (a cache: reused while an island keeps its structure)
   std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
+  // working storage of the island solves, by island index (island_solver.h): islands keep their
+  // order and shapes from step to step, so the storage fits without allocating
+  std::vector<std::shared_ptr<IslandWorkspace>> island_workspaces;
+  // the step's working storage (created by the first step)
+  std::shared_ptr<StepWorkspace> step_workspace;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;
@@ -104,6 +112,9 @@ struct EngineData {
   int num_threads = 1;
   std::unique_ptr<oneapi::tbb::task_arena> arena;  // null when single-threaded
   std::map<SceneHandle, std::unique_ptr<SceneData>> scenes;
+  // bumped (under the unique lock) whenever `scenes` changes: scene_data()'s per-thread cache of
+  // its last lookup is valid while this is unchanged
+  std::atomic<std::uint64_t> scenes_version{0};
   std::map<ShapeHandle, ShapeGeometry> shapes;
   std::map<ShapeHandle, std::shared_ptr<const TetMesh>> tet_meshes;
 };

@@ -28,11 +28,10 @@ class SoftAlgebra {
   }
 
   int n() const { return n_; }
-  VecX diagonal() const {
-    VecX d(n_);
+  void diagonal(VecX& d) const {
+    d.resize(n_);
     d.head(nr_) = A_r_.diagonal();
     for (size_t k = 0; k < soft_.size(); ++k) d.segment(offset_[k], soft_[k]->size()) = soft_[k]->A.diagonal();
-    return d;
   }
   void A_mul(const VecX& x, VecX& y) const {
     y.resize(n_);
@@ -140,10 +139,11 @@ class SoftAlgebra {
 
 }  // namespace
 
-ConvexResult solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
-                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params) {
+ConvexResult& solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
+                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params,
+                                    NewtonScratch& scratch) {
   SoftAlgebra alg(A_rigid, rows.J, soft);
-  return newton(alg, r, rows, params, v_start);
+  return newton(alg, r, rows, params, v_start, scratch);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -14,9 +14,11 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 // A_rigid (n_r x n_r) and r (n_r + sum of soft sizes); `soft` in variable order; v_start the
-// initial iterate. Throws superdex::Error when a soft block cannot be factored.
-ConvexResult solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
-                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params);
+// initial iterate; the Newton loop's vectors and its result in `scratch`. Throws superdex::Error when a soft
+// block cannot be factored.
+ConvexResult& solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
+                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params,
+                                    NewtonScratch& scratch);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

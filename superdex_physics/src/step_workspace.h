@@ -1,0 +1,37 @@
+#pragma once
+// The working storage of one scene's step (Scene::step_dynamics), kept in the scene across
+// steps: every list is cleared or resized before use and keeps its capacity, so that a step
+// like the last one (the same bodies, islands and contact counts) allocates almost nothing.
+
+#include <memory>
+#include <vector>
+
+#include "articulation_step.h"
+#include "collision_detection.h"
+#include "island_solver.h"
+#include "islands.h"
+#include "soft_body.h"
+#include "soft_contact.h"
+#include "sparse_newton_system.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+struct StepWorkspace {
+  ContactPairs pairs;                                  // broad phase
+  std::vector<std::vector<Contact>> chunk_contacts;    // narrow phase, per chunk of pairs
+  std::vector<double> chunk_seconds;                   // narrow phase time per chunk (s)
+  std::vector<Contact> contacts;                       // the chunks' contacts, joined
+  std::vector<int> soft_free;                          // free DOFs per soft body
+  std::vector<int> num_dofs;                           // DOFs per articulation
+  std::vector<ArticulationTerms> terms;                // per articulation
+  std::vector<Island> islands;
+  IslandScratch island_scratch;
+  std::vector<std::shared_ptr<SparseNewtonSystem>*> sparse_cache;  // per island
+  std::vector<double> island_size;                     // per island: its cost estimate
+  std::vector<IslandSolution> solutions;               // per island
+  std::vector<VecX> q_next, v_next, efforts_next;      // per articulation: the next state
+};
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
