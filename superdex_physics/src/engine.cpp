@@ -2,12 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <array>
-#include <numeric>
 #include <mutex>
 #include <thread>
-
-#include <oneapi/tbb/parallel_for.h>
 
 #include "kinematics.h"
 #include "scene_data.h"
@@ -62,57 +58,6 @@ int num_worker_threads() {
   EngineData& e = engine_data();
   std::shared_lock lock(e.mutex);
   return e.num_threads;
-}
-
-void run_on_worker_threads(std::size_t count, const std::function<void(std::size_t)>& work) {
-  // a call from inside a work item (a scene's step within a batch of scenes) runs in order on
-  // its thread: the outer items already keep the threads busy
-  thread_local int depth = 0;
-  oneapi::tbb::task_arena* arena = nullptr;
-  if (count > 1 && depth == 0) {
-    EngineData& e = engine_data();
-    std::shared_lock lock(e.mutex);
-    arena = e.arena.get();
-  }
-  if (!arena || arena->max_concurrency() < 2) {
-    for (std::size_t i = 0; i < count; ++i) work(i);
-    return;
-  }
-  // greedy self-scheduling: each thread takes the next item as it becomes free, so items that
-  // differ much in cost (islands, scenes), given largest first, end close together
-  std::atomic<std::size_t> next{0};
-  const int runners = static_cast<int>(std::min<std::size_t>(count, static_cast<std::size_t>(arena->max_concurrency())));
-  arena->execute([&] {
-    oneapi::tbb::parallel_for(0, runners, [&](int) {
-      ++depth;
-      try {
-        for (std::size_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) work(i);
-      } catch (...) {
-        --depth;
-        throw;
-      }
-      --depth;
-    });
-  });
-}
-
-void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work) {
-  // the order on the stack when it is short (a scene's islands), so that a step does not allocate
-  constexpr std::size_t kOnStack = 32;
-  std::array<std::size_t, kOnStack> small;
-  std::vector<std::size_t> large;
-  if (costs.size() > kOnStack) large.resize(costs.size());
-  const std::span<std::size_t> order = costs.size() > kOnStack ? std::span<std::size_t>(large) : std::span<std::size_t>(small.data(), costs.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto costlier = [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; };
-  if (costs.size() > kOnStack) {
-    std::stable_sort(order.begin(), order.end(), costlier);
-  } else {
-    // stable insertion sort (std::stable_sort takes a temporary buffer from the heap)
-    for (std::size_t i = 1; i < order.size(); ++i)
-      for (std::size_t j = i; j > 0 && costlier(order[j], order[j - 1]); --j) std::swap(order[j], order[j - 1]);
-  }
-  run_on_worker_threads(order.size(), [&](std::size_t i) { work(order[i]); });
 }
 
 namespace {
