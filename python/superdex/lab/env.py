@@ -22,6 +22,9 @@ Hooks (rows: arrays have one row per scene, so the same code serves the vector e
     sample_episode(rng) -> (q0, params)       start pose of the action DOFs, task parameters
     task_observation(raw, t, params) -> obs   observation rows from raw SceneBatch rows
     task_reward(raw, t, params, actions) -> (reward, terminated)
+    task_step(raw, t, params, actions) -> (reward, terminated, obs)
+                                              both after a control step; by default the two
+                                              hooks above, overridden where they share work
 with t the control steps taken since each row's reset, and attributes `action_size`,
 `obs_size`, `params_size`.
 """
@@ -88,6 +91,12 @@ class SuperDexEnv(gym.Env):
     def task_reward(self, raw, t, params, actions):
         raise NotImplementedError
 
+    def task_step(self, raw, t, params, actions):
+        """Reward, terminated and observation rows after a control step (what task_reward and
+        task_observation give; a task overrides it to compute what the two share once)."""
+        reward, terminated = self.task_reward(raw, t, params, actions)
+        return reward, terminated, self.task_observation(raw, t, params)
+
     # ------------------------------------------------------------------ timing
     @property
     def control_dt(self) -> float:
@@ -141,11 +150,10 @@ class SuperDexEnv(gym.Env):
         a = np.ascontiguousarray(np.clip(a, -1.0, 1.0) * self.action_scale)
         self._batch.step(a, self._raw)
         self._t += 1
-        reward, terminated = self.task_reward(self._raw, self._t, self._params, a)
+        reward, terminated, obs = self.task_step(self._raw, self._t, self._params, a)
         truncated = bool(self._t[0] >= self.episode_steps)
         self._needs_reset = bool(terminated[0]) or truncated
-        obs = self.task_observation(self._raw, self._t, self._params)[0]
-        return obs, float(reward[0]), bool(terminated[0]), truncated, {}
+        return obs[0], float(reward[0]), bool(terminated[0]), truncated, {}
 
     def render(self):
         if self.render_mode == "rgb_array":

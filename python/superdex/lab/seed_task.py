@@ -113,13 +113,25 @@ class SeedTaskEnv(SuperDexEnv):
         return x
 
     def task_observation(self, raw, t, params):
-        return np.concatenate([raw, self.target(t, params).astype(np_real)], axis=1)
+        return self._observation(raw, self.target(t, params))
 
     def task_reward(self, raw, t, params, actions):
-        _, _, p_WE, f_W = split_raw(raw.astype(np.float64), 2)
+        return self._reward(raw, self.target(t, params))
+
+    def task_step(self, raw, t, params, actions):
+        # the target points once for both
         x_target = self.target(t, params)
+        reward, terminated = self._reward(raw, x_target)
+        return reward, terminated, self._observation(raw, x_target)
+
+    @staticmethod
+    def _observation(raw, x_target):
+        return np.concatenate([raw, x_target.astype(np_real)], axis=1)
+
+    def _reward(self, raw, x_target):
+        _, _, p_WE, f_W = split_raw(np.asarray(raw, dtype=np.float64), 2)
         tracking = np.hypot(p_WE[:, 0] - x_target[:, 0], p_WE[:, 2] - x_target[:, 2]) / RADIUS
-        touching = np.linalg.norm(f_W, axis=1) > 0
+        touching = np.einsum("ij,ij->i", f_W, f_W) > 0
         force = np.where(touching, np.abs(f_W[:, 2] - FORCE_TARGET) / FORCE_TARGET, 0.0)
         return -tracking - self.force_weight * force, np.zeros(len(raw), dtype=bool)
 

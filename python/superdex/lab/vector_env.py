@@ -47,6 +47,7 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
         self._t = np.zeros(self.num_envs, dtype=np.int64)
         self._params = np.zeros((self.num_envs, self.env.params_size))
         self._needs_reset = np.zeros(self.num_envs, dtype=bool)
+        self._action_shape = (self.num_envs, self.env.action_size)
         self._rngs = [seeding.np_random(None)[0] for _ in range(self.num_envs)]
 
     @property
@@ -72,20 +73,20 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
 
     def step(self, actions):
         a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (self.num_envs, self.env.action_size):
-            raise sdp.Error(f"step: actions must have shape ({self.num_envs}, {self.env.action_size}), got {a.shape}")
-        a = np.ascontiguousarray(np.clip(a, -1.0, 1.0) * self.env.action_scale)
+        if a.shape != self._action_shape:
+            raise sdp.Error(f"step: actions must have shape {self._action_shape}, got {a.shape}")
+        a = np.clip(a, -1.0, 1.0) * self.env.action_scale  # a new C-contiguous array
         self._batch.step(a, self._raw)
         self._t += 1
-        reward, terminated = self.env.task_reward(self._raw, self._t, self._params, a)
+        reward, terminated, obs = self.env.task_step(self._raw, self._t, self._params, a)
         truncated = self._t >= self.env.episode_steps
-        restart = np.flatnonzero(self._needs_reset)
-        if len(restart):  # NEXT_STEP autoreset: these rows start a new episode instead
+        if self._needs_reset.any():  # NEXT_STEP autoreset: these rows start a new episode instead
+            restart = np.flatnonzero(self._needs_reset)
             self._reset_rows(restart)
             reward[restart], terminated[restart], truncated[restart] = 0.0, False, False
+            obs[restart] = self.env.task_observation(self._raw[restart], self._t[restart], self._params[restart])
         self._needs_reset = terminated | truncated
-        obs = self.env.task_observation(self._raw, self._t, self._params)
-        return obs, reward.astype(np.float64), terminated, truncated, {}
+        return obs, np.asarray(reward, dtype=np.float64), terminated, truncated, {}
 
     def close_extras(self, **kwargs):
         self._batch = None
