@@ -282,8 +282,10 @@ this run's.
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
   without 6 x 6 products) and the mass matrix column by column; joint motion per column in
   inverse dynamics; the warm start above (the Panda on the table converges in 0 or 1 iteration).
-  What remains: allocations per step (malloc and free are about a tenth of a small step: per-step
-  vectors, maps and dense copies in the island assembly) and the robotics pipeline's own cost.
+  Then the allocations per step (malloc and free were about a tenth of a small step): the step's
+  lists, the island solves' matrices and the contact lists now live in a workspace kept in the
+  scene across steps (86 to 1.2 allocations per seed-box scene-step). What remains: the robotics
+  pipeline's own cost, and the island assembly and Newton solve of a contact step.
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
@@ -291,20 +293,28 @@ this run's.
 - Scenes 7 and 8 (threads). Found, earlier: CHOLMOD's OpenMP team, spinning after each
   factorization, took the second core from a concurrent step of another scene (two Python
   threads: 1.05x). Rigid islands are now factored without OpenMP and the soft bodies' CHOLMOD
-  threads sleep when idle. Found, this run (per-phase timers in the step, and which thread solved
+  threads sleep when idle. Found later (per-phase timers in the step, and which thread solved
   which island): with worker threads the range partitioner gave one thread most of the big
   islands while the other waited, and collision detection and the commit ran serially. Fixed:
   threads take the next item when free (greedy), islands go largest first, the narrow phase runs
   in chunks of 16 pairs on the threads (joined in pair order: the contacts, and so the results,
   are bitwise the same on 1 and 2 threads), and the soft-body steps, dynamics terms and narrow
-  phase share one parallel region; in a batch (scene 8) the scenes that took longest in the last
-  step go first, and a scene's own step runs on its thread. What remains: the seed task on the box
-  is about 14 us per scene-step, of which some 200 small allocations (malloc and free are a fifth
-  of the time); two threads of one process then slow each other down (two processes stepping the
-  same task side by side do not), and a preloaded scalable allocator narrowed the gap. Removing
-  the per-step allocations (workspaces kept across steps) is next. The machine's speed also drifts
-  by 10-20 % from minute to minute, so every case of a scene is measured in rounds and the ratios
-  compare neighbouring runs.
+  phase share one parallel region. Found next (malloc counts per step, perf): a seed-box
+  scene-step made 86 heap allocations, and two threads of one process slowed each other down in
+  the allocator. Fixed: a per-scene step workspace kept across steps (1.2 allocations per
+  scene-step; the Panda with its table still makes about 24 per scene-step, in box-box clipping
+  and dense solver matrices whose size changes with the contact count, some 1 % of its time).
+  Found next (alternating 1- and 2-thread runs in one process): in a batch the scenes went to
+  whichever thread was free, so a scene moved between the cores from step to step with its data;
+  the batch step alone gave about 1.45x on 2 threads. Fixed: each thread keeps a contiguous share
+  of the scenes step after step and helps with the other's from its end (home threads): about
+  1.85x for the batch step alone. What remains in scene 8: the task's reward and observation in
+  numpy, about 31 us per vector step for the seed task (64 rows), run on one thread while the
+  other waits (Amdahl: with some 270 us of physics on 2 threads this alone caps the speed-up near
+  1.8x); and the machine itself: two copies of a compute loop scale by 2.0x side by side, but the
+  engine's memory-bound steps give two processes side by side 1.6-1.9x, and the 2-thread times
+  vary by up to 30 % between neighbouring runs (the 1-thread ones by 10-20 %), so each case is
+  measured in rounds and the ratios compare neighbouring runs.
 """
 
 
