@@ -112,24 +112,32 @@ void run_on_worker_threads_costliest_first(std::span<const double> costs, const 
   run_on_worker_threads(order.size(), [&](std::size_t i) { work(order[i]); });
 }
 
-void run_on_worker_threads_with_home_threads(std::size_t count, const std::function<void(std::size_t)>& work) {
+void run_on_worker_threads_with_home_threads(std::span<const double> costs, const std::function<void(std::size_t)>& work) {
+  const std::size_t count = costs.size();
   oneapi::tbb::task_arena* arena = arena_for(count);
+  const int runners = arena ? static_cast<int>(std::min<std::size_t>(count, static_cast<std::size_t>(arena->max_concurrency()))) : 1;
+  // share s is the items [count * s / runners, count * (s + 1) / runners), costliest first
+  std::vector<std::size_t> order(count);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto share_begin = [&](int s) { return count * static_cast<std::size_t>(s) / static_cast<std::size_t>(runners); };
+  for (int s = 0; s < runners; ++s)
+    std::stable_sort(order.begin() + share_begin(s), order.begin() + share_begin(s + 1),
+                     [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
   if (!arena) {
-    for (std::size_t i = 0; i < count; ++i) work(i);
+    for (std::size_t i : order) work(i);
     return;
   }
-  const int runners = static_cast<int>(std::min<std::size_t>(count, static_cast<std::size_t>(arena->max_concurrency())));
-  // thread slot s of the arena (0: the calling thread) owns the contiguous share s of the items
+  // thread slot s of the arena (0: the calling thread) owns share s
   std::vector<Share> shares(static_cast<std::size_t>(runners));
-  for (int s = 0; s < runners; ++s) shares[s].assign(count * s / runners, count * (s + 1) / runners);
+  for (int s = 0; s < runners; ++s) shares[s].assign(share_begin(s), share_begin(s + 1));
   run_runners(*arena, runners, [&](int) {
     const int slot = oneapi::tbb::this_task_arena::current_thread_index();
     const int home = slot >= 0 ? slot % runners : 0;
-    std::size_t i;
-    while (shares[home].take_front(i)) work(i);
-    // then help the others from the ends of their shares, nearest share first
+    std::size_t p;
+    while (shares[home].take_front(p)) work(order[p]);
+    // then help the others from the cheap ends of their shares, nearest share first
     for (int k = 1; k < runners; ++k)
-      while (shares[(home + k) % runners].take_back(i)) work(i);
+      while (shares[(home + k) % runners].take_back(p)) work(order[p]);
   });
 }
 

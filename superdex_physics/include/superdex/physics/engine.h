@@ -42,12 +42,13 @@ void run_on_worker_threads(std::size_t count, const std::function<void(std::size
 /// Runs work(k) for every k < costs.size() as run_on_worker_threads does, costliest first (by
 /// costs[k], in any unit; equal costs in index order), so that the threads finish close together.
 void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work);
-/// Runs work(i) for every i < count as run_on_worker_threads does, but with the items split into
-/// one contiguous share per thread (in index order; the calling thread has the first), each thread
-/// running its own share from the front and then helping with the others' from their ends. Items
-/// of similar cost then run on the same thread call after call (a batch of scenes, each kept in
-/// that thread's cache), while a thread whose share is costlier is still helped.
-void run_on_worker_threads_with_home_threads(std::size_t count, const std::function<void(std::size_t)>& work);
+/// Runs work(k) for every k < costs.size() as run_on_worker_threads does, but with the items split
+/// into one contiguous share of indices per thread (the calling thread has the first), each
+/// thread running its own share costliest first (by costs[k], in any unit; equal costs in index
+/// order) and then helping with the others' from their cheapest items. An item then runs on the
+/// same thread call after call (a batch of scenes, each kept in that thread's cache), while the
+/// threads still finish close together.
+void run_on_worker_threads_with_home_threads(std::span<const double> costs, const std::function<void(std::size_t)>& work);
 
 Scene create_scene(const std::string& name);
 /// Destroys a scene; no other thread may be stepping or using that scene.
