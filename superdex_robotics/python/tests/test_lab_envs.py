@@ -236,7 +236,7 @@ def test_batch_step_releases_the_gil(engine):
     import threading
     import time
 
-    vec = SuperDexVectorEnv(SeedTaskEnv, 16, prop="box", sim_multiple=100)  # one call: 1600 physics steps
+    vec = SuperDexVectorEnv(SeedTaskEnv, 16, prop="box", sim_multiple=500)  # one call: 8000 physics steps (50 ms or more)
     vec.reset(seed=0)
     actions = np.ascontiguousarray(np.full((16, 2), 0.5))
     ticks, span, stop = [], [], threading.Event()
