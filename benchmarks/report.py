@@ -264,9 +264,11 @@ this run's.
   time mean 0.4 ms and 0.13 ms per step, about 100 times less than one Hessian and one
   factorization of this mesh. That needs a factorization reused across iterations and steps (a
   lagged Newton matrix) or a reduced model of the prop, not a constant factor.
-- Scene 5 (soft block): the same per-iteration costs. The exponent (about 1.2 to 1.26 between
-  runs) is set by the sparse factorization, whose cost grows faster than n for 3-D meshes; reusing
-  factorizations across iterations would also lower it.
+- Scene 5 (soft block): the same per-iteration costs. The fitted exponent varies between runs
+  and machines (1.2 to 1.27 on the Xeon, 1.08 to 1.09 in the two runs on the EPYC, where the
+  1k-tetrahedron block is relatively slower, about 38 ms per step): it is set by the sparse
+  factorization, whose cost grows faster than n for 3-D meshes, and by the per-step costs that
+  do not grow with n. Reusing factorizations across iterations would lower the cost at every size.
 - Scene 4 (pile). Found: every Newton iteration re-ran CHOLMOD's symbolic analysis and built
   J^T G J by sparse products; Newton started from the free motion, so a settled pile took about
   12 iterations per step; each friction pass started over. Fixed: a solve starts from the current
