@@ -17,11 +17,21 @@ import time
 import webbrowser
 
 
-def _stop_on_signals() -> None:
-    """SIGINT and SIGTERM raise KeyboardInterrupt, whatever disposition the process inherited (a
-    shell starts background jobs with SIGINT ignored, and Python then keeps it ignored)."""
+def _stop_on_signals() -> list:
+    """Returns a one-element list whose flag SIGINT and SIGTERM set, whatever disposition the
+    process inherited (a shell starts background jobs with SIGINT ignored, and Python then keeps
+    it ignored). The
+    handlers only set the flag (no lock: a handler runs on the main thread between any two
+    bytecodes), so a signal that arrives anywhere, even before the serving loop is entered, stops
+    the server cleanly instead of raising KeyboardInterrupt at that point."""
+    stop = [False]
+
+    def handler(signum, frame):
+        stop[0] = True
+
     for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, signal.default_int_handler)
+        signal.signal(sig, handler)
+    return stop
 
 
 def _view(args) -> int:
@@ -43,14 +53,13 @@ def _view(args) -> int:
         except webbrowser.Error:
             opened = False
     port = server.get_port()
-    _stop_on_signals()  # before the URL is printed: whoever reads it may stop the server at once
-    print(f"superdex view: replaying {args.recording} at {url}" + ("" if opened else f" (over SSH: ssh -L {port}:127.0.0.1:{port} <this host>)"),
-          flush=True)
+    stop = _stop_on_signals()  # before the URL is printed: whoever reads it may stop the server at once
     try:
-        while True:
-            time.sleep(0.5)
-    except KeyboardInterrupt:
-        pass
+        print(f"superdex view: replaying {args.recording} at {url}" + ("" if opened else f" (over SSH: ssh -L {port}:127.0.0.1:{port} <this host>)"),
+              flush=True)
+        # Sleep in short naps: a signal's handler runs when it interrupts one
+        while not stop[0]:
+            time.sleep(0.2)
     finally:
         server.stop()
     return 0

@@ -171,3 +171,20 @@ def test_superdex_view_stops_on_a_signal_even_started_with_sigint_ignored(tmp_pa
     finally:
         proc.kill()
         proc.wait()
+
+
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_a_stop_signal_only_sets_the_flag_wherever_it_arrives(stop):
+    # A signal can arrive between any two bytecodes, also before the serving loop's try: the
+    # handler must not raise there (it did, and the process then died of an uncaught interrupt)
+    from superdex import cli
+
+    saved = {sig: signal.getsignal(sig) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        flag = cli._stop_on_signals()
+        assert flag == [False]
+        signal.raise_signal(stop)
+        assert flag == [True]
+    finally:
+        for sig, handler in saved.items():
+            signal.signal(sig, handler)
