@@ -126,7 +126,21 @@ TEST(MemoryCyclesTest, TenThousandEpisodesKeepMemoryFlat) {
 
   std::string trace;
   for (long s : samples) trace += std::to_string(s) + " ";
-  EXPECT_LE(samples.back(), start * 1.05) << "RSS grew from " << start << " KiB over " << total - kWarmUpCycles
+#if defined(__SANITIZE_ADDRESS__)
+#define SUPERDEX_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SUPERDEX_TEST_UNDER_ASAN 1
+#endif
+#endif
+#if defined(SUPERDEX_TEST_UNDER_ASAN)
+  // ASan holds freed blocks in a quarantine of bounded size, which fills over the first thousand
+  // episodes: growth is measured from the first sample on
+  const long baseline = samples.front();
+#else
+  const long baseline = start;
+#endif
+  EXPECT_LE(samples.back(), baseline * 1.05) << "RSS grew from " << baseline << " KiB over " << total - kWarmUpCycles
                                           << " episodes: " << trace;
 }
 
