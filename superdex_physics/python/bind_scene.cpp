@@ -109,6 +109,7 @@ void export_scene(nb::module_& m) {
       .def_rw("friction_sigma", &SolverParams::friction_sigma)
       .def_rw("contact_margin", &SolverParams::contact_margin)
       .def_rw("max_friction_passes", &SolverParams::max_friction_passes)
+      .def_rw("defer_inactive_joint_limits", &SolverParams::defer_inactive_joint_limits)
       .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance)
       .def_rw("dense_island_max_dofs", &SolverParams::dense_island_max_dofs);
 

@@ -19,8 +19,8 @@ real near_rigid_factor(const SolverParams& params) {
 
 namespace {
 
-// Joint limit and Coulomb friction rows; w is the effective compliance (A^-1)_kk of DOF k.
-// Appends to t.joint_rows, from t.A_llt.
+// Joint limit, drive and Coulomb friction rows, appended to t.joint_rows from t.A_llt and
+// t.v_free.
 void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const SolverParams& params,
                 ArticulationTerms& t) {
   std::vector<JointRow>& rows = t.joint_rows;
@@ -30,36 +30,40 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
   MatX& L_inv = t.L_inv;
   VecX& A_inv_diagonal = t.A_inv_diagonal;
   bool have_diagonal = false;
-  for (const JointModel& j : model.joints) {
-    if (j.nv != 1) continue;
-    const bool limited = j.has_lower || j.has_upper;
-    if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
-    const int k = j.v_offset;
+  // (A^-1)_kk, the effective compliance of DOF k
+  auto inverse_diagonal = [&](int k) {
     if (!have_diagonal) {
       L_inv.setIdentity(model.nv, model.nv);
       A_llt.matrixL().solveInPlace(L_inv);
       A_inv_diagonal.noalias() = L_inv.colwise().squaredNorm().transpose();
       have_diagonal = true;
     }
-    const real w = A_inv_diagonal[k];
+    return A_inv_diagonal[k];
+  };
+  for (const JointModel& j : model.joints) {
+    if (j.nv != 1) continue;
+    const bool limited = j.has_lower || j.has_upper;
+    if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
+    const int k = j.v_offset;
     const real q = state.q[j.q_offset];
     if (limited) {
       // compliant limit (SAP): impulse = dt k (-(phi + dt vc) - tau_d vc), floored at the near-rigid compliance
-      real R = near_rigid * w, tau_d = dt;
+      real R_stiffness = 0, tau_d = dt;
       if (j.limit_stiffness > 0) {
         tau_d = j.limit_damping / j.limit_stiffness;
-        R = std::max(R, 1 / (dt * j.limit_stiffness * (dt + tau_d)));
+        R_stiffness = 1 / (dt * j.limit_stiffness * (dt + tau_d));
       }
       ConstraintBlock b;
       b.kind = BlockKind::Unilateral;
-      b.R = R;
-      if (j.has_lower) {
-        b.vhat = -(q - j.lower) / (dt + tau_d);
-        rows.push_back({k, 1, b});
-      }
-      if (j.has_upper) {
-        b.vhat = -(j.upper - q) / (dt + tau_d);
-        rows.push_back({k, -1, b});
+      for (const real sign : {real(1), real(-1)}) {
+        if (!(sign > 0 ? j.has_lower : j.has_upper)) continue;
+        b.vhat = -(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d);
+        // acts once sign * v < vhat (< 0 inside the limit): far from it when the free motion
+        // keeps sign * v above vhat / 2
+        JointRow row{k, sign, b};
+        row.deferred = params.defer_inactive_joint_limits && b.vhat < 0 && sign * t.v_free[k] > b.vhat / 2;
+        row.block.R = row.deferred ? R_stiffness : std::max(near_rigid * inverse_diagonal(k), R_stiffness);
+        rows.push_back(std::move(row));
       }
     }
     // joint drive: impulse dt (K (q* - q - dt vc) + D (v* - vc)) = (vhat - vc) / R, clamped to dt max_effort
@@ -69,7 +73,7 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
       b.kind = BlockKind::Bounded;
       const real per_velocity = dt * d.stiffness + d.damping;  // effort per unit of next velocity
       // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
-      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w);
+      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * inverse_diagonal(k));
       b.vhat = (d.stiffness * (d.target_position - q) + d.damping * d.target_velocity) / per_velocity;
       b.bound = d.max_effort >= 0 ? dt * d.max_effort : std::numeric_limits<real>::infinity();
       rows.push_back({k, 1, b, true});
@@ -77,7 +81,7 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
     if (j.coulomb > 0) {
       ConstraintBlock b;
       b.kind = BlockKind::Bounded;
-      b.R = params.friction_sigma * w;
+      b.R = params.friction_sigma * inverse_diagonal(k);
       b.bound = dt * j.coulomb;
       rows.push_back({k, 1, b});
     }
@@ -151,6 +155,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   if (model.nv == 0) {
     t.A.resize(0, 0);
     t.r.resize(0);
+    t.v_free.resize(0);
     t.A_llt.compute(t.A);
     return;
   }
@@ -163,9 +168,18 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
+  t.v_free = t.A_llt.solve(t.r);
   joint_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params) {
+  // (A^-1)_kk = |L^-1 e_k|^2
+  VecX e = VecX::Zero(t.A.rows());
+  e[row.dof] = 1;
+  t.A_llt.matrixL().solveInPlace(e);
+  return std::max(row.block.R, near_rigid_factor(params) * e.squaredNorm());
 }
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {

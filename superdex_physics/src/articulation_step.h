@@ -9,7 +9,6 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-// A one-row block acting on a single DOF with Jacobian entry `sign`.
 // A one-row block of an articulation: on a single DOF with Jacobian entry `sign`, or with a full
 // Jacobian row `J` (nv) when J is not empty (link drives).
 struct JointRow {
@@ -17,6 +16,11 @@ struct JointRow {
   real sign = 1;
   ConstraintBlock block;
   bool drive = false;  // a joint drive: its impulse is reported as the drive's effort
+  // a joint-limit row that the free motion keeps well inside its limit
+  // (SolverParams::defer_inactive_joint_limits): left out of the solve, and inactive as long as
+  // sign * v[dof] >= block.vhat. Its block.R lacks the near-rigid floor, which needs (A^-1)_kk:
+  // deferred_compliance() completes it.
+  bool deferred = false;
   VecX J;              // full row, for rows that involve several DOFs
 };
 
@@ -28,6 +32,7 @@ struct ArticulationTerms {
   Eigen::LLT<MatX> A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
   double seconds = 0;            // time spent computing these
+  VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r
   // working storage: bias forces, A's inverse Cholesky factor and the diagonal of A^-1
   VecX c;
   MatX L_inv;
@@ -38,6 +43,10 @@ ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, rea
 // The same into `t`, whose matrices and row list keep their storage (no allocation when the
 // articulation's terms had the same sizes last time).
 void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t);
+
+// The compliance of a deferred joint-limit row of t once it joins a solve: its R floored at the
+// near-rigid compliance of its DOF.
+real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params);
 
 // Near-rigid compliance factor beta^2 / (4 pi^2).
 real near_rigid_factor(const SolverParams& params);

@@ -63,11 +63,17 @@ bool island_is_sparse(const SceneData& s, const Island& island, const SolverPara
   return dofs > params.dense_island_max_dofs;
 }
 
-void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
-                  const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// Whether a joint row takes part in a solve: deferred limit rows only when `include_deferred`.
+bool takes_part(const JointRow& row, bool include_deferred) { return !row.deferred || include_deferred; }
+
+// One solve of the island, with or without the deferred joint-limit rows.
+void solve_island_once(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
+                       const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                       const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                       bool include_deferred, IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache,
+                       IslandSolution& out) {
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
   std::vector<int>& offset = w.body_offset;
   std::vector<int>& soft_offset = w.soft_offset;
@@ -85,7 +91,8 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
   }
 
   int m = 0;
-  for (int b : island.bodies) m += static_cast<int>(terms[b].joint_rows.size());
+  for (int b : island.bodies)
+    for (const JointRow& jr : terms[b].joint_rows) m += takes_part(jr, include_deferred);
   const int joint_rows = m;
   const int num_contacts = static_cast<int>(island.contacts.size() + island.soft_contacts.size());
   m += 3 * num_contacts;
@@ -101,7 +108,7 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
     r.segment(o, nb) = terms[b].r;
     // velocities of the free (unconstrained) motion: the start of the Newton iteration, and the
     // reference of the near-rigid target compensation
-    v_start.segment(o, nb) = terms[b].A_llt.solve(terms[b].r);
+    v_start.segment(o, nb) = terms[b].v_free;
   }
   for (size_t j = 0; j < soft.size(); ++j) {
     const int o = soft_offset[island.soft_bodies[j]];
@@ -116,6 +123,7 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
   int row = 0;
   for (int b : island.bodies)
     for (const JointRow& jr : terms[b].joint_rows) {
+      if (!takes_part(jr, include_deferred)) continue;
       if (jr.J.size() > 0) {
         for (Eigen::Index c = 0; c < jr.J.size(); ++c)
           if (jr.J[c] != 0) J_entries.emplace_back(row, offset[b] + static_cast<int>(c), jr.J[c]);
@@ -123,6 +131,7 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
         J_entries.emplace_back(row, offset[b] + jr.dof, jr.sign);
       }
       ConstraintBlock blk = jr.block;
+      if (jr.deferred) blk.R = deferred_compliance(terms[b], jr, params);
       blk.row = row++;
       rows.blocks.push_back(blk);
     }
@@ -286,6 +295,7 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
     VecX& efforts = out.drive_efforts[j];
     efforts.setZero(nb);
     for (const JointRow& row : terms[b].joint_rows) {
+      if (!takes_part(row, include_deferred)) continue;
       if (row.drive) efforts[row.dof] += row.sign * sol.gamma[jr] / dt;
       ++jr;
     }
@@ -299,6 +309,31 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
     out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
   for (size_t k = island.contacts.size(); k < frames.size(); ++k)
     out.soft_contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+}
+
+// Whether the island's solution `v` (per body) would make a deferred joint-limit row act.
+bool violates_deferred_rows(const Island& island, const std::vector<ArticulationTerms>& terms, const std::vector<VecX>& v) {
+  for (size_t j = 0; j < island.bodies.size(); ++j)
+    for (const JointRow& row : terms[island.bodies[j]].joint_rows)
+      if (row.deferred && row.sign * v[j][row.dof] < row.block.vhat) return true;
+  return false;
+}
+
+}  // namespace
+
+void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
+                  const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, w, sparse_cache, out);
+  // a deferred limit row is inactive at the solution unless it says otherwise: then the same
+  // problem with every row (rare: the free motion kept them far from acting)
+  if (violates_deferred_rows(island, terms, out.v)) {
+    const int iterations = out.iterations;
+    solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, true, w, sparse_cache, out);
+    out.iterations += iterations;
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

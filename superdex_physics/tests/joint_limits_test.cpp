@@ -101,5 +101,65 @@ TEST_F(JointLimitsTest, CompliantLimitHoldsGravityLoad) {
   EXPECT_NEAR(scene.pose(arm)[0], expected, 0.05 * expected);
 }
 
+/// A horizontal two-link arm (gravity off): a shoulder about Z at the base and an elbow about Z
+/// at the end of the upper arm, the elbow 1 mrad from each of its limits.
+ArticulationDesc two_link_arm(real elbow) {
+  ArticulationDesc desc;
+  desc.name = "two_link";
+  desc.links = {make_link("base", -1, 1, Vec3::Zero(), Vec3::Constant(real(0.01))),
+                make_link("upper", 0, 1, Vec3(0.25, 0, 0), Vec3(0.001, 0.02, 0.02)),
+                make_link("fore", 1, 1, Vec3(0.25, 0, 0), Vec3(0.001, 0.02, 0.02))};
+  desc.joints = {make_joint("weld", JointType::Hard), make_joint("shoulder", JointType::Revolute, Vec3::UnitZ()),
+                 make_joint("elbow", JointType::Revolute, Vec3::UnitZ(), Transform(Quat::Identity(), Vec3(0.5, 0, 0)))};
+  desc.joints[2].min_limit = Vec3(0, 0, elbow - real(1e-3));
+  desc.joints[2].max_limit = Vec3(0, 0, elbow + real(1e-3));
+  desc.default_pose = {0, elbow};
+  return desc;
+}
+
+// Limit rows that the free motion keeps far from acting are left out of the solve
+// (SolverParams::defer_inactive_joint_limits). Here the elbow rests, so its free motion leaves
+// both rows out; a stiff shoulder drive whips the arm, and the elbow's reaction in that solve
+// would cross a limit: the island is solved again with the rows. The elbow must hold within its
+// limits, and every step must equal the one that keeps all rows in the solve.
+TEST_F(JointLimitsTest, DeferredLimitRowsGiveTheSameStepAsKeepingThemAll) {
+  const real dt = real(0.01), elbow = real(0.4);
+  // runs 0 and 1: every limit row in every solve, and deferred rows; run 2: no elbow limits
+  std::array<std::vector<VecX>, 3> q, v;
+  for (int run = 0; run < 3; ++run) {
+    Scene scene = create_scene("arm_" + std::to_string(run));
+    scene.set_gravity(Vec3::Zero());
+    SolverParams params = scene.solver_params();
+    params.defer_inactive_joint_limits = run == 1;
+    scene.set_solver_params(params);
+    ArticulationDesc desc = two_link_arm(elbow);
+    if (run == 2) desc.joints[2].min_limit = desc.joints[2].max_limit = std::nullopt;
+    const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
+    JointDrive drive;
+    drive.damping = 200;
+    for (int n = 0; n < 60; ++n) {
+      // the shoulder's target speed reverses every 20 steps
+      drive.target_velocity = (n / 20) % 2 == 0 ? 3 : -3;
+      scene.set_joint_drive(arm, 0, drive);
+      scene.step(dt);
+      q[run].push_back(scene.pose(arm));
+      v[run].push_back(scene.joint_velocities(arm));
+      ASSERT_TRUE(scene.solver_stats().converged) << "run " << run << ", step " << n;
+    }
+  }
+  const real tolerance = kUsesDoublePrecision ? real(1e-9) : real(2e-4);
+  real free_elbow_swing = 0;
+  for (size_t n = 0; n < q[0].size(); ++n) {
+    EXPECT_NEAR((q[1][n] - q[0][n]).cwiseAbs().maxCoeff(), 0, tolerance) << "step " << n;
+    EXPECT_NEAR((v[1][n] - v[0][n]).cwiseAbs().maxCoeff(), 0, 100 * tolerance) << "step " << n;
+    // at its limits, up to the near-rigid compliance of the rows (the whip is violent)
+    EXPECT_NEAR(q[1][n][1], elbow, real(0.02)) << "step " << n;
+    free_elbow_swing = std::max(free_elbow_swing, std::abs(q[2][n][1] - elbow));
+  }
+  // without its limits the elbow swings far: the limits acted
+  EXPECT_GT(free_elbow_swing, real(0.2)) << free_elbow_swing;
+  EXPECT_GT(std::abs(q[1].back()[0]), real(0.5));
+}
+
 }  // namespace
 }  // namespace superdex::physics::test

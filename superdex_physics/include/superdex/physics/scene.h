@@ -75,6 +75,11 @@ struct SolverParams {
   int dense_island_max_dofs = 96;
   /// Stop refining when the friction bounds change by less than this fraction.
   real friction_pass_tolerance = real(1e-3);
+  /// Leave out of the solve the joint-limit rows that the free motion keeps well inside their
+  /// limits, and check them on its result: when one would act, the island is solved again with
+  /// them. The result is the same (a left-out row contributes nothing where it is inactive);
+  /// only the cost differs. false keeps every limit row in every solve.
+  bool defer_inactive_joint_limits = true;
 };
 
 /// What the last step did.
