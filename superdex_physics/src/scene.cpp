@@ -247,16 +247,22 @@ std::vector<ActorHandle> Scene::actors() const {
 
 void Scene::register_pre_step_callback(const std::string& name, StepCallback fn, int priority) {
   if (!fn) throw Error("register_pre_step_callback('" + name + "'): no function given");
-  scene_data(handle_).callbacks[name] = {false, priority, std::move(fn)};
+  SceneData& s = scene_data(handle_);
+  s.callbacks[name] = {false, priority, std::make_shared<const StepCallback>(std::move(fn))};
+  s.callback_order = {};
 }
 
 void Scene::register_post_step_callback(const std::string& name, StepCallback fn, int priority) {
   if (!fn) throw Error("register_post_step_callback('" + name + "'): no function given");
-  scene_data(handle_).callbacks[name] = {true, priority, std::move(fn)};
+  SceneData& s = scene_data(handle_);
+  s.callbacks[name] = {true, priority, std::make_shared<const StepCallback>(std::move(fn))};
+  s.callback_order = {};
 }
 
 void Scene::cancel_callback(const std::string& name) {
-  if (scene_data(handle_).callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
+  SceneData& s = scene_data(handle_);
+  if (s.callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
+  s.callback_order = {};
 }
 
 int Scene::add_signal_source(SignalSource source) {
@@ -271,14 +277,21 @@ void Scene::remove_signal_source(int id) { scene_data(handle_).signal_sources.er
 
 namespace {
 
-// Runs the pre- or post-step callbacks by priority, then name. Copies them first so that a
-// callback may register or cancel callbacks.
+// Runs the pre- or post-step callbacks by priority, then name: those registered when the
+// step began, also when a callback registers or cancels callbacks.
 void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
-  std::vector<std::pair<std::pair<int, std::string>, StepCallback>> due;
-  for (const auto& [name, cb] : s.callbacks)
-    if (cb.post == post) due.push_back({{cb.priority, name}, cb.fn});
-  std::stable_sort(due.begin(), due.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (auto& [key, fn] : due) fn(scene, dt);
+  std::shared_ptr<const StepCallbackOrder>& order = s.callback_order[post];
+  if (!order) {
+    std::vector<std::pair<int, const StepCallbackRecord*>> by_priority;  // the map is ordered by name
+    for (const auto& [name, cb] : s.callbacks)
+      if (cb.post == post) by_priority.push_back({cb.priority, &cb});
+    std::stable_sort(by_priority.begin(), by_priority.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    auto made = std::make_shared<StepCallbackOrder>();
+    for (const auto& [priority, cb] : by_priority) made->push_back(cb->fn);
+    order = std::move(made);
+  }
+  const std::shared_ptr<const StepCallbackOrder> running = order;  // outlives a change made by a callback
+  for (const auto& fn : *running) (*fn)(scene, dt);
 }
 
 }  // namespace

@@ -65,8 +65,13 @@ struct QueryRecord {
 struct StepCallbackRecord {
   bool post = false;
   int priority = 100;
-  StepCallback fn;
+  std::shared_ptr<const StepCallback> fn;
 };
+
+// The pre- or post-step callbacks in the order they run (priority, then name): made when first
+// needed after a change, and shared with a step that runs them, so that a callback may register
+// or cancel callbacks while the list it came from runs on.
+using StepCallbackOrder = std::vector<std::shared_ptr<const StepCallback>>;
 
 struct SceneData {
   SceneHandle handle = 0;
@@ -88,6 +93,7 @@ struct SceneData {
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
   std::map<std::string, StepCallbackRecord> callbacks;
+  std::array<std::shared_ptr<const StepCallbackOrder>, 2> callback_order;  // pre, post; null after a change
   std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
   int next_signal_source = 1;
   // sparse Newton patterns of the last step's large islands, by their sorted body indices

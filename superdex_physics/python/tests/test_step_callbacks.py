@@ -37,3 +37,25 @@ def test_exception_in_callback_propagates_with_traceback(scene):
     scene.cancel_callback("broken")
     scene.step(0.01)
     assert scene.get_total_simulation_time() == pytest.approx(0.01)
+
+
+def test_a_callback_may_change_the_callbacks_during_a_step(scene):
+    # the callbacks registered when a step's pre- (post-) step phase began run in it; a change a
+    # callback makes counts from the next phase on
+    calls = []
+
+    def changer(s, dt):
+        calls.append("changer")
+        s.cancel_callback("changer")
+        s.cancel_callback("cancelled")
+        s.register_pre_step_callback("added", lambda s, dt: calls.append("added"), priority=0)
+        s.register_post_step_callback("replaced", lambda s, dt: calls.append("replaced, new"))
+
+    scene.register_pre_step_callback("changer", changer, priority=1)
+    scene.register_pre_step_callback("cancelled", lambda s, dt: calls.append("cancelled"), priority=2)
+    scene.register_post_step_callback("replaced", lambda s, dt: calls.append("replaced, old"))
+    scene.step(0.01)
+    assert calls == ["changer", "cancelled", "replaced, new"]
+    calls.clear()
+    scene.step(0.01)
+    assert calls == ["added", "replaced, new"]
