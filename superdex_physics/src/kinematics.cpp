@@ -34,7 +34,9 @@ void update_kinematics(const ArticulationModel& model, const ArticulationState& 
     kin.S[i] = j.S;
     // a Free joint's linear velocity is in the joint (parent) frame: rotate it into the link frame
     if (j.type == JointType::Free) kin.S[i].topLeftCorner<3, 3>() = X_J.R.transpose();
-    const Vec6 vJ = kin.S[i].leftCols(j.nv) * state.v.segment(j.v_offset, j.nv);
+    // joint velocity, column by column (a fixed-size loop: nv is at most 6)
+    Vec6 vJ = Vec6::Zero();
+    for (int c = 0; c < j.nv; ++c) vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
     if (p < 0) {
       kin.X_PL[i] = state.X_W_base * kin.X_PL[i];
       kin.X_WL[i] = kin.X_PL[i];
