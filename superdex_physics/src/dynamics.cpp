@@ -60,7 +60,7 @@ VecX inverse_dynamics(const ArticulationModel& model, const ArticulationState& s
 VecX bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
                  const Vec3& g_W) {
   VecX c;
-  rnea(model, state, kin, nullptr, g_W, c);
+  bias_forces(model, state, kin, g_W, c);
   return c;
 }
 

@@ -93,6 +93,22 @@ void run_on_worker_threads(std::size_t count, const std::function<void(std::size
   });
 }
 
+namespace {
+
+// Sorts the item indices `order` by decreasing costs[i], ties in the given order (stable). Short
+// lists by insertion: std::stable_sort takes a temporary buffer from the heap.
+void order_costliest_first(std::span<std::size_t> order, std::span<const double> costs) {
+  const auto costlier = [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; };
+  if (order.size() > 32) {
+    std::stable_sort(order.begin(), order.end(), costlier);
+    return;
+  }
+  for (std::size_t i = 1; i < order.size(); ++i)
+    for (std::size_t j = i; j > 0 && costlier(order[j], order[j - 1]); --j) std::swap(order[j], order[j - 1]);
+}
+
+}  // namespace
+
 void run_on_worker_threads_costliest_first(std::span<const double> costs, const std::function<void(std::size_t)>& work) {
   // the order on the stack when it is short (a scene's islands), so that a step does not allocate
   constexpr std::size_t kOnStack = 32;
@@ -101,14 +117,7 @@ void run_on_worker_threads_costliest_first(std::span<const double> costs, const 
   if (costs.size() > kOnStack) large.resize(costs.size());
   const std::span<std::size_t> order = costs.size() > kOnStack ? std::span<std::size_t>(large) : std::span<std::size_t>(small.data(), costs.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto costlier = [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; };
-  if (costs.size() > kOnStack) {
-    std::stable_sort(order.begin(), order.end(), costlier);
-  } else {
-    // stable insertion sort (std::stable_sort takes a temporary buffer from the heap)
-    for (std::size_t i = 1; i < order.size(); ++i)
-      for (std::size_t j = i; j > 0 && costlier(order[j], order[j - 1]); --j) std::swap(order[j], order[j - 1]);
-  }
+  order_costliest_first(order, costs);
   run_on_worker_threads(order.size(), [&](std::size_t i) { work(order[i]); });
 }
 
@@ -121,8 +130,7 @@ void run_on_worker_threads_with_home_threads(std::span<const double> costs, cons
   std::iota(order.begin(), order.end(), std::size_t{0});
   const auto share_begin = [&](int s) { return count * static_cast<std::size_t>(s) / static_cast<std::size_t>(runners); };
   for (int s = 0; s < runners; ++s)
-    std::stable_sort(order.begin() + share_begin(s), order.begin() + share_begin(s + 1),
-                     [&](std::size_t x, std::size_t y) { return costs[x] > costs[y]; });
+    order_costliest_first(std::span<std::size_t>(order).subspan(share_begin(s), share_begin(s + 1) - share_begin(s)), costs);
   if (!arena) {
     for (std::size_t i : order) work(i);
     return;
