@@ -250,6 +250,7 @@ void Scene::register_pre_step_callback(const std::string& name, StepCallback fn,
   SceneData& s = scene_data(handle_);
   s.callbacks[name] = {false, priority, std::make_shared<const StepCallback>(std::move(fn))};
   s.callback_order = {};
+  ++s.callbacks_version;
 }
 
 void Scene::register_post_step_callback(const std::string& name, StepCallback fn, int priority) {
@@ -257,12 +258,14 @@ void Scene::register_post_step_callback(const std::string& name, StepCallback fn
   SceneData& s = scene_data(handle_);
   s.callbacks[name] = {true, priority, std::make_shared<const StepCallback>(std::move(fn))};
   s.callback_order = {};
+  ++s.callbacks_version;
 }
 
 void Scene::cancel_callback(const std::string& name) {
   SceneData& s = scene_data(handle_);
   if (s.callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
   s.callback_order = {};
+  ++s.callbacks_version;
 }
 
 int Scene::add_signal_source(SignalSource source) {
@@ -290,8 +293,20 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
     for (const auto& [priority, cb] : by_priority) made->push_back(cb->fn);
     order = std::move(made);
   }
-  const std::shared_ptr<const StepCallbackOrder> running = order;  // outlives a change made by a callback
-  for (const auto& fn : *running) (*fn)(scene, dt);
+  // taken out of the scene while it runs, by a move (no reference counting, which threads
+  // stepping their own scenes would contend for when the counts share a cache line), so that it
+  // outlives a change a callback makes; put back afterwards, also after an exception, unless the
+  // callbacks changed meanwhile
+  struct PutBack {
+    SceneData& s;
+    bool post;
+    std::uint64_t version;
+    std::shared_ptr<const StepCallbackOrder> running;
+    ~PutBack() {
+      if (s.callbacks_version == version) s.callback_order[post] = std::move(running);
+    }
+  } put_back{s, post, s.callbacks_version, std::move(order)};
+  for (const auto& fn : *put_back.running) (*fn)(scene, dt);
 }
 
 }  // namespace

@@ -94,6 +94,7 @@ struct SceneData {
   std::map<std::int64_t, QueryRecord> queries;
   std::map<std::string, StepCallbackRecord> callbacks;
   std::array<std::shared_ptr<const StepCallbackOrder>, 2> callback_order;  // pre, post; null after a change
+  std::uint64_t callbacks_version = 0;                                     // counts the changes
   std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
   int next_signal_source = 1;
   // sparse Newton patterns of the last step's large islands, by their sorted body indices
