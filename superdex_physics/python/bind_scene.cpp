@@ -111,6 +111,7 @@ void export_scene(nb::module_& m) {
       .def_rw("max_friction_passes", &SolverParams::max_friction_passes)
       .def_rw("defer_inactive_joint_limits", &SolverParams::defer_inactive_joint_limits)
       .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance)
+      .def_rw("friction_pass_min_slip", &SolverParams::friction_pass_min_slip)
       .def_rw("dense_island_max_dofs", &SolverParams::dense_island_max_dofs);
 
   nb::class_<SolverStats>(m, "SolverStats", "What the last step did.")

@@ -255,11 +255,19 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
   const int first_contact = static_cast<int>(rows.blocks.size()) - num_contacts;
   // when no contact slides (every impulse strictly inside its cone) the refined problem has the
-  // same solution, so the passes are skipped
+  // same solution, so the passes are skipped; so they are when the contacts at their bound slip
+  // too slowly for the cone model's separation (mu times the slip speed) to matter
+  auto row_velocity = [&](int r) {
+    real sum = 0;
+    for (SparseRowMat::InnerIterator it(rows.J, r); it; ++it) sum += it.value() * sol.v[it.index()];
+    return sum;
+  };
   bool sliding = false;
   for (size_t k = first_contact; k < rows.blocks.size() && !sliding; ++k) {
-    const real* g = sol.gamma.data() + rows.blocks[k].row;
-    sliding = g[2] > 0 && std::hypot(g[0], g[1]) >= real(0.999) * rows.blocks[k].bound * g[2];
+    const int r0 = rows.blocks[k].row;
+    const real* g = sol.gamma.data() + r0;
+    sliding = g[2] > 0 && std::hypot(g[0], g[1]) >= real(0.999) * rows.blocks[k].bound * g[2] &&
+              std::hypot(row_velocity(r0), row_velocity(r0 + 1)) > params.friction_pass_min_slip;
   }
   for (int pass = 0; pass < params.max_friction_passes && sliding; ++pass) {
     real change = 0, scale = 0;

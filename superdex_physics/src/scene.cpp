@@ -44,6 +44,7 @@ void Scene::set_solver_params(const SolverParams& p) {
   if (!(p.contact_margin >= 0) || !std::isfinite(p.contact_margin)) throw Error("set_solver_params: contact_margin must be >= 0");
   if (p.max_friction_passes < 0) throw Error("set_solver_params: max_friction_passes must be >= 0");
   if (!(p.friction_pass_tolerance >= 0)) throw Error("set_solver_params: friction_pass_tolerance must be >= 0");
+  if (!(p.friction_pass_min_slip >= 0)) throw Error("set_solver_params: friction_pass_min_slip must be >= 0");
   if (p.dense_island_max_dofs < 0) throw Error("set_solver_params: dense_island_max_dofs must be >= 0");
   scene_data(handle_).params = p;
 }

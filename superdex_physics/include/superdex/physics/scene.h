@@ -75,6 +75,10 @@ struct SolverParams {
   int dense_island_max_dofs = 96;
   /// Stop refining when the friction bounds change by less than this fraction.
   real friction_pass_tolerance = real(1e-3);
+  /// Friction refinement runs only when a contact at its friction bound slips faster than this
+  /// (m/s): the cone model separates a slipping contact at mu times its slip speed, which below
+  /// it stays under a micrometre per step (a resting pile's creep).
+  real friction_pass_min_slip = real(1e-4);
   /// Leave out of the solve the joint-limit rows that the free motion keeps well inside their
   /// limits, and check them on its result: when one would act, the island is solved again with
   /// them. The result is the same (a left-out row contributes nothing where it is inactive);
