@@ -278,7 +278,15 @@ this run's.
   slots; rigid islands use a simplicial Cholesky in double (no BLAS or OpenMP threads). What
   remains: the scalar simplicial factorization and the line search's per-block evaluations (a
   supernodal Cholesky on the 6 x 6 body blocks would be next), and the landing phase, where the
-  contact set changes every step and the pattern is rebuilt.
+  contact set changes every step and the pattern is rebuilt. Measured next (solver statistics per
+  step, float): the settled pile costs about 1.1 to 1.7 ms per step at 3 Newton iterations, but
+  the landing (steps 30 to 100 of the 1000 timed) takes 50 to 100 iterations per step, the
+  friction passes included, at about 0.35 ms each: 15 to 50 ms per step, about half of the timed
+  run. In float, resting contacts creep at their friction bound, which ran the friction passes
+  every step of the settled pile; the passes now run only for contacts that slip faster than
+  SolverParams.friction_pass_min_slip (0.1 mm/s; the cone model's separation is mu times the slip
+  speed): 1.67 to 1.15 ms per settled step. What remains is the landing: fewer iterations per
+  pass, or passes that stop earlier, and a cheaper factorization.
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -286,8 +294,19 @@ this run's.
   inverse dynamics; the warm start above (the Panda on the table converges in 0 or 1 iteration).
   Then the allocations per step (malloc and free were about a tenth of a small step): the step's
   lists, the island solves' matrices and the contact lists now live in a workspace kept in the
-  scene across steps (86 to 1.2 allocations per seed-box scene-step). What remains: the robotics
-  pipeline's own cost, and the island assembly and Newton solve of a contact step.
+  scene across steps (86 to 1.2 allocations per seed-box scene-step). Found next (perf, free
+  Panda): the Panda's 14 joint-limit rows entered every solve, with a Newton solve and the
+  diagonal of A^-1 for their compliance, although no joint was near its limit. Fixed: limit rows
+  that the free motion keeps far from acting are left out and checked on the result (a solve
+  that would violate one is repeated with them; SolverParams.defer_inactive_joint_limits): 5.4 to
+  4.2 us per free step. Joint velocities in the kinematics by a fixed-size column loop instead of
+  a dynamic product (7-link chain 561 to 380 ns). What remains in a free Panda step: the mass
+  matrix (about 15 %), kinematics (about 10 %), the timers of the solver statistics (about 4 %)
+  and the broad phase (about 4 %). The dynamics kernels run at about 90 ns per link, where
+  spatial-algebra libraries reach 20 to 30: the 6-vectors are written as two 3-vector halves and
+  then read as packets that straddle them, which stalls store forwarding; building with
+  -march=native did not change that (mass matrix 647 to 562 ns, kinematics and inverse dynamics
+  unchanged), so the next step is spatial vectors kept as 3-vector pairs.
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
@@ -316,7 +335,10 @@ this run's.
   1.8x); and the machine itself: two copies of a compute loop scale by 2.0x side by side, but the
   engine's memory-bound steps give two processes side by side 1.6-1.9x, and the 2-thread times
   vary by up to 30 % between neighbouring runs (the 1-thread ones by 10-20 %), so each case is
-  measured in rounds and the ratios compare neighbouring runs.
+  measured in rounds and the ratios compare neighbouring runs. On this machine the ratios moved
+  between runs of the same build by more than the targets' margin: scene 7 with worker threads
+  1.62x and 1.82x; the seed task in scene 8 1.50x to 1.68x in four runs of one build, and 1.50x
+  and 2.24x in two consecutive runs of another.
 """
 
 
