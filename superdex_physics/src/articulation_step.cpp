@@ -19,27 +19,12 @@ real near_rigid_factor(const SolverParams& params) {
 
 namespace {
 
-// Joint limit, drive and Coulomb friction rows, appended to t.joint_rows from t.A_llt and
+// Joint limit, drive and Coulomb friction rows, appended to t.joint_rows from A^-1's diagonal and
 // t.v_free.
 void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const SolverParams& params,
                 ArticulationTerms& t) {
   std::vector<JointRow>& rows = t.joint_rows;
-  const Eigen::LLT<MatX>& A_llt = t.A_llt;
   const real near_rigid = near_rigid_factor(params);
-  // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1, computed once when needed
-  MatX& L_inv = t.L_inv;
-  VecX& A_inv_diagonal = t.A_inv_diagonal;
-  bool have_diagonal = false;
-  // (A^-1)_kk, the effective compliance of DOF k
-  auto inverse_diagonal = [&](int k) {
-    if (!have_diagonal) {
-      L_inv.setIdentity(model.nv, model.nv);
-      A_llt.matrixL().solveInPlace(L_inv);
-      A_inv_diagonal.noalias() = L_inv.colwise().squaredNorm().transpose();
-      have_diagonal = true;
-    }
-    return A_inv_diagonal[k];
-  };
   for (const JointModel& j : model.joints) {
     if (j.nv != 1) continue;
     const bool limited = j.has_lower || j.has_upper;
@@ -62,7 +47,7 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
         // keeps sign * v above vhat / 2
         JointRow row{k, sign, b};
         row.deferred = params.defer_inactive_joint_limits && b.vhat < 0 && sign * t.v_free[k] > b.vhat / 2;
-        row.block.R = row.deferred ? R_stiffness : std::max(near_rigid * inverse_diagonal(k), R_stiffness);
+        row.block.R = row.deferred ? R_stiffness : std::max(near_rigid * t.inverse_diagonal(k), R_stiffness);
         rows.push_back(std::move(row));
       }
     }
@@ -73,7 +58,7 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
       b.kind = BlockKind::Bounded;
       const real per_velocity = dt * d.stiffness + d.damping;  // effort per unit of next velocity
       // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
-      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * inverse_diagonal(k));
+      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * t.inverse_diagonal(k));
       b.vhat = (d.stiffness * (d.target_position - q) + d.damping * d.target_velocity) / per_velocity;
       b.bound = d.max_effort >= 0 ? dt * d.max_effort : std::numeric_limits<real>::infinity();
       rows.push_back({k, 1, b, true});
@@ -81,7 +66,7 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
     if (j.coulomb > 0) {
       ConstraintBlock b;
       b.kind = BlockKind::Bounded;
-      b.R = params.friction_sigma * inverse_diagonal(k);
+      b.R = params.friction_sigma * t.inverse_diagonal(k);
       b.bound = dt * j.coulomb;
       rows.push_back({k, 1, b});
     }
@@ -152,6 +137,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   const ArticulationModel& model = a.model;
   t.joint_rows.clear();
   t.seconds = 0;
+  t.have_inverse_diagonal_ = false;
   if (model.nv == 0) {
     t.A.resize(0, 0);
     t.r.resize(0);
@@ -174,12 +160,19 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+real ArticulationTerms::inverse_diagonal(int k) const {
+  if (!have_inverse_diagonal_) {
+    // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1
+    L_inv_.setIdentity(A.rows(), A.cols());
+    A_llt.matrixL().solveInPlace(L_inv_);
+    A_inv_diagonal_.noalias() = L_inv_.colwise().squaredNorm().transpose();
+    have_inverse_diagonal_ = true;
+  }
+  return A_inv_diagonal_[k];
+}
+
 real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params) {
-  // (A^-1)_kk = |L^-1 e_k|^2
-  VecX e = VecX::Zero(t.A.rows());
-  e[row.dof] = 1;
-  t.A_llt.matrixL().solveInPlace(e);
-  return std::max(row.block.R, near_rigid_factor(params) * e.squaredNorm());
+  return std::max(row.block.R, near_rigid_factor(params) * t.inverse_diagonal(row.dof));
 }
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {

@@ -33,10 +33,19 @@ struct ArticulationTerms {
   std::vector<JointRow> joint_rows;
   double seconds = 0;            // time spent computing these
   VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r
-  // working storage: bias forces, A's inverse Cholesky factor and the diagonal of A^-1
+  // working storage: bias forces
   VecX c;
-  MatX L_inv;
-  VecX A_inv_diagonal;
+
+  // (A^-1)_kk, the effective compliance of DOF k (1 / (kg m^2) or 1 / kg). The whole diagonal is
+  // computed at the first call after articulation_terms(), from A_llt, and read by later calls.
+  real inverse_diagonal(int k) const;
+
+ private:
+  friend void articulation_terms(const Articulation&, const Vec3&, real, const SolverParams&, ArticulationTerms&);
+  // cache of inverse_diagonal(): A's inverse Cholesky factor and the diagonal of A^-1
+  mutable MatX L_inv_;
+  mutable VecX A_inv_diagonal_;
+  mutable bool have_inverse_diagonal_ = false;
 };
 
 ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params);
