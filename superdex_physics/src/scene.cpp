@@ -250,7 +250,6 @@ void Scene::register_pre_step_callback(const std::string& name, StepCallback fn,
   if (!fn) throw Error("register_pre_step_callback('" + name + "'): no function given");
   SceneData& s = scene_data(handle_);
   s.callbacks[name] = {false, priority, std::make_shared<const StepCallback>(std::move(fn))};
-  s.callback_order = {};
   ++s.callbacks_version;
 }
 
@@ -258,14 +257,12 @@ void Scene::register_post_step_callback(const std::string& name, StepCallback fn
   if (!fn) throw Error("register_post_step_callback('" + name + "'): no function given");
   SceneData& s = scene_data(handle_);
   s.callbacks[name] = {true, priority, std::make_shared<const StepCallback>(std::move(fn))};
-  s.callback_order = {};
   ++s.callbacks_version;
 }
 
 void Scene::cancel_callback(const std::string& name) {
   SceneData& s = scene_data(handle_);
   if (s.callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
-  s.callback_order = {};
   ++s.callbacks_version;
 }
 
@@ -284,30 +281,28 @@ namespace {
 // Runs the pre- or post-step callbacks by priority, then name: those registered when the
 // step began, also when a callback registers or cancels callbacks.
 void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
-  std::shared_ptr<const StepCallbackOrder>& order = s.callback_order[post];
-  if (!order) {
+  CachedCallbackOrder& cached = s.callback_order[post];
+  if (!cached.order || cached.version != s.callbacks_version) {
     std::vector<std::pair<int, const StepCallbackRecord*>> by_priority;  // the map is ordered by name
     for (const auto& [name, cb] : s.callbacks)
       if (cb.post == post) by_priority.push_back({cb.priority, &cb});
     std::stable_sort(by_priority.begin(), by_priority.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     auto made = std::make_shared<StepCallbackOrder>();
     for (const auto& [priority, cb] : by_priority) made->push_back(cb->fn);
-    order = std::move(made);
+    cached = {std::move(made), s.callbacks_version};
   }
   // taken out of the scene while it runs, by a move (no reference counting, which threads
   // stepping their own scenes would contend for when the counts share a cache line), so that it
-  // outlives a change a callback makes; put back afterwards, also after an exception, unless the
-  // callbacks changed meanwhile
+  // outlives a change a callback makes; put back afterwards, also after an exception, unless a
+  // step within a callback cached a newer one (a change meanwhile leaves it outdated by its version)
   struct PutBack {
-    SceneData& s;
-    bool post;
-    std::uint64_t version;
-    std::shared_ptr<const StepCallbackOrder> running;
+    CachedCallbackOrder& slot;
+    CachedCallbackOrder running;
     ~PutBack() {
-      if (s.callbacks_version == version) s.callback_order[post] = std::move(running);
+      if (!slot.order) slot = std::move(running);
     }
-  } put_back{s, post, s.callbacks_version, std::move(order)};
-  for (const auto& fn : *put_back.running) (*fn)(scene, dt);
+  } put_back{cached, std::move(cached)};
+  for (const auto& fn : *put_back.running.order) (*fn)(scene, dt);
 }
 
 }  // namespace

@@ -72,6 +72,12 @@ struct StepCallbackRecord {
 // needed after a change, and shared with a step that runs them, so that a callback may register
 // or cancel callbacks while the list it came from runs on.
 using StepCallbackOrder = std::vector<std::shared_ptr<const StepCallback>>;
+// An order, and the value of SceneData::callbacks_version it was built at: outdated when that
+// value has changed since.
+struct CachedCallbackOrder {
+  std::shared_ptr<const StepCallbackOrder> order;
+  std::uint64_t version = 0;
+};
 
 struct SceneData {
   SceneHandle handle = 0;
@@ -93,8 +99,8 @@ struct SceneData {
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
   std::map<std::string, StepCallbackRecord> callbacks;
-  std::array<std::shared_ptr<const StepCallbackOrder>, 2> callback_order;  // pre, post; null after a change
-  std::uint64_t callbacks_version = 0;                                     // counts the changes
+  std::array<CachedCallbackOrder, 2> callback_order;  // pre, post
+  std::uint64_t callbacks_version = 0;                // counts the changes to `callbacks`
   std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
   int next_signal_source = 1;
   // sparse Newton patterns of the last step's large islands, by their sorted body indices
