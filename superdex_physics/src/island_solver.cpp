@@ -65,9 +65,6 @@ bool island_is_sparse(const SceneData& s, const Island& island, const SolverPara
 
 namespace {
 
-// Whether a joint row takes part in a solve: deferred limit rows only when `include_deferred`.
-bool takes_part(const JointRow& row, bool include_deferred) { return !row.deferred || include_deferred; }
-
 // One solve of the island, with or without the deferred joint-limit rows.
 void solve_island_once(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                        const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
@@ -90,10 +87,16 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     n += soft.back()->size();
   }
 
-  int m = 0;
-  for (int b : island.bodies)
-    for (const JointRow& jr : terms[b].joint_rows) m += takes_part(jr, include_deferred);
-  const int joint_rows = m;
+  // the joint rows that take part, in row order: deferred limit rows only when `include_deferred`
+  std::vector<IslandWorkspace::JointRowRef>& solved_rows = w.solved_joint_rows;
+  solved_rows.clear();
+  for (size_t j = 0; j < island.bodies.size(); ++j) {
+    const std::vector<JointRow>& body_rows = terms[island.bodies[j]].joint_rows;
+    for (size_t i = 0; i < body_rows.size(); ++i)
+      if (!body_rows[i].deferred || include_deferred) solved_rows.push_back({static_cast<int>(j), static_cast<int>(i)});
+  }
+  const int joint_rows = static_cast<int>(solved_rows.size());
+  int m = joint_rows;
   const int num_contacts = static_cast<int>(island.contacts.size() + island.soft_contacts.size());
   m += 3 * num_contacts;
 
@@ -121,20 +124,20 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   J_entries.clear();
   rows.blocks.reserve(joint_rows + num_contacts);
   int row = 0;
-  for (int b : island.bodies)
-    for (const JointRow& jr : terms[b].joint_rows) {
-      if (!takes_part(jr, include_deferred)) continue;
-      if (jr.J.size() > 0) {
-        for (Eigen::Index c = 0; c < jr.J.size(); ++c)
-          if (jr.J[c] != 0) J_entries.emplace_back(row, offset[b] + static_cast<int>(c), jr.J[c]);
-      } else {
-        J_entries.emplace_back(row, offset[b] + jr.dof, jr.sign);
-      }
-      ConstraintBlock blk = jr.block;
-      if (jr.deferred) blk.R = deferred_compliance(terms[b], jr, params);
-      blk.row = row++;
-      rows.blocks.push_back(blk);
+  for (const auto [j, i] : solved_rows) {
+    const int b = island.bodies[j];
+    const JointRow& jr = terms[b].joint_rows[i];
+    if (jr.J.size() > 0) {
+      for (Eigen::Index c = 0; c < jr.J.size(); ++c)
+        if (jr.J[c] != 0) J_entries.emplace_back(row, offset[b] + static_cast<int>(c), jr.J[c]);
+    } else {
+      J_entries.emplace_back(row, offset[b] + jr.dof, jr.sign);
     }
+    ConstraintBlock blk = jr.block;
+    if (jr.deferred) blk.R = deferred_compliance(terms[b], jr, params);
+    blk.row = row++;
+    rows.blocks.push_back(blk);
+  }
 
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
@@ -295,18 +298,16 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // the result vectors keep their storage from the last step (the same island, mostly)
   out.v.resize(island.bodies.size());
   out.drive_efforts.resize(island.bodies.size());
-  int jr = 0;
   for (size_t j = 0; j < island.bodies.size(); ++j) {
     const int b = island.bodies[j], nb = s.articulations[b]->model.nv;
     out.v[j] = sol.v.segment(offset[b], nb);
-    // joint drive impulses back to efforts
-    VecX& efforts = out.drive_efforts[j];
-    efforts.setZero(nb);
-    for (const JointRow& row : terms[b].joint_rows) {
-      if (!takes_part(row, include_deferred)) continue;
-      if (row.drive) efforts[row.dof] += row.sign * sol.gamma[jr] / dt;
-      ++jr;
-    }
+    out.drive_efforts[j].setZero(nb);
+  }
+  // joint drive impulses back to efforts
+  for (int k = 0; k < joint_rows; ++k) {
+    const auto [j, i] = solved_rows[k];
+    const JointRow& jr = terms[island.bodies[j]].joint_rows[i];
+    if (jr.drive) out.drive_efforts[j][jr.dof] += jr.sign * sol.gamma[k] / dt;
   }
   out.soft_v.resize(soft.size());
   for (size_t j = 0; j < soft.size(); ++j)

@@ -31,6 +31,12 @@ struct IslandWorkspace {
   std::vector<int> body_offset;   // by articulation index: first variable, or -1 when not in the island
   std::vector<int> soft_offset;   // by soft step index: first variable
   std::vector<SoftStep*> soft;
+  // a joint row that takes part in the solve: the body's position in the island, and the row's
+  // index in its terms' joint_rows
+  struct JointRowRef {
+    int body, row;
+  };
+  std::vector<JointRowRef> solved_joint_rows;  // in the order of their constraint rows
   MatX A;
   SparseMat A_sparse;  // A on the sparse path
   VecX r, v_start;
