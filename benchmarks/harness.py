@@ -105,6 +105,19 @@ class Timer:
         return False
 
 
+def median_episode(episodes: int, episode):
+    """Runs `episode()` `episodes` times in this process; each call builds its simulation, times
+    its stepping loop and returns (wall, extra). Returns the median wall, every wall, and the last
+    episode's extra. For scenes whose timed loop lasts a few milliseconds, where one fresh process
+    per measurement leaves the result to the machine's noise (a timer interrupt, another process)
+    and to the first steps' cold caches."""
+    walls, extra = [], None
+    for _ in range(max(1, episodes)):
+        wall, extra = episode()
+        walls.append(wall)
+    return statistics.median(walls), walls, extra
+
+
 def emit(result: dict) -> None:
     """What a child prints: one JSON line the parent reads."""
     sys.stdout.write("RESULT " + json.dumps(result) + "\n")
