@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <Eigen/CholmodSupport>
+#include <initializer_list>
 #include <mutex>
 
 namespace superdex::physics {
@@ -17,23 +18,37 @@ struct SparseCholesky::Impl {
 
 namespace {
 
+// A function of a library that CHOLMOD loaded: searched in the global scope, then in the library
+// itself, which a Python extension module's dependencies are not part of (they are loaded with
+// RTLD_LOCAL); null when absent.
+void* library_function(std::initializer_list<const char*> libraries, const char* name) {
+  if (void* fn = dlsym(RTLD_DEFAULT, name)) return fn;
+  for (const char* library : libraries)
+    if (void* handle = dlopen(library, RTLD_LAZY | RTLD_NOLOAD)) {
+      void* fn = dlsym(handle, name);
+      dlclose(handle);  // only drops the reference RTLD_NOLOAD took
+      if (fn) return fn;
+    }
+  return nullptr;
+}
+
 // Our systems are small to medium and the engine runs islands in parallel itself: a threaded
 // BLAS or OpenMP team behind CHOLMOD would spin its threads against ours (and against other
-// scenes stepped on other threads), so both are made single-threaded. OpenMP's thread count is
-// a per-thread setting: it is made once in every thread that factors.
+// scenes stepped on other threads), so both are made single-threaded.
+// CHOLMOD's supernodal factorization opens its OpenMP regions with a team size fixed when it was
+// built (num_threads(4), which OMP_NUM_THREADS and omp_set_num_threads do not override): waking
+// and joining that team cost more than the factorization of a soft prop of 4k tetrahedra. No
+// OpenMP region in the process may be active (max-active-levels 0, a process-wide setting), so
+// every region runs on the thread that opens it.
 void use_serial_blas() {
   static std::once_flag once;
   std::call_once(once, [] {
+    using SetInt = void (*)(int);
     for (const char* name : {"openblas_set_num_threads", "goto_set_num_threads"})
-      if (auto fn = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, name))) fn(1);
+      if (auto fn = reinterpret_cast<SetInt>(library_function({"libopenblas.so.0", "libblas.so.3"}, name))) fn(1);
+    if (auto fn = reinterpret_cast<SetInt>(library_function({"libgomp.so.1"}, "omp_set_max_active_levels"))) fn(0);
   });
-  thread_local bool serial_openmp = false;
-  if (!serial_openmp) {
-    if (auto fn = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) fn(1);
-    serial_openmp = true;
-  }
 }
-
 }  // namespace
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
