@@ -70,6 +70,9 @@ Mat3 polar_rotation(const Mat3& F);
 /// Hessian (N/m), projected to the nearest positive semi-definite matrix when `project_spd`.
 real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
                 Mat12* hessian, bool project_spd);
+/// The gradient and Hessian of tet_energy() alone (the energy is not evaluated).
+void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
+                     Mat12* hessian, bool project_spd);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

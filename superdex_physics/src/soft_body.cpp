@@ -34,37 +34,58 @@ std::vector<Mat3> rotations(const SoftBody& b, const VecX& x0) {
   return R;
 }
 
-// Runs work(t) for every tetrahedron, on the engine's worker threads when it has any.
-template <class Work>
-void for_each_tet(size_t count, Work&& work) {
+// Computes element(t, out) for every tetrahedron and hands each result to scatter(t, out) in
+// tetrahedron order, so that sums come out the same either way: on the engine's worker threads
+// into `buffer` (one T per tetrahedron, kept by the caller across calls) when it has any, else
+// one tetrahedron at a time, without the buffer.
+template <class T, class Element, class Scatter>
+void for_each_tet(size_t count, std::vector<T>& buffer, Element&& element, Scatter&& scatter) {
   EngineData& e = engine_data();
-  auto range = [&](const oneapi::tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t) work(t);
-  };
-  if (e.arena && count > 512)
-    e.arena->execute([&] { oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, count, 256), range); });
-  else
-    range(oneapi::tbb::blocked_range<size_t>(0, count));
+  if (e.arena && count > 512) {
+    buffer.resize(count);
+    e.arena->execute([&] {
+      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, count, 256), [&](const oneapi::tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t < r.end(); ++t) element(t, buffer[t]);
+      });
+    });
+    for (size_t t = 0; t < count; ++t) scatter(t, buffer[t]);
+  } else {
+    T local;
+    for (size_t t = 0; t < count; ++t) {
+      element(t, local);
+      scatter(t, local);
+    }
+  }
 }
 
-// Elastic energy, and optionally its gradient.
-real elastic(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R, VecX* grad) {
-  const size_t M = b.model.tets.size();
-  std::vector<real> energy(M);
-  std::vector<Vec12> g(grad ? M : 0);
-  for_each_tet(M, [&](size_t t) {
-    Vec3 xs[4];
-    gather(b.model.tets[t], x, xs);
-    energy[t] = tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], grad ? &g[t] : nullptr, nullptr, false);
-  });
-  if (grad) {
-    grad->setZero(x.size());
-    for (size_t t = 0; t < M; ++t)
-      for (int i = 0; i < 4; ++i) grad->segment<3>(3 * b.model.tets[t][i]) += g[t].segment<3>(3 * i);
-  }
+// Elastic energy at positions x (J).
+real elastic_energy(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R) {
+  std::vector<real> buffer;
   real total = 0;
-  for (real e : energy) total += e;
+  for_each_tet(
+      b.model.tets.size(), buffer,
+      [&](size_t t, real& energy) {
+        Vec3 xs[4];
+        gather(b.model.tets[t], x, xs);
+        energy = tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, nullptr, false);
+      },
+      [&](size_t, const real& energy) { total += energy; });
   return total;
+}
+
+// Gradient of the elastic energy at positions x (N), into grad (3N).
+void elastic_gradient(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R, std::vector<Vec12>& buffer, VecX& grad) {
+  grad.setZero(x.size());
+  for_each_tet(
+      b.model.tets.size(), buffer,
+      [&](size_t t, Vec12& g) {
+        Vec3 xs[4];
+        gather(b.model.tets[t], x, xs);
+        tet_derivatives(b.model.material[t], b.model.rest[t], xs, R[t], &g, nullptr, false);
+      },
+      [&](size_t t, const Vec12& g) {
+        for (int i = 0; i < 4; ++i) grad.segment<3>(3 * b.model.tets[t][i]) += g.segment<3>(3 * i);
+      });
 }
 
 }  // namespace
@@ -145,9 +166,7 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
   return body;
 }
 
-real soft_elastic_energy(const SoftBody& b, const VecX& x) {
-  return elastic(b, x, rotations(b, b.state.x), nullptr);
-}
+real soft_elastic_energy(const SoftBody& b, const VecX& x) { return elastic_energy(b, x, rotations(b, b.state.x)); }
 
 int SoftPattern::slot(int row, int col) const {
   const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
@@ -196,19 +215,19 @@ std::unique_ptr<SoftPattern> build_pattern(const SoftModel& m) {
 // Adds scale * (projected) element Hessians at positions x into the values of a matrix with the
 // pattern's structure.
 void add_element_hessians(const SoftBody& b, const SoftPattern& p, const VecX& x, const std::vector<Mat3>& R, real scale,
-                          real* values) {
-  const size_t M = b.model.tets.size();
-  std::vector<Mat12> H(M);
-  for_each_tet(M, [&](size_t t) {
-    Vec3 xs[4];
-    gather(b.model.tets[t], x, xs);
-    tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, &H[t], true);
-  });
-  for (size_t t = 0; t < M; ++t) {
-    const int* slots = p.tet_slots.data() + 144 * t;
-    for (int k = 0; k < 144; ++k)
-      if (slots[k] >= 0) values[slots[k]] += scale * H[t](k / 12, k % 12);
-  }
+                          std::vector<Mat12>& buffer, real* values) {
+  for_each_tet(
+      b.model.tets.size(), buffer,
+      [&](size_t t, Mat12& H) {
+        Vec3 xs[4];
+        gather(b.model.tets[t], x, xs);
+        tet_derivatives(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, &H, true);
+      },
+      [&](size_t t, const Mat12& H) {
+        const int* slots = p.tet_slots.data() + 144 * t;
+        for (int k = 0; k < 144; ++k)
+          if (slots[k] >= 0) values[slots[k]] += scale * H(k / 12, k % 12);
+      });
 }
 
 }  // namespace
@@ -232,7 +251,7 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
   }
   // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration
   K0_.assign(pattern.H.nonZeros(), real(0));
-  add_element_hessians(b, pattern, x0, R_, dt * dt, K0_.data());
+  add_element_hessians(b, pattern, x0, R_, dt * dt, hessian_buffer_, K0_.data());
   A = pattern.H;
   if (m.beta > 0)
     Eigen::Map<VecX>(A.valuePtr(), A.nonZeros()) = (m.beta / dt) * Eigen::Map<const VecX>(K0_.data(), A.nonZeros());
@@ -248,14 +267,13 @@ VecX SoftStep::full_velocity(const VecX& v_free) const {
 }
 
 void SoftStep::add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const {
-  VecX grad;
-  elastic(body, x0 + dt * full_velocity(v_free), R_, &grad);
-  for (int f = 0; f < pattern.num_free; ++f) g[f] += dt * grad[pattern.dof_of_free[f]];
+  elastic_gradient(body, x0 + dt * full_velocity(v_free), R_, gradient_buffer_, grad_);
+  for (int f = 0; f < pattern.num_free; ++f) g[f] += dt * grad_[pattern.dof_of_free[f]];
 }
 
 void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const {
   std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), real(0));
-  add_element_hessians(body, pattern, x0 + dt * full_velocity(v_free), R_, dt * dt, K.valuePtr());
+  add_element_hessians(body, pattern, x0 + dt * full_velocity(v_free), R_, dt * dt, hessian_buffer_, K.valuePtr());
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -105,6 +105,11 @@ class SoftStep {
  private:
   std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
   std::vector<real> K0_;    // dt^2 P^T hess Psi(x0) P, in the pattern's value order
+  // working storage of the element loops, kept across the step's Newton iterations: per
+  // tetrahedron results on worker threads, and the gradient on all nodes (3N)
+  mutable std::vector<Mat12> hessian_buffer_;
+  mutable std::vector<Vec12> gradient_buffer_;
+  mutable VecX grad_;
 };
 
 // Total elastic energy at positions x (J).
