@@ -19,10 +19,11 @@ if _requested not in _VALUES:
         f"SUPERDEX_PRECISION={os.environ['SUPERDEX_PRECISION']!r} is not understood: use 'float' (default) or 'double'"
     )
 PRECISION = _VALUES[_requested]
-# The sparse Cholesky behind soft bodies opens small OpenMP regions; by default their threads then
-# spin, taking a core from the engine's own worker threads and from scenes stepped on other
-# threads. Waiting threads sleep instead unless the user chose otherwise (read when the OpenMP
-# runtime loads, with the module below).
+# The sparse Cholesky behind soft bodies opens small OpenMP regions. The engine keeps them on the
+# thread that opens them (sparse_cholesky.cpp); should it not find the OpenMP runtime to tell,
+# their threads would spin between regions, taking a core from the engine's own worker threads
+# and from scenes stepped on other threads. Waiting threads sleep instead unless the user chose
+# otherwise (read when the OpenMP runtime loads, with the module below).
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 

@@ -46,7 +46,7 @@ void use_serial_blas() {
     using SetInt = void (*)(int);
     for (const char* name : {"openblas_set_num_threads", "goto_set_num_threads"})
       if (auto fn = reinterpret_cast<SetInt>(library_function({"libopenblas.so.0", "libblas.so.3"}, name))) fn(1);
-    if (auto fn = reinterpret_cast<SetInt>(library_function({"libgomp.so.1"}, "omp_set_max_active_levels"))) fn(0);
+    if (auto fn = reinterpret_cast<SetInt>(library_function({"libgomp.so.1", "libomp.so.5", "libomp.so"}, "omp_set_max_active_levels"))) fn(0);
   });
 }
 }  // namespace
