@@ -249,26 +249,28 @@ this run's.
 
 - Scene 1 (seed scene): the soft duck's own step is the floor; the seed loop and the C++ pipeline
   differ by little, so control is not where the time goes. The duck has 3839 tetrahedra and 3090
-  free DOFs. A step without contact costs about 40 ms, in one Newton iteration:
-  - element Hessians (the projected Neo-Hookean stress derivative: a 3 x 3 SVD, a 3 x 3 eigen
-    solve and nine rank-one updates per tetrahedron), about a quarter;
-  - CHOLMOD's supernodal numeric factorization, about a quarter;
-  - gradient evaluations in the line search, about a sixth.
-  Fixed so far: the Hessian at the start of the step, computed for the stiffness damping, now also
-  serves the first Newton iteration (one element pass per step instead of two), the element
-  Hessian is assembled by 3 x 3 blocks, and CHOLMOD's OpenMP threads wait passively instead of
-  spinning. That took the physics-only row from 42.5 to 28.5 ms per step (in the runs that
-  made those changes; the machine's speed varies by up to a third between runs), but the
-  seed runs did not get faster: while the ball presses, each step takes several Newton iterations
-  and friction passes, each with a full Hessian and factorization. What remains: 10x and 30x real
-  time mean 0.4 ms and 0.13 ms per step, about 100 times less than one Hessian and one
-  factorization of this mesh. That needs a factorization reused across iterations and steps (a
-  lagged Newton matrix) or a reduced model of the prop, not a constant factor.
-- Scene 5 (soft block): the same per-iteration costs. The fitted exponent varies between runs
-  and machines (1.2 to 1.27 on the Xeon, 1.08 to 1.09 in the two runs on the EPYC, where the
-  1k-tetrahedron block is relatively slower, about 38 ms per step): it is set by the sparse
-  factorization, whose cost grows faster than n for 3-D meshes, and by the per-step costs that
-  do not grow with n. Reusing factorizations across iterations would lower the cost at every size.
+  free DOFs. Found: CHOLMOD's supernodal factorization opens OpenMP regions with a team of four
+  threads fixed when it was built (OMP_NUM_THREADS does not override it), and the calls meant to
+  make the BLAS and OpenMP serial looked their functions up where a Python extension's libraries
+  are not visible, so every factorization woke and joined that team: 30 % of a duck step was
+  spent in futex waits and wake-ups. Fixed: the functions are looked up in the loaded libraries,
+  and OpenMP regions run on the thread that opens them: 120 to 46 ms per seed step, 41 to 17 ms
+  per physics-only step (the benchmark runs before and after), at the same Newton iterations. Earlier fixes: the Hessian at the start
+  of the step, computed for the stiffness damping, also serves the first Newton iteration; the
+  element Hessians are assembled by 3 x 3 blocks; the element loops keep their buffers and skip
+  the energies the line search does not need. What remains, per Newton iteration (about 11 ms;
+  a pressed step takes about 4): the element Hessians (a 3 x 3 SVD, an eigen solve and rank-one
+  updates per tetrahedron) and gradients, about 40 %; the supernodal factorization with its
+  permuted copy of the matrix, about 30 %. Tried: keeping the last factorization while the
+  residual falls fourfold per iteration; the iterations taken with it fall too slowly, and the
+  pressed step gained 5 %, so it was not kept. 10x and 30x real time mean 0.4 ms and 0.13 ms per
+  step, 25 to 100 times less than one Hessian and one factorization of this mesh: that needs a
+  reduced model of the prop (modal or coarser mesh), not a constant factor.
+- Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
+  exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.09 on the EPYC):
+  it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
+  the per-step costs that do not grow with n. CHOLMOD now keeps the sparser of AMD's and METIS's
+  orderings (its default tries METIS only for very dense factors): 5k block 105 to 76 ms per step.
 - Scene 4 (pile). Found: every Newton iteration re-ran CHOLMOD's symbolic analysis and built
   J^T G J by sparse products; Newton started from the free motion, so a settled pile took about
   12 iterations per step; each friction pass started over. Fixed: a solve starts from the current
