@@ -49,9 +49,11 @@ void use_serial_blas() {
     if (auto fn = reinterpret_cast<SetInt>(library_function({"libgomp.so.1", "libomp.so.5", "libomp.so"}, "omp_set_max_active_levels"))) fn(0);
   });
 }
+
 }  // namespace
 
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
+  // process-wide and once: every factorization is of a constructed object
   use_serial_blas();
   impl_->llt.cholmod().print = 0;  // failures are reported through factorize()
   // the fill-reducing ordering with the sparsest factor of AMD's and METIS's (CHOLMOD's default
@@ -62,13 +64,11 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<real>& H) {
-  use_serial_blas();
   impl_->H = H.cast<double>();
   impl_->llt.analyzePattern(impl_->H);
 }
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<real>& H) {
-  use_serial_blas();
   // the analysed structure: only the values change (no reallocation)
   if (impl_->H.nonZeros() == H.nonZeros() && impl_->H.rows() == H.rows() && H.isCompressed())
     Eigen::Map<Eigen::VectorXd>(impl_->H.valuePtr(), H.nonZeros()) =
