@@ -206,15 +206,12 @@ Mat9 neo_hookean_projected_stress_derivative(const ElasticMaterial& m, const Mat
   return H;
 }
 
-real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
-                Mat12* hessian, bool project_spd) {
-  tet_derivatives(m, rest, x, R, gradient, hessian, project_spd);
-  return rest.volume * energy_density(m, deformation_gradient(rest, x), R);
-}
+namespace {
 
-void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
-                     Mat12* hessian, bool project_spd) {
-  const Mat3 F = deformation_gradient(rest, x);
+// The gradient and Hessian of an element at deformation gradient F (tet_derivatives()).
+void derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F, const Mat3& R, Vec12* gradient,
+                    Mat12* hessian, bool project_spd) {
+  if (!gradient && !hessian) return;
   // F = Ds Dm^-1 is linear in the node positions: dF(i, j)/dx_a(c) = delta_ic D(a, j), with D's
   // rows those of Dm^-1 for nodes 1-3 and minus their sum for node 0
   Eigen::Matrix<real, 4, 3> D;
@@ -250,6 +247,20 @@ void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* 
         if (b != a) hessian->block<3, 3>(3 * b, 3 * a) = block.transpose();
       }
   }
+}
+
+}  // namespace
+
+real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
+                Mat12* hessian, bool project_spd) {
+  const Mat3 F = deformation_gradient(rest, x);
+  derivatives_at(m, rest, F, R, gradient, hessian, project_spd);
+  return rest.volume * energy_density(m, F, R);
+}
+
+void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
+                     Mat12* hessian, bool project_spd) {
+  derivatives_at(m, rest, deformation_gradient(rest, x), R, gradient, hessian, project_spd);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
