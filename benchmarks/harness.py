@@ -105,17 +105,19 @@ class Timer:
         return False
 
 
-def median_episode(episodes: int, episode):
-    """Runs `episode()` `episodes` times in this process; each call builds its simulation, times
-    its stepping loop and returns (wall, extra). Returns the median wall, every wall, and the last
-    episode's extra. For scenes whose timed loop lasts a few milliseconds, where one fresh process
-    per measurement leaves the result to the machine's noise (a timer interrupt, another process)
-    and to the first steps' cold caches."""
-    walls, extra = [], None
-    for _ in range(max(1, episodes)):
-        wall, extra = episode()
+def median_of_episodes(case: dict, episode) -> dict:
+    """Runs `episode(case)` case["episodes"] times (default 1) in this process; each call builds
+    its simulation, times its stepping loop and returns (wall, result). Returns the last
+    episode's result with the median wall as "wall" and every wall as "episode_walls". For scenes
+    whose timed loop lasts a few milliseconds, where one fresh process per measurement leaves the
+    result to the machine's noise (a timer interrupt, another process) and to the first steps'
+    cold caches."""
+    walls, result = [], None
+    for _ in range(max(1, case.get("episodes", 1))):
+        wall, result = episode(case)
         walls.append(wall)
-    return statistics.median(walls), walls, extra
+    result.update(wall=statistics.median(walls), episode_walls=walls)
+    return result
 
 
 def emit(result: dict) -> None:

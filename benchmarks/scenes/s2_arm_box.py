@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmarks.harness import Timer, median_episode
+from benchmarks.harness import Timer, median_of_episodes
 from benchmarks.scenes import arm
 
 NUMBER = 2
@@ -29,9 +29,7 @@ def cases(opts):
 
 
 def run_case(case):
-    wall, walls, result = median_episode(case.get("episodes", 1), lambda: run_episode(case))
-    result.update(wall=wall, episode_walls=walls)
-    return result
+    return median_of_episodes(case, run_episode)
 
 
 def run_episode(case):

@@ -17,7 +17,7 @@ import tempfile
 
 import numpy as np
 
-from benchmarks.harness import Timer, median_episode
+from benchmarks.harness import Timer, median_of_episodes
 from benchmarks.models import build_pybullet, build_superdex, mujoco_set_default_pose, to_mjcf
 from benchmarks.scenes import panda
 
@@ -159,9 +159,7 @@ SIM_CLASSES = {"superdex": SuperDex, "mujoco": MuJoCo, "pybullet": PyBullet}
 
 
 def run_case(case):
-    wall, walls, result = median_episode(case.get("episodes", 1), lambda: run_episode(case))
-    result.update(wall=wall, episode_walls=walls)
-    return result
+    return median_of_episodes(case, run_episode)
 
 
 def run_episode(case):

@@ -5,7 +5,6 @@ team size; left alone, the first factorization starts a team of threads that eve
 wakes and joins, which cost more than the factorization itself. The engine keeps every OpenMP
 region on its opening thread: stepping a soft prop starts no OpenMP team."""
 
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -37,8 +36,7 @@ print("THREADS", before, threads(), gomp.omp_get_max_active_levels())
 
 def test_stepping_a_soft_prop_starts_no_openmp_team():
     # a fresh process: threads that an earlier test started would hide the ones this one looks for
-    run = subprocess.run([sys.executable, "-c", CHILD, str(DUCK)], capture_output=True, text=True, timeout=300,
-                         env=dict(os.environ))
+    run = subprocess.run([sys.executable, "-c", CHILD, str(DUCK)], capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-3000:]
     line = [x for x in run.stdout.splitlines() if x.startswith("THREADS ")][-1]
     before, after, max_active_levels = (int(x) for x in line.split()[1:])
