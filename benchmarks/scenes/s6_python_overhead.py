@@ -6,7 +6,7 @@ every call fills caller-owned arrays where the API allows, as a control loop wou
 |---|---|---|
 | arm.get_articulated_joint_velocities(out) | out[:] = data.qvel | getJointStates(arm, joints) |
 | arm.get_articulated_link_transforms(out) | copy data.xpos and data.xquat | getLinkStates(arm, links) |
-| hand.get_articulated_jacobian() | mj_jacBody(model, data, jacp, jacr, hand) | calculateJacobian(arm, hand, ...) |
+| hand.get_articulated_jacobian(out) | mj_jacBody(model, data, jacp, jacr, hand) | calculateJacobian(arm, hand, ...) |
 | arm.set_external_forces_on_dofs(dofs, f) | data.qfrc_applied[:] = f | setJointMotorControlArray(TORQUE_CONTROL) |
 | scene.step(dt) | mj_step(model, data) | stepSimulation() |
 """
@@ -58,10 +58,11 @@ def functions(sim):
         real = np.float64 if sdp.uses_double_precision() else np.float32
         v = np.zeros(arm.get_num_dofs(), dtype=real)
         xf = sdp.DynamicArrayTransformRT(len(arm.get_nested_link_actors()))
+        J = np.zeros(6 * arm.get_num_dofs(), dtype=real)
         dofs = list(range(7))
         return {"get_articulated_joint_velocities": lambda: arm.get_articulated_joint_velocities(v),
                 "get_articulated_link_transforms": lambda: arm.get_articulated_link_transforms(xf),
-                "get_articulated_jacobian": lambda: hand.get_articulated_jacobian(),
+                "get_articulated_jacobian": lambda: hand.get_articulated_jacobian(J),
                 "set_external_forces_on_dofs": lambda: arm.set_external_forces_on_dofs(dofs, tau),
                 "step": lambda: scene.step(DT)}, sdp.shutdown
     if sim == "mujoco":

@@ -151,10 +151,17 @@ void export_actor(nb::module_& m) {
       .def("set_articulated_joint_velocities", [](Actor& a, nb::handle v) {
              a.scene.set_joint_velocities(a.handle, read_vector(v, "set_articulated_joint_velocities: velocities"));
            }, "velocities"_a)
-      .def("get_articulated_jacobian", [](const Actor& a) {
-             const MatXR J = a.scene.link_jacobian(a.handle);
-             return numpy_copy(J.data(), {static_cast<size_t>(J.size())});
-           }, "Flat row-major 6 x num_dofs Jacobian of this link: rows 0-2 velocity of the link origin, rows 3-5 angular velocity, world frame.")
+      .def("get_articulated_jacobian", [](const Actor& a, nb::handle out) -> nb::object {
+             // one buffer per thread: no allocation per call once it has the articulation's size
+             thread_local MatXR J_WL;
+             a.scene.link_jacobian(a.handle, J_WL);
+             if (out.is_none()) return nb::cast(numpy_copy(J_WL.data(), {static_cast<size_t>(J_WL.size())}));
+             real* dst = out_buffer(out, "get_articulated_jacobian: out", static_cast<size_t>(J_WL.size()));
+             std::copy(J_WL.data(), J_WL.data() + J_WL.size(), dst);
+             return nb::borrow(out);
+           }, "out"_a.none() = nb::none(),
+           "Flat row-major 6 x num_dofs Jacobian of this link: rows 0-2 velocity of the link origin, rows 3-5 angular velocity,\n"
+           "world frame. Filled into `out` (a contiguous array of 6 * num_dofs reals) when given, else a new array.")
       .def("get_articulated_mass_matrix", [](const Actor& a) { return matrix_to_numpy(a.scene.mass_matrix(a.handle)); },
            "Joint-space mass matrix (num_dofs x num_dofs), armature included.")
       .def("get_articulated_bias_forces", [](const Actor& a) { return numpy_copy(a.scene.bias_forces(a.handle)); },

@@ -316,10 +316,14 @@ VecX Scene::joint_drive_efforts(ActorHandle h) const {
 }
 
 MatXR Scene::link_jacobian(ActorHandle h) const {
-  auto [a, link] = link_of(scene_data(handle_), h, "get_articulated_jacobian");
   MatXR J;
-  link_jacobian_world(a->model, a->kin, link, J);
+  link_jacobian(h, J);
   return J;
+}
+
+void Scene::link_jacobian(ActorHandle h, MatXR& J_WL) const {
+  auto [a, link] = link_of(scene_data(handle_), h, "get_articulated_jacobian");
+  link_jacobian_world(a->model, a->kin, link, J_WL);
 }
 
 MatX Scene::mass_matrix(ActorHandle h) const {

@@ -146,6 +146,12 @@ def test_articulation_api(scene):
     # about its own origin: angular only
     np.testing.assert_allclose(J[:, 0], [-0.5, 0, 0, 0, 1, 0], atol=1e-6)
     np.testing.assert_allclose(J[:, 1], [0, 0, 0, 0, 1, 0], atol=1e-6)
+    # the same values into a caller-owned array, which is returned
+    J_out = np.full(12, np.nan, dtype=real_dtype())
+    assert link2.get_articulated_jacobian(out=J_out) is J_out
+    np.testing.assert_array_equal(J_out, J.ravel())
+    with pytest.raises(sdp.Error, match="get_articulated_jacobian: out"):
+        link2.get_articulated_jacobian(out=np.zeros(6, dtype=real_dtype()))
 
 
 def test_external_forces_replace_the_set(scene):

@@ -259,6 +259,8 @@ class Scene {
   void set_joint_velocities(ActorHandle articulation, const VecX& v);
   /// J_WL of a link (6 x num_dofs, linear rows first, world axes, at the link origin).
   MatXR link_jacobian(ActorHandle link) const;
+  /// The same into `J_WL` (resized; no allocation when it has the size already).
+  void link_jacobian(ActorHandle link, MatXR& J_WL) const;
   /// M(q) with armature (nv x nv).
   MatX mass_matrix(ActorHandle articulation) const;
   /// c(q, v) including gravity: M vdot + c = tau.
