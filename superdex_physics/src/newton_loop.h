@@ -58,6 +58,9 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
 
   real best = std::numeric_limits<real>::infinity();
   int stalled = 0;
+  // the line search's last trial evaluates the smooth gradient at its point; when that point is
+  // the next iterate, the gradient carries over instead of being evaluated again
+  bool smooth_grad_at_v = false;
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
       alg.J_mul(out.v, vc);
@@ -71,8 +74,10 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     grad = Av_r - jc;
     real scale = std::max(r_norm, (D.asDiagonal() * jc).norm());
     if (smooth) {
-      smooth_grad.setZero(n);
-      alg.add_smooth_gradient(out.v, smooth_grad);
+      if (!smooth_grad_at_v) {
+        smooth_grad.setZero(n);
+        alg.add_smooth_gradient(out.v, smooth_grad);
+      }
       grad += smooth_grad;
       scale = std::max(scale, (D.asDiagonal() * smooth_grad).norm());
     }
@@ -109,6 +114,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     // elastic energy each trial costs a gradient evaluation, and a strong-Wolfe-like reduction
     // of the slope keeps Newton's convergence
     const real line_search_tolerance = smooth ? real(0.05) : real(1e-10);
+    real evaluated_alpha = -1;  // the step at which smooth_grad was last evaluated
     auto dphi = [&](real alpha, real* ddphi) {
       real d = a0 + alpha * a1, dd = a1 + curvature;
       if (m > 0) {
@@ -130,6 +136,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
         smooth_grad.setZero(n);
         alg.add_smooth_gradient(v_alpha, smooth_grad);
         d += dv.dot(smooth_grad);
+        evaluated_alpha = alpha;
       }
       if (ddphi) *ddphi = dd;
       return d;
@@ -149,7 +156,12 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
         alpha = next;
       }
     }
-    out.v += alpha * dv;
+    smooth_grad_at_v = smooth && evaluated_alpha == alpha;
+    if (smooth_grad_at_v) {
+      out.v.swap(v_alpha);  // the trial point itself, so that the kept gradient is exactly its own
+    } else {
+      out.v += alpha * dv;
+    }
     if (alpha * dv.norm() <= 4 * std::numeric_limits<real>::epsilon() * (out.v.norm() + 1)) {
       // no further progress is possible at this precision
       if (m > 0) {
