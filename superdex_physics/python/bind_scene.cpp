@@ -112,6 +112,7 @@ void export_scene(nb::module_& m) {
       .def_rw("defer_inactive_joint_limits", &SolverParams::defer_inactive_joint_limits)
       .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance)
       .def_rw("friction_pass_min_slip", &SolverParams::friction_pass_min_slip)
+      .def_rw("soft_hessian_reuse_strain", &SolverParams::soft_hessian_reuse_strain)
       .def_rw("dense_island_max_dofs", &SolverParams::dense_island_max_dofs);
 
   nb::class_<SolverStats>(m, "SolverStats", "What the last step did.")
@@ -122,6 +123,7 @@ void export_scene(nb::module_& m) {
       .def_ro("num_islands", &SolverStats::num_islands)
       .def_ro("num_constraints", &SolverStats::num_constraints)
       .def_ro("num_contacts", &SolverStats::num_contacts)
+      .def_ro("soft_element_hessians", &SolverStats::soft_element_hessians)
       .def_ro("time_kinematics", &SolverStats::time_kinematics)
       .def_ro("time_collision", &SolverStats::time_collision)
       .def_ro("time_solve", &SolverStats::time_solve)

@@ -206,10 +206,7 @@ Mat9 neo_hookean_projected_stress_derivative(const ElasticMaterial& m, const Mat
   return H;
 }
 
-namespace {
-
-// The gradient and Hessian of an element at deformation gradient F (tet_derivatives()).
-void derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F, const Mat3& R, Vec12* gradient,
+void tet_derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F, const Mat3& R, Vec12* gradient,
                     Mat12* hessian, bool project_spd) {
   if (!gradient && !hessian) return;
   // F = Ds Dm^-1 is linear in the node positions: dF(i, j)/dx_a(c) = delta_ic D(a, j), with D's
@@ -249,18 +246,16 @@ void derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F
   }
 }
 
-}  // namespace
-
 real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
                 Mat12* hessian, bool project_spd) {
   const Mat3 F = deformation_gradient(rest, x);
-  derivatives_at(m, rest, F, R, gradient, hessian, project_spd);
+  tet_derivatives_at(m, rest, F, R, gradient, hessian, project_spd);
   return rest.volume * energy_density(m, F, R);
 }
 
 void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
                      Mat12* hessian, bool project_spd) {
-  derivatives_at(m, rest, deformation_gradient(rest, x), R, gradient, hessian, project_spd);
+  tet_derivatives_at(m, rest, deformation_gradient(rest, x), R, gradient, hessian, project_spd);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -73,6 +73,9 @@ real tet_energy(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, co
 /// The gradient and Hessian of tet_energy() alone (the energy is not evaluated).
 void tet_derivatives(const ElasticMaterial& m, const TetRest& rest, const Vec3* x, const Mat3& R, Vec12* gradient,
                      Mat12* hessian, bool project_spd);
+/// The same at a deformation gradient F = deformation_gradient(rest, x) already computed.
+void tet_derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F, const Mat3& R, Vec12* gradient,
+                        Mat12* hessian, bool project_spd);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -45,6 +45,8 @@ void Scene::set_solver_params(const SolverParams& p) {
   if (p.max_friction_passes < 0) throw Error("set_solver_params: max_friction_passes must be >= 0");
   if (!(p.friction_pass_tolerance >= 0)) throw Error("set_solver_params: friction_pass_tolerance must be >= 0");
   if (!(p.friction_pass_min_slip >= 0)) throw Error("set_solver_params: friction_pass_min_slip must be >= 0");
+  if (!(p.soft_hessian_reuse_strain >= 0) || !std::isfinite(p.soft_hessian_reuse_strain))
+    throw Error("set_solver_params: soft_hessian_reuse_strain must be finite and >= 0");
   if (p.dense_island_max_dofs < 0) throw Error("set_solver_params: dense_island_max_dofs must be >= 0");
   scene_data(handle_).params = p;
 }
@@ -348,7 +350,7 @@ void Scene::step_dynamics(real dt) {
   chunk_seconds.assign(pairs.num_chunks(), 0);
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
-      if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt);
+      if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
     } else if (i < num_soft + n) {
       articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params, terms[i - num_soft]);
     } else {
@@ -487,6 +489,8 @@ void Scene::step_dynamics(real dt) {
   stats.num_contacts = static_cast<int>(contacts.size());
   stats.time_collision = time_collision;
   for (const ArticulationTerms& t : terms) stats.time_kinematics += t.seconds;
+  for (const auto& st : soft_steps)
+    if (st) stats.soft_element_hessians += st->element_hessians();
   for (const IslandSolution& sol : solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;

@@ -37,17 +37,22 @@ std::vector<Mat3> rotations(const SoftBody& b, const VecX& x0) {
 // Computes element(t, out) for every tetrahedron and hands each result to scatter(t, out) in
 // tetrahedron order, so that sums come out the same either way: on the engine's worker threads
 // into `buffer` (one T per tetrahedron, kept by the caller across calls) when it has any, else
-// one tetrahedron at a time, without the buffer.
+// one tetrahedron at a time, without the buffer unless `keep` asks for every result in it.
 template <class T, class Element, class Scatter>
-void for_each_tet(size_t count, std::vector<T>& buffer, Element&& element, Scatter&& scatter) {
+void for_each_tet(size_t count, std::vector<T>& buffer, Element&& element, Scatter&& scatter, bool keep = false) {
   EngineData& e = engine_data();
-  if (e.arena && count > 512) {
+  const bool parallel = e.arena && count > 512;
+  if (parallel || keep) {
     buffer.resize(count);
-    e.arena->execute([&] {
-      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, count, 256), [&](const oneapi::tbb::blocked_range<size_t>& r) {
-        for (size_t t = r.begin(); t < r.end(); ++t) element(t, buffer[t]);
+    if (parallel) {
+      e.arena->execute([&] {
+        oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<size_t>(0, count, 256), [&](const oneapi::tbb::blocked_range<size_t>& r) {
+          for (size_t t = r.begin(); t < r.end(); ++t) element(t, buffer[t]);
+        });
       });
-    });
+    } else {
+      for (size_t t = 0; t < count; ++t) element(t, buffer[t]);
+    }
     for (size_t t = 0; t < count; ++t) scatter(t, buffer[t]);
   } else {
     T local;
@@ -212,28 +217,22 @@ std::unique_ptr<SoftPattern> build_pattern(const SoftModel& m) {
   return p;
 }
 
-// Adds scale * (projected) element Hessians at positions x into the values of a matrix with the
-// pattern's structure.
-void add_element_hessians(const SoftBody& b, const SoftPattern& p, const VecX& x, const std::vector<Mat3>& R, real scale,
-                          std::vector<Mat12>& buffer, real* values) {
-  for_each_tet(
-      b.model.tets.size(), buffer,
-      [&](size_t t, Mat12& H) {
-        Vec3 xs[4];
-        gather(b.model.tets[t], x, xs);
-        tet_derivatives(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, &H, true);
-      },
-      [&](size_t t, const Mat12& H) {
-        const int* slots = p.tet_slots.data() + 144 * t;
-        for (int k = 0; k < 144; ++k)
-          if (slots[k] >= 0) values[slots[k]] += scale * H(k / 12, k % 12);
-      });
+// Adds scale * H, the Hessian of tetrahedron t, into the values of a matrix with the pattern's
+// structure (pinned DOFs left out).
+void scatter_hessian(const SoftPattern& p, size_t t, real scale, const Mat12& H, real* values) {
+  const int* slots = p.tet_slots.data() + 144 * t;
+  for (int k = 0; k < 144; ++k)
+    if (slots[k] >= 0) values[slots[k]] += scale * H(k / 12, k % 12);
 }
 
 }  // namespace
 
-SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
-    : body(b), pattern(*(b.pattern ? b.pattern : (b.pattern = build_pattern(b.model))).get()), dt(dt_), x0(b.state.x) {
+SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
+    : body(b),
+      pattern(*(b.pattern ? b.pattern : (b.pattern = build_pattern(b.model))).get()),
+      dt(dt_),
+      x0(b.state.x),
+      reuse_strain_(reuse_strain) {
   const SoftModel& m = b.model;
   const int nf = pattern.num_free;
   R_ = rotations(b, x0);
@@ -250,8 +249,20 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_)
     r[f] = mass[f] * v0[f] + dt * (mass[f] * g_W[d % 3] + b.state.tau_external[d]);
   }
   // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration
+  // the element Hessians at x0 are kept, with their deformation gradients, for the iterations
+  // that reuse them (hessian())
   K0_.assign(pattern.H.nonZeros(), real(0));
-  add_element_hessians(b, pattern, x0, R_, dt * dt, hessian_buffer_, K0_.data());
+  F0_.resize(m.tets.size());
+  for_each_tet(
+      m.tets.size(), H0_,
+      [&](size_t t, Mat12& H) {
+        Vec3 xs[4];
+        gather(m.tets[t], x0, xs);
+        F0_[t] = deformation_gradient(m.rest[t], xs);
+        tet_derivatives_at(m.material[t], m.rest[t], F0_[t], R_[t], nullptr, &H, true);
+      },
+      [&](size_t t, const Mat12& H) { scatter_hessian(pattern, t, dt * dt, H, K0_.data()); }, true);
+  element_hessians_ = static_cast<int>(m.tets.size());
   A = pattern.H;
   if (m.beta > 0)
     Eigen::Map<VecX>(A.valuePtr(), A.nonZeros()) = (m.beta / dt) * Eigen::Map<const VecX>(K0_.data(), A.nonZeros());
@@ -272,8 +283,31 @@ void SoftStep::add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<Vec
 }
 
 void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const {
-  std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), real(0));
-  add_element_hessians(body, pattern, x0 + dt * full_velocity(v_free), R_, dt * dt, hessian_buffer_, K.valuePtr());
+  const SoftModel& m = body.model;
+  const VecX x = x0 + dt * full_velocity(v_free);
+  std::copy(K0_.begin(), K0_.end(), K.valuePtr());
+  // the elements deformed beyond the reuse strain since x0 (or not finite) replace their
+  // Hessian at x0 by the one at x; the others keep it
+  changed_.clear();
+  changed_F_.clear();
+  for (size_t t = 0; t < m.tets.size(); ++t) {
+    Vec3 xs[4];
+    gather(m.tets[t], x, xs);
+    const Mat3 F = deformation_gradient(m.rest[t], xs);
+    if (!((F - F0_[t]).cwiseAbs().maxCoeff() <= reuse_strain_)) {
+      changed_.push_back(static_cast<int>(t));
+      changed_F_.push_back(F);
+    }
+  }
+  for_each_tet(
+      changed_.size(), hessian_buffer_,
+      [&](size_t i, Mat12& H) {
+        const int t = changed_[i];
+        tet_derivatives_at(m.material[t], m.rest[t], changed_F_[i], R_[t], nullptr, &H, true);
+        H -= H0_[t];
+      },
+      [&](size_t i, const Mat12& H) { scatter_hessian(pattern, changed_[i], dt * dt, H, K.valuePtr()); });
+  element_hessians_ += static_cast<int>(changed_.size());
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -78,7 +78,8 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
 // One soft body's part of an island's convex problem for one step, in its free DOFs.
 class SoftStep {
  public:
-  SoftStep(SoftBody& body, const Vec3& g_W, real dt);
+  // `reuse_strain`: SolverParams::soft_hessian_reuse_strain.
+  SoftStep(SoftBody& body, const Vec3& g_W, real dt, real reuse_strain);
 
   SoftBody& body;
   const SoftPattern& pattern;
@@ -96,15 +97,25 @@ class SoftStep {
   // g += dt P^T grad Psi(x0 + dt v) (N s): the elastic part of the gradient.
   void add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const;
   // K = dt^2 P^T hess Psi(x0 + dt v) P, element Hessians projected to be positive semi-definite;
-  // K must have the pattern's structure (its values are overwritten).
+  // K must have the pattern's structure (its values are overwritten). An element whose
+  // deformation gradient differs from its value at x0 by no more than the reuse strain in every
+  // entry keeps its Hessian at x0: only the Newton direction changes, not the problem solved.
   void hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const;
   // K at the start of the step, x0 (computed once with the stiffness damping): the Hessian of a
   // first Newton iteration, which starts from v0 and so differs from x0 by dt v0 only.
   void start_hessian(Eigen::SparseMatrix<real>& K) const;
+  // Element Hessians computed so far in this step (at x0 and by hessian()).
+  int element_hessians() const { return element_hessians_; }
 
  private:
   std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
   std::vector<real> K0_;    // dt^2 P^T hess Psi(x0) P, in the pattern's value order
+  real reuse_strain_;       // largest change of an entry of F for which an element keeps its Hessian at x0
+  std::vector<Mat3> F0_;    // per tetrahedron: the deformation gradient at x0
+  std::vector<Mat12> H0_;   // per tetrahedron: its (projected) Hessian at x0, unscaled
+  mutable std::vector<int> changed_;   // tetrahedra whose Hessian the current iterate recomputes
+  mutable std::vector<Mat3> changed_F_;  // and their deformation gradients there
+  mutable int element_hessians_ = 0;
   // working storage of the element loops, kept across the step's Newton iterations: per
   // tetrahedron results on worker threads, and the gradient on all nodes (3N)
   mutable std::vector<Mat12> hessian_buffer_;

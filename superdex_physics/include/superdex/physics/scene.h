@@ -84,6 +84,12 @@ struct SolverParams {
   /// them. The result is the same (a left-out row contributes nothing where it is inactive);
   /// only the cost differs. false keeps every limit row in every solve.
   bool defer_inactive_joint_limits = true;
+  /// Soft bodies: a Newton iteration after the first recomputes the Hessian only of the elements
+  /// whose deformation gradient changed by more than this (in any entry, dimensionless) since
+  /// the start of the step; the others keep their Hessian there. The problem and its tolerance
+  /// are unchanged (the gradient is always exact); only the Newton direction is approximate.
+  /// 0 recomputes every element that moved.
+  real soft_hessian_reuse_strain = real(1e-3);
 };
 
 /// What the last step did.
@@ -95,6 +101,7 @@ struct SolverStats {
   int num_islands = 0;
   int num_constraints = 0;        ///< active constraint rows (limits, friction)
   int num_contacts = 0;
+  int soft_element_hessians = 0;  ///< element Hessians of soft bodies computed (see SolverParams::soft_hessian_reuse_strain)
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
   double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves
