@@ -5,15 +5,31 @@
 #include <dlfcn.h>
 
 #include <Eigen/CholmodSupport>
+#include <algorithm>
 #include <initializer_list>
+#include <utility>
+#include <vector>
 #include <mutex>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
+// CHOLMOD's supernodal Cholesky with access to its factor (the ordering it chose).
+class SupernodalLlt : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> {
+ public:
+  const cholmod_factor* factor() const { return m_cholmodFactor; }
+};
+
+// The factorization is of S = P H P^T, kept as its lower triangle in the order CHOLMOD's
+// analysis chose (fill-reducing, then postordered), and analysed again with the natural ordering:
+// CHOLMOD then factors S as it is stored, where with its own ordering every factorization first
+// built the permuted transpose of H (cholmod_transpose_sym, some 6 % of a soft step).
 struct SparseCholesky::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
-  Eigen::SparseMatrix<double> H;  // double copy of the matrix being factored
+  SupernodalLlt llt;
+  Eigen::SparseMatrix<double> S;  // lower triangle of P H P^T
+  std::vector<int> source;        // S.valuePtr()[k] = H.valuePtr()[source[k]]
+  std::vector<int> perm;          // row k of S is row perm[k] of H
+  Eigen::Index rows = -1, nonzeros = -1;  // H's analysed structure
 };
 
 namespace {
@@ -56,27 +72,65 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
   // process-wide and once: every factorization is of a constructed object
   use_serial_blas();
   impl_->llt.cholmod().print = 0;  // failures are reported through factorize()
-  // the fill-reducing ordering with the sparsest factor of AMD's and METIS's (CHOLMOD's default
-  // tries METIS only when AMD's factor is very dense): nested dissection suits the 3-D meshes of
-  // soft bodies, and the analysis runs once per pattern
-  impl_->llt.cholmod().nmethods = 3;
 }
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<real>& H) {
-  impl_->H = H.cast<double>();
-  impl_->llt.analyzePattern(impl_->H);
+  Impl& m = *impl_;
+  const int n = static_cast<int>(H.rows());
+  Eigen::SparseMatrix<real> Hc = H;
+  Hc.makeCompressed();
+  // the fill-reducing ordering with the sparsest factor of AMD's and METIS's (CHOLMOD's default
+  // tries METIS only when AMD's factor is very dense): nested dissection suits the 3-D meshes of
+  // soft bodies, and the analysis runs once per pattern
+  cholmod_common& c = m.llt.cholmod();
+  c.nmethods = 3;
+  c.postorder = 1;
+  m.llt.analyzePattern(Hc.cast<double>());
+  const cholmod_factor* L = m.llt.factor();
+  m.perm.resize(n);
+  const auto* P = static_cast<const int*>(L->Perm);
+  for (int k = 0; k < n; ++k) m.perm[k] = P ? P[k] : k;
+  // S = P H P^T, lower triangle, each column's rows ascending, with the source of each value
+  std::vector<int> inverse(n);
+  for (int k = 0; k < n; ++k) inverse[m.perm[k]] = k;
+  std::vector<std::vector<std::pair<int, int>>> columns(n);  // per column of S: (row, index into H's values)
+  for (int col = 0; col < n; ++col)
+    for (int idx = Hc.outerIndexPtr()[col]; idx < Hc.outerIndexPtr()[col + 1]; ++idx) {
+      const int i = inverse[Hc.innerIndexPtr()[idx]], j = inverse[col];
+      if (i >= j) columns[j].emplace_back(i, idx);
+    }
+  m.S.resize(n, n);
+  m.S.resizeNonZeros(0);
+  m.source.clear();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < n; ++j) {
+    std::sort(columns[j].begin(), columns[j].end());
+    for (const auto& [i, idx] : columns[j]) {
+      entries.emplace_back(i, j, 0.0);
+      m.source.push_back(idx);
+    }
+  }
+  m.S.setFromTriplets(entries.begin(), entries.end());
+  m.S.makeCompressed();
+  // S is already in the chosen order: analysed as it is (no ordering, no postorder)
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_NATURAL;
+  c.postorder = 0;
+  m.llt.analyzePattern(m.S);
+  m.rows = n;
+  m.nonzeros = Hc.nonZeros();
 }
 
 bool SparseCholesky::factorize(const Eigen::SparseMatrix<real>& H) {
+  Impl& m = *impl_;
+  if (!(H.isCompressed() && H.rows() == m.rows && H.nonZeros() == m.nonzeros)) analyze(H);
   // the analysed structure: only the values change (no reallocation)
-  if (impl_->H.nonZeros() == H.nonZeros() && impl_->H.rows() == H.rows() && H.isCompressed())
-    Eigen::Map<Eigen::VectorXd>(impl_->H.valuePtr(), H.nonZeros()) =
-        Eigen::Map<const VecX>(H.valuePtr(), H.nonZeros()).cast<double>();
-  else
-    impl_->H = H.cast<double>();
-  impl_->llt.factorize(impl_->H);
-  return impl_->llt.info() == Eigen::Success;
+  const real* values = H.valuePtr();
+  double* out = m.S.valuePtr();
+  for (size_t k = 0; k < m.source.size(); ++k) out[k] = values[m.source[k]];
+  m.llt.factorize(m.S);
+  return m.llt.info() == Eigen::Success;
 }
 
 bool SparseCholesky::compute(const Eigen::SparseMatrix<real>& H) {
@@ -85,13 +139,25 @@ bool SparseCholesky::compute(const Eigen::SparseMatrix<real>& H) {
 }
 
 VecX SparseCholesky::solve(const VecX& b) const {
-  const Eigen::VectorXd x = impl_->llt.solve(b.cast<double>());
-  return x.cast<real>();
+  const Impl& m = *impl_;
+  const int n = static_cast<int>(m.perm.size());
+  Eigen::VectorXd bp(n);
+  for (int k = 0; k < n; ++k) bp[k] = b[m.perm[k]];
+  const Eigen::VectorXd xp = m.llt.solve(bp);
+  VecX x(n);
+  for (int k = 0; k < n; ++k) x[m.perm[k]] = static_cast<real>(xp[k]);
+  return x;
 }
 
 MatX SparseCholesky::solve(const MatX& b) const {
-  const Eigen::MatrixXd x = impl_->llt.solve(b.cast<double>());
-  return x.cast<real>();
+  const Impl& m = *impl_;
+  const int n = static_cast<int>(m.perm.size());
+  Eigen::MatrixXd bp(n, b.cols());
+  for (int k = 0; k < n; ++k) bp.row(k) = b.row(m.perm[k]).cast<double>();
+  const Eigen::MatrixXd xp = m.llt.solve(bp);
+  MatX x(n, b.cols());
+  for (int k = 0; k < n; ++k) x.row(m.perm[k]) = xp.row(k).cast<real>();
+  return x;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
