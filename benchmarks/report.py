@@ -258,19 +258,35 @@ this run's.
   per physics-only step (the benchmark runs before and after), at the same Newton iterations. Earlier fixes: the Hessian at the start
   of the step, computed for the stiffness damping, also serves the first Newton iteration; the
   element Hessians are assembled by 3 x 3 blocks; the element loops keep their buffers and skip
-  the energies the line search does not need. What remains, per Newton iteration (about 11 ms;
-  a pressed step takes about 4): the element Hessians (a 3 x 3 SVD, an eigen solve and rank-one
-  updates per tetrahedron) and gradients, about 40 %; the supernodal factorization with its
-  permuted copy of the matrix, about 30 %. Tried: keeping the last factorization while the
-  residual falls fourfold per iteration; the iterations taken with it fall too slowly, and the
-  pressed step gained 5 %, so it was not kept. 10x and 30x real time mean 0.4 ms and 0.13 ms per
-  step, 25 to 100 times less than one Hessian and one factorization of this mesh: that needs a
-  reduced model of the prop (modal or coarser mesh), not a constant factor.
+  the energies the line search does not need. Found next (perf, the pressed duck of
+  benchmarks/soft_duck_press.py at 37 ms per step and 3.4 Newton iterations): every iteration
+  after the first recomputed the projected Hessian of all 3839 tetrahedra, although only those
+  near the ball deform; each iteration evaluated again the elastic gradient that the line search
+  had just evaluated at the same point; and every factorization began with CHOLMOD's permuted
+  transpose of the matrix (cholmod_transpose_sym, 6 %). Fixed: an iteration recomputes only the
+  elements whose deformation gradient moved by more than SolverParams.soft_hessian_reuse_strain
+  (1e-3) since the start of the step, about 4 % of them (the gradient and the problem are exact;
+  the iterations are the same); the line search's gradient carries over; the matrix is kept in
+  CHOLMOD's order and factored as stored. Pressed duck 37 to 25 ms per step, settling 26 to 18.5;
+  in this suite 46 to 31 ms per seed step, 17 to 14 ms per physics-only step. What remains per
+  pressed step: the supernodal factorizations, about 40 % (BLAS and CHOLMOD), and some 5 % more
+  in the kernel: CHOLMOD opens an OpenMP region for each supernode even when no team may start,
+  and libgomp ends each region with a futex wake-up (about 6,400 system calls per step); the
+  element Hessians at the start of the step, which the stiffness damping (K at the step's start)
+  and the first iteration need, about 15 %; the gradients, about 10 %. 10x and 30x real time
+  mean 0.4 ms and 0.13 ms per step, 60 to 200 times less than this step and still 10 to 30
+  times less than one factorization of this mesh: that needs a reduced model of the prop (modal
+  or coarser mesh), not a constant factor.
 - Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
-  exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.09 on the EPYC):
+  exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.22 on the EPYC):
   it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
   the per-step costs that do not grow with n. CHOLMOD now keeps the sparser of AMD's and METIS's
   orderings (its default tries METIS only for very dense factors): 5k block 105 to 76 ms per step.
+  The reuse of element Hessians and the factorization without a transpose (scene 1) then made
+  every size faster (1k 14.4 to 11.3 ms, 5k 85 to 61, 20k 495 to 420), the small blocks most,
+  whose step is mostly element work, linear in n: the exponent went from 1.19 to 1.22, over the
+  target. What would bring it down is a cheaper factorization of the large blocks (an iterative
+  solve preconditioned by an older factorization, or fewer factorizations per step).
 - Scene 4 (pile). Found: every Newton iteration re-ran CHOLMOD's symbolic analysis and built
   J^T G J by sparse products; Newton started from the free motion, so a settled pile took about
   12 iterations per step; each friction pass started over. Fixed: a solve starts from the current
@@ -288,7 +304,11 @@ this run's.
   every step of the settled pile; the passes now run only for contacts that slip faster than
   SolverParams.friction_pass_min_slip (0.1 mm/s; the cone model's separation is mu times the slip
   speed): 1.67 to 1.15 ms per settled step. What remains is the landing: fewer iterations per
-  pass, or passes that stop earlier, and a cheaper factorization.
+  pass, or passes that stop earlier, and a cheaper factorization. Measured with the friction
+  passes off (max_friction_passes = 0, the pile settles to the same heights): the landing takes
+  19 Newton iterations per step instead of 63 and the whole timed run 1.34 s instead of 2.47 s,
+  so the passes are half of the run; without them the ratio to MuJoCo would still be about 3,
+  from the landing's 19 iterations and a settled step of 0.9 ms (3 iterations at 0.3 ms).
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -312,7 +332,9 @@ this run's.
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
-  they are; the general path remains for everything else.
+  they are; the general path remains for everything else. get_articulated_jacobian allocated a
+  matrix and a new array per call (0.97 against MuJoCo's 0.55 us); it now fills an `out` array
+  when given one, as mj_jacBody fills the caller's, and this scene passes one.
 - Scenes 7 and 8 (threads). Found, earlier: CHOLMOD's OpenMP team, spinning after each
   factorization, took the second core from a concurrent step of another scene (two Python
   threads: 1.05x). Rigid islands are now factored without OpenMP and the soft bodies' CHOLMOD
