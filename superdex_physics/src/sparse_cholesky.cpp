@@ -6,6 +6,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <algorithm>
+#include <cstring>
 #include <initializer_list>
 #include <utility>
 #include <vector>
@@ -30,6 +31,9 @@ struct SparseCholesky::Impl {
   std::vector<int> source;        // S.valuePtr()[k] = H.valuePtr()[source[k]]
   std::vector<int> perm;          // row k of S is row perm[k] of H
   Eigen::Index rows = -1, nonzeros = -1;  // H's analysed structure
+  bool factored = false;          // llt holds the factor of S's values
+  int factorizations = 0;         // numeric factorizations done
+  std::vector<double> next;       // the values of the matrix being factored, in S's order
 };
 
 namespace {
@@ -118,6 +122,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<real>& H) {
   c.method[0].ordering = CHOLMOD_NATURAL;
   c.postorder = 0;
   m.llt.analyzePattern(m.S);
+  m.factored = false;
   m.rows = n;
   m.nonzeros = Hc.nonZeros();
 }
@@ -127,11 +132,20 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<real>& H) {
   if (!(H.isCompressed() && H.rows() == m.rows && H.nonZeros() == m.nonzeros)) analyze(H);
   // the analysed structure: only the values change (no reallocation)
   const real* values = H.valuePtr();
-  double* out = m.S.valuePtr();
-  for (size_t k = 0; k < m.source.size(); ++k) out[k] = values[m.source[k]];
+  m.next.resize(m.source.size());
+  for (size_t k = 0; k < m.source.size(); ++k) m.next[k] = values[m.source[k]];
+  // the same values, bit for bit, as the factor holds (a Newton iteration in which no element
+  // Hessian and no contact changed): that factor is this matrix's
+  const size_t bytes = m.next.size() * sizeof(double);
+  if (m.factored && std::memcmp(m.next.data(), m.S.valuePtr(), bytes) == 0) return true;
+  std::memcpy(m.S.valuePtr(), m.next.data(), bytes);
   m.llt.factorize(m.S);
-  return m.llt.info() == Eigen::Success;
+  ++m.factorizations;
+  m.factored = m.llt.info() == Eigen::Success;
+  return m.factored;
 }
+
+int SparseCholesky::factorizations() const { return impl_->factorizations; }
 
 bool SparseCholesky::compute(const Eigen::SparseMatrix<real>& H) {
   analyze(H);

@@ -21,8 +21,12 @@ class SparseCholesky {
 
   // Symbolic analysis (fill-reducing ordering) of H's structure; H square, full symmetric storage.
   void analyze(const Eigen::SparseMatrix<real>& H);
-  // Numeric factorization of H with the analysed structure; false when H is not positive definite.
+  // Numeric factorization of H with the analysed structure (a new analysis when H's structure
+  // differs); false when H is not positive definite. Values equal bit for bit to those of the
+  // last successful factorization keep that factor.
   bool factorize(const Eigen::SparseMatrix<real>& H);
+  // Numeric factorizations done so far (those kept are not counted).
+  int factorizations() const;
   // Analysis and factorization of a matrix of any structure.
   bool compute(const Eigen::SparseMatrix<real>& H);
   // H^-1 b for one or several right-hand sides.

@@ -3,7 +3,8 @@
 /// own fill-reducing order): on a 3-D grid's stiffness-like matrix with random positive weights,
 /// its solutions of one and of several right-hand sides match Eigen's own SimplicialLDLT (an
 /// independent factorization), also after new values on the analysed structure and after a
-/// matrix of another structure; an indefinite matrix is reported, not factored.
+/// matrix of another structure; values equal to the last factored ones keep the factor; an
+/// indefinite matrix is reported, not factored.
 
 #include <gtest/gtest.h>
 
@@ -70,10 +71,15 @@ TEST(SparseCholesky, SolvesLikeAnIndependentFactorization) {
   const Eigen::MatrixXd X = chol.solve(B);
   EXPECT_LT((X - reference_solve(H, B)).norm(), 1e-10 * X.norm());
 
-  // new values on the analysed structure
+  // the same values again keep the factor; new values on the analysed structure replace it
+  EXPECT_EQ(chol.factorizations(), 1);
+  ASSERT_TRUE(chol.factorize(SpMat(H)));
+  EXPECT_EQ(chol.factorizations(), 1);
+  EXPECT_EQ(chol.solve(b), x);
   const SpMat H2 = grid_matrix(6, 5, 4, 0.3, rng);
   ASSERT_EQ(H2.nonZeros(), H.nonZeros());
   ASSERT_TRUE(chol.factorize(H2));
+  EXPECT_EQ(chol.factorizations(), 2);
   const Eigen::VectorXd x2 = chol.solve(b);
   EXPECT_LT((x2 - reference_solve(H2, b)).norm(), 1e-10 * x2.norm());
   EXPECT_GT((x2 - x).norm(), 1e-3 * x.norm());  // the new values were used
@@ -92,6 +98,9 @@ TEST(SparseCholesky, ReportsAnIndefiniteMatrix) {
   SparseCholesky chol;
   chol.analyze(H);
   EXPECT_FALSE(chol.factorize(H));
+  // a failed factor is not kept: the same values are factored (and reported) again
+  EXPECT_FALSE(chol.factorize(H));
+  EXPECT_EQ(chol.factorizations(), 2);
 }
 
 }  // namespace
