@@ -490,7 +490,10 @@ void Scene::step_dynamics(real dt) {
   stats.time_collision = time_collision;
   for (const ArticulationTerms& t : terms) stats.time_kinematics += t.seconds;
   for (const auto& st : soft_steps)
-    if (st) stats.soft_element_hessians += st->element_hessians();
+    if (st) {
+      stats.soft_element_hessians += st->element_hessians();
+      stats.soft_factorizations += st->factorizations();
+    }
   for (const IslandSolution& sol : solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;

@@ -232,7 +232,8 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
       pattern(*(b.pattern ? b.pattern : (b.pattern = build_pattern(b.model))).get()),
       dt(dt_),
       x0(b.state.x),
-      reuse_strain_(reuse_strain) {
+      reuse_strain_(reuse_strain),
+      factorizations_at_start_(pattern.cholesky.factorizations()) {
   const SoftModel& m = b.model;
   const int nf = pattern.num_free;
   R_ = rotations(b, x0);

@@ -106,6 +106,8 @@ class SoftStep {
   void start_hessian(Eigen::SparseMatrix<real>& K) const;
   // Element Hessians computed so far in this step (at x0 and by hessian()).
   int element_hessians() const { return element_hessians_; }
+  // Numeric factorizations of this body's Newton matrices so far in this step.
+  int factorizations() const { return pattern.cholesky.factorizations() - factorizations_at_start_; }
 
  private:
   std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
@@ -116,6 +118,7 @@ class SoftStep {
   mutable std::vector<int> changed_;   // tetrahedra whose Hessian the current iterate recomputes
   mutable std::vector<Mat3> changed_F_;  // and their deformation gradients there
   mutable int element_hessians_ = 0;
+  int factorizations_at_start_;
   // working storage of the element loops, kept across the step's Newton iterations: per
   // tetrahedron results on worker threads, and the gradient on all nodes (3N)
   mutable std::vector<Mat12> hessian_buffer_;

@@ -24,6 +24,7 @@ class SoftAlgebra {
       K_.push_back(s->pattern.H);
       H_.push_back(s->pattern.H);
       B_.push_back(MatX::Zero(s->size(), nr_));
+      B_factored_.push_back(MatX::Zero(s->size(), nr_));
     }
   }
 
@@ -57,7 +58,7 @@ class SoftAlgebra {
 
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX& v) {
     const SparseMat C = constraint_hessian(rows, G, J_, Jt_);
-    MatX H_rr = A_r_;
+    H_rr_ = A_r_;
     for (size_t k = 0; k < soft_.size(); ++k) {
       const SoftStep& s = *soft_[k];
       // the first iteration's Hessian is the one at the start of the step, already computed
@@ -68,6 +69,7 @@ class SoftAlgebra {
           Eigen::Map<const VecX>(s.A.valuePtr(), s.A.nonZeros()) + Eigen::Map<const VecX>(K_[k].valuePtr(), K_[k].nonZeros());
       B_[k].setZero();
     }
+    first_factor_ = false;
     // contact couplings: within a soft block (one node's 3 x 3 block, in the pattern), between a
     // soft block and the articulation DOFs, and among the articulation DOFs
     for (int col = 0; col < n_; ++col) {
@@ -76,7 +78,7 @@ class SoftAlgebra {
         const int row = static_cast<int>(it.row());
         const int kr = block_of(row);
         if (kc < 0 && kr < 0) {
-          H_rr(row, col) += it.value();
+          H_rr_(row, col) += it.value();
         } else if (kc >= 0 && kr < 0) {
           B_[kc](col - offset_[kc], row) += it.value();
         } else if (kc >= 0 && kr == kc) {
@@ -89,34 +91,100 @@ class SoftAlgebra {
         }
       }
     }
-    // numeric factorization of each soft block on its cached symbolic analysis, then the Schur
-    // complement S = H_rr - sum B_k^T H_k^-1 B_k of the articulation DOFs
-    for (size_t k = 0; k < soft_.size(); ++k) {
-      const SparseCholesky& chol = soft_[k]->body.pattern->cholesky;
-      if (!soft_[k]->body.pattern->cholesky.factorize(H_[k]))
-        throw Error("soft actor '" + soft_[k]->body.model.name + "': the Newton system could not be factored");
-      if (nr_ > 0) H_rr.noalias() -= B_[k].transpose() * chol.solve(B_[k]);
+    // after the first factorization of the solve, the matrix is solved by conjugate gradients
+    // preconditioned by that factorization (solve()), and factored again only when they do not
+    // converge in a few iterations
+    if (factored_) {
+      current_ = false;
+      return;
     }
-    if (nr_ > 0) S_llt_.compute(H_rr);
-    first_factor_ = false;
+    factor_current();
   }
 
-  void solve(const VecX& b, VecX& x) const {
-    x.resize(n_);
-    if (nr_ > 0) {
-      VecX br = b.head(nr_);
-      for (size_t k = 0; k < soft_.size(); ++k)
-        br.noalias() -= B_[k].transpose() * soft_[k]->body.pattern->cholesky.solve(VecX(b.segment(offset_[k], soft_[k]->size())));
-      x.head(nr_) = S_llt_.solve(br);
-    }
-    for (size_t k = 0; k < soft_.size(); ++k) {
-      VecX bk = b.segment(offset_[k], soft_[k]->size());
-      if (nr_ > 0) bk.noalias() -= B_[k] * x.head(nr_);
-      x.segment(offset_[k], soft_[k]->size()) = soft_[k]->body.pattern->cholesky.solve(bk);
+  void solve(const VecX& b, VecX& x) {
+    if (current_ || !conjugate_gradients(b, x)) {
+      if (!current_) factor_current();
+      precondition(b, x);
     }
   }
 
  private:
+  // Numeric factorization of each soft block of the current matrix on its cached symbolic
+  // analysis, then the Schur complement S = H_rr - sum B_k^T H_k^-1 B_k of the articulation DOFs.
+  void factor_current() {
+    MatX S = H_rr_;
+    for (size_t k = 0; k < soft_.size(); ++k) {
+      const SparseCholesky& chol = soft_[k]->body.pattern->cholesky;
+      if (!soft_[k]->body.pattern->cholesky.factorize(H_[k]))
+        throw Error("soft actor '" + soft_[k]->body.model.name + "': the Newton system could not be factored");
+      B_factored_[k] = B_[k];
+      if (nr_ > 0) S.noalias() -= B_factored_[k].transpose() * chol.solve(B_factored_[k]);
+    }
+    if (nr_ > 0) S_llt_.compute(S);
+    factored_ = current_ = true;
+  }
+
+  // x = M^-1 b with M the last factored matrix, by block elimination.
+  void precondition(const VecX& b, VecX& x) const {
+    x.resize(n_);
+    if (nr_ > 0) {
+      VecX br = b.head(nr_);
+      for (size_t k = 0; k < soft_.size(); ++k)
+        br.noalias() -= B_factored_[k].transpose() * soft_[k]->body.pattern->cholesky.solve(VecX(b.segment(offset_[k], soft_[k]->size())));
+      x.head(nr_) = S_llt_.solve(br);
+    }
+    for (size_t k = 0; k < soft_.size(); ++k) {
+      VecX bk = b.segment(offset_[k], soft_[k]->size());
+      if (nr_ > 0) bk.noalias() -= B_factored_[k] * x.head(nr_);
+      x.segment(offset_[k], soft_[k]->size()) = soft_[k]->body.pattern->cholesky.solve(bk);
+    }
+  }
+
+  // y = H x with the current matrix.
+  void multiply(const VecX& x, VecX& y) const {
+    y.resize(n_);
+    if (nr_ > 0) y.head(nr_).noalias() = H_rr_ * x.head(nr_);
+    for (size_t k = 0; k < soft_.size(); ++k) {
+      auto yk = y.segment(offset_[k], soft_[k]->size());
+      yk.noalias() = H_[k] * x.segment(offset_[k], soft_[k]->size());
+      if (nr_ > 0) {
+        yk.noalias() += B_[k] * x.head(nr_);
+        y.head(nr_).noalias() += B_[k].transpose() * x.segment(offset_[k], soft_[k]->size());
+      }
+    }
+  }
+
+  // Preconditioned conjugate gradients on H x = b; false when the residual is not below
+  // kCgTolerance |b| within kCgIterations.
+  bool conjugate_gradients(const VecX& b, VecX& x) {
+    const real target = kCgTolerance * b.norm();
+    x.setZero(n_);
+    VecX r = b, z, p, q;
+    precondition(r, z);
+    p = z;
+    real rz = r.dot(z);
+    for (int i = 0; i < kCgIterations; ++i) {
+      multiply(p, q);
+      const real pq = p.dot(q);
+      if (!(pq > 0)) return false;
+      const real alpha = rz / pq;
+      x.noalias() += alpha * p;
+      r.noalias() -= alpha * q;
+      if (r.norm() <= target) return true;
+      precondition(r, z);
+      const real rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
+  }
+
+  // a dozen iterations cost about as much as one factorization of a prop of a few thousand
+  // tetrahedra; the tolerance is the Newton loop's default relative one, so that an inexact
+  // direction costs no extra Newton iteration
+  static constexpr int kCgIterations = 12;
+  static constexpr real kCgTolerance = kUsesDoublePrecision ? real(1e-8) : real(1e-5);
+
   // soft block of variable i, or -1 for an articulation DOF
   int block_of(int i) const {
     if (i < nr_) return -1;
@@ -132,9 +200,13 @@ class SoftAlgebra {
   int nr_ = 0, n_ = 0;
   std::vector<int> offset_;
   std::vector<SparseMat> K_, H_;  // elastic Hessians and Newton blocks, per soft body
+  MatX H_rr_;                     // the Newton matrix's articulation block
   std::vector<MatX> B_;           // couplings soft block x articulation DOFs
-  Eigen::LLT<MatX> S_llt_;
+  std::vector<MatX> B_factored_;  // the couplings of the last factored matrix
+  Eigen::LLT<MatX> S_llt_;        // its Schur complement
   bool first_factor_ = true;
+  bool factored_ = false;         // a matrix of this solve has been factored
+  bool current_ = false;          // and it is the current one
 };
 
 }  // namespace

@@ -1,9 +1,12 @@
 #pragma once
 // The convex problem of an island with soft bodies (newton_solver.h), in the variables
 // [articulation DOFs (n_r) | free DOFs of each soft body]. The objective adds the soft bodies'
-// elastic energies (soft_body.h) to the quadratic part. Each Newton system is solved by block
-// elimination: every soft block by a sparse LDL^T whose symbolic analysis the soft body keeps
-// across steps, then the dense Schur complement of the articulation DOFs.
+// elastic energies (soft_body.h) to the quadratic part. The first Newton system of a solve is
+// factored by block elimination: every soft block by a sparse Cholesky whose symbolic analysis
+// the soft body keeps across steps, then the dense Schur complement of the articulation DOFs.
+// Later systems, whose matrices differ from it near the contacts and the deforming elements, are
+// solved by conjugate gradients preconditioned by that factorization, and factored in their turn
+// only when a few iterations do not reach the tolerance.
 
 #include <vector>
 

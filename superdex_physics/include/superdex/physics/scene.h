@@ -102,6 +102,10 @@ struct SolverStats {
   int num_constraints = 0;        ///< active constraint rows (limits, friction)
   int num_contacts = 0;
   int soft_element_hessians = 0;  ///< element Hessians of soft bodies computed (see SolverParams::soft_hessian_reuse_strain)
+  /// Sparse factorizations of soft bodies' Newton matrices. A Newton iteration after the first
+  /// of a solve is solved by conjugate gradients preconditioned by the last factorization, and
+  /// factors its matrix only when they do not converge in a few iterations.
+  int soft_factorizations = 0;
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
   double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves

@@ -1,17 +1,26 @@
 """Soft bodies: Newton iterations reuse the element Hessians of elements that hardly deformed
-(SolverParams.soft_hessian_reuse_strain).
+(SolverParams.soft_hessian_reuse_strain), and the factorization of an earlier iteration: after
+the first, an iteration's Newton system is solved by conjugate gradients preconditioned by the
+last factorization (SolverStats.soft_factorizations counts the factorizations).
 
 Only the Newton direction is approximate: the gradient, the problem and its stopping test are
 unchanged. A soft block pinned at its base, pressed by a rigid sphere on a vertical slider, is
 stepped with reuse (the default) and without it (0: every element that moved is recomputed):
 
-- the two runs reach the same states (within a micrometre) and the same contact forces (within
-  0.1 % of the press);
+- the two runs reach the same states and the same contact forces: the ball's height within
+  1e-6 m, the nodes within 1e-5 m and the force within 0.5 % of the press. The pressed block's
+  equilibrium is not unique to the micrometre (its elastic energy is not convex), so runs whose
+  Newton iterations take different paths may settle a few micrometres apart: in double, two
+  runs without reuse, one with every linear solve direct and one with conjugate gradients, end
+  5 micrometres apart in a 2 mm dent, where the run with reuse agrees with the direct one;
 - the reuse does not cost Newton iterations (a few more in total at most);
 - it computes far fewer element Hessians (SolverStats.soft_element_hessians): at least one pass
   over every element per step (at the start of the step) and, after it, only the elements under
   the sphere, where the run without reuse recomputes every element that moved at every iteration;
-- the sphere's reaction equals the applied force plus its weight once it rests (momentum balance).
+- the sphere's reaction equals the applied force plus its weight once it rests (momentum balance);
+- fewer factorizations than Newton iterations: most iterations after a step's first are solved
+  by the preconditioned conjugate gradients, also without element reuse, where every
+  iteration's matrix differs from the factored one.
 """
 
 import numpy as np
@@ -41,16 +50,17 @@ def press(reuse_strain):
     ball = scene.get_actor(slider.get_nested_link_actors()[1])
     ball.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     slider.set_external_forces_on_dofs([0], [-PUSH])
-    hessians, iterations = [], []
+    hessians, iterations, factorizations = [], [], []
     for _ in range(STEPS):
         scene.step(DT)
         stats = scene.get_solver_stats()
         assert stats.converged
         hessians.append(stats.soft_element_hessians)
         iterations.append(stats.total_newton_iterations)
+        factorizations.append(stats.soft_factorizations)
     result = {"x": block.get_node_positions_world().copy(), "ball_z": float(ball.get_root_transform().translation[2]),
               "force": np.array(ball.get_contact_force_world(), dtype=float), "hessians": np.array(hessians),
-              "iterations": np.array(iterations), "tets": 6 * 5**3}
+              "iterations": np.array(iterations), "factorizations": np.array(factorizations), "tets": 6 * 5**3}
     sdp.destroy_scene(scene)
     return result
 
@@ -58,12 +68,12 @@ def press(reuse_strain):
 def test_reused_element_hessians_give_the_same_steps_for_fewer_hessians(engine):
     reused, exact = press(sdp.SolverParams().soft_hessian_reuse_strain), press(0.0)
     assert sdp.SolverParams().soft_hessian_reuse_strain > 0
-    # the same motion: positions within a micrometre (the block dents by about a millimetre)
-    np.testing.assert_allclose(reused["x"], exact["x"], rtol=0, atol=1e-6)
+    # the same motion (the block dents by about 2 mm under the ball)
     assert reused["ball_z"] == pytest.approx(exact["ball_z"], abs=1e-6)
-    # the same contact force within 0.1 % of the press (its small tangential part, static friction,
-    # is as sensitive to the last micrometre as any sticking contact)
-    np.testing.assert_allclose(reused["force"], exact["force"], rtol=0, atol=1e-3 * PUSH)
+    np.testing.assert_allclose(reused["x"], exact["x"], rtol=0, atol=1e-5)
+    # the same contact force within 0.5 % of the press (its small tangential part, static
+    # friction, is as sensitive to the last micrometre as any sticking contact)
+    np.testing.assert_allclose(reused["force"], exact["force"], rtol=0, atol=5e-3 * PUSH)
     # at rest, the sphere's reaction balances the push and its weight
     assert reused["force"][2] == pytest.approx(PUSH + MASS * 9.81, rel=0.02)
     # no more Newton iterations than without reuse, but a few
@@ -76,6 +86,18 @@ def test_reused_element_hessians_give_the_same_steps_for_fewer_hessians(engine):
     extra_exact = (exact["hessians"] - tets).sum()
     assert extra_exact > STEPS * tets // 2, "without reuse, later iterations recompute the moving elements"
     assert extra_reused < 0.25 * extra_exact
+
+
+def test_later_newton_iterations_are_solved_by_preconditioned_cg(engine):
+    # without element reuse every later iteration's matrix differs from the factored one (a
+    # matrix equal to it bit for bit would keep its factor in any case)
+    run = press(0.0)
+    # every step factors at least once (its first iteration), and most later iterations do not
+    assert (run["factorizations"] >= 1).all()
+    later = (run["iterations"] - 1).sum()
+    assert later > STEPS // 2
+    assert (run["factorizations"] - 1).sum() < 0.25 * later
+    assert run["force"][2] == pytest.approx(PUSH + MASS * 9.81, rel=0.02)
 
 
 def test_reuse_strain_is_validated(scene):
