@@ -261,32 +261,36 @@ this run's.
   the energies the line search does not need. Found next (perf, the pressed duck of
   benchmarks/soft_duck_press.py at 37 ms per step and 3.4 Newton iterations): every iteration
   after the first recomputed the projected Hessian of all 3839 tetrahedra, although only those
-  near the ball deform; each iteration evaluated again the elastic gradient that the line search
-  had just evaluated at the same point; and every factorization began with CHOLMOD's permuted
-  transpose of the matrix (cholmod_transpose_sym, 6 %). Fixed: an iteration recomputes only the
-  elements whose deformation gradient moved by more than SolverParams.soft_hessian_reuse_strain
-  (1e-3) since the start of the step, about 4 % of them (the gradient and the problem are exact;
-  the iterations are the same); the line search's gradient carries over; the matrix is kept in
-  CHOLMOD's order and factored as stored. Pressed duck 37 to 25 ms per step, settling 26 to 18.5;
-  in this suite 46 to 31 ms per seed step, 17 to 14 ms per physics-only step. What remains per
-  pressed step: the supernodal factorizations, about 40 % (BLAS and CHOLMOD), and some 5 % more
-  in the kernel: CHOLMOD opens an OpenMP region for each supernode even when no team may start,
-  and libgomp ends each region with a futex wake-up (about 6,400 system calls per step); the
-  element Hessians at the start of the step, which the stiffness damping (K at the step's start)
-  and the first iteration need, about 15 %; the gradients, about 10 %. 10x and 30x real time
-  mean 0.4 ms and 0.13 ms per step, 60 to 200 times less than this step and still 10 to 30
-  times less than one factorization of this mesh: that needs a reduced model of the prop (modal
-  or coarser mesh), not a constant factor.
+  near the ball deform, and factored the whole matrix again, although it changed only near the
+  contacts; each iteration evaluated again the elastic gradient that the line search had just
+  evaluated at the same point; and every factorization began with CHOLMOD's permuted transpose of
+  the matrix (cholmod_transpose_sym, 6 %). Fixed: an iteration recomputes only the elements whose
+  deformation gradient moved by more than SolverParams.soft_hessian_reuse_strain (1e-3) since the
+  start of the step, about 4 % of them; its Newton system is solved by conjugate gradients
+  preconditioned by the factorization of the solve's first iteration (a new factorization only
+  when 12 iterations do not converge; SolverStats.soft_factorizations), and a matrix equal bit
+  for bit to the factored one keeps its factor; the line search's gradient carries over; the
+  matrix is kept in CHOLMOD's order and factored as stored. The gradients, the problem and its
+  tolerance are unchanged. Pressed duck 37 to 18 ms per step, settling 26 to 13.4; in this suite
+  46 to 22.5 ms per seed step, 17 to 12 ms per physics-only step. What remains per step (perf,
+  float): the element Hessians at the start of the step, which the stiffness damping (K at the
+  step's start) and the first iteration need, about 17 % (the 3 x 3 SVDs alone 6 %); the one
+  factorization and the conjugate gradients' triangular solves, about 25 %; the gradients, about
+  10 %; and some 5 % in the kernel: CHOLMOD opens an OpenMP region for each supernode even when
+  no team may start, and libgomp ends each region with a futex wake-up. 10x and 30x real time
+  mean 0.4 ms and 0.13 ms per step, 55 to 170 times less than this step and still about 10 times
+  less than one factorization of this mesh: that needs a reduced model of the prop (modal or
+  coarser mesh), not a constant factor.
 - Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
   exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.22 on the EPYC):
   it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
   the per-step costs that do not grow with n. CHOLMOD now keeps the sparser of AMD's and METIS's
   orderings (its default tries METIS only for very dense factors): 5k block 105 to 76 ms per step.
-  The reuse of element Hessians and the factorization without a transpose (scene 1) then made
-  every size faster (1k 14.4 to 11.3 ms, 5k 85 to 61, 20k 495 to 420), the small blocks most,
-  whose step is mostly element work, linear in n: the exponent went from 1.19 to 1.22, over the
-  target. What would bring it down is a cheaper factorization of the large blocks (an iterative
-  solve preconditioned by an older factorization, or fewer factorizations per step).
+  The reuses of scene 1 then made every size faster: 1k 14.4 to 8.7 ms per step, 5k 85 to 40,
+  20k 495 to 235 (now half of MuJoCo flex's 452). The reuse of element Hessians alone made the
+  element work, linear in n, cheaper and raised the exponent to 1.22 (the run before this one);
+  the conjugate gradients then removed most factorizations, whose cost grows faster than n, and
+  it fell to 1.11.
 - Scene 4 (pile). Found: every Newton iteration re-ran CHOLMOD's symbolic analysis and built
   J^T G J by sparse products; Newton started from the free motion, so a settled pile took about
   12 iterations per step; each friction pass started over. Fixed: a solve starts from the current
