@@ -89,6 +89,7 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<real>& H) {
   // soft bodies, and the analysis runs once per pattern
   cholmod_common& c = m.llt.cholmod();
   c.nmethods = 3;
+  c.method[0].ordering = CHOLMOD_GIVEN;  // CHOLMOD's default: AMD and METIS are methods 1 and 2
   c.postorder = 1;
   m.llt.analyzePattern(Hc.cast<double>());
   const cholmod_factor* L = m.llt.factor();
