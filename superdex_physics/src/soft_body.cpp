@@ -233,6 +233,7 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
       dt(dt_),
       x0(b.state.x),
       reuse_strain_(reuse_strain),
+      storage_(b.step_storage),
       factorizations_at_start_(pattern.cholesky.factorizations()) {
   const SoftModel& m = b.model;
   const int nf = pattern.num_free;
@@ -253,14 +254,15 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
   // the element Hessians at x0 are kept, with their deformation gradients, for the iterations
   // that reuse them (hessian())
   K0_.assign(pattern.H.nonZeros(), real(0));
-  F0_.resize(m.tets.size());
+  std::vector<Mat3>& F0 = storage_.F0;
+  F0.resize(m.tets.size());
   for_each_tet(
-      m.tets.size(), H0_,
+      m.tets.size(), storage_.H0,
       [&](size_t t, Mat12& H) {
         Vec3 xs[4];
         gather(m.tets[t], x0, xs);
-        F0_[t] = deformation_gradient(m.rest[t], xs);
-        tet_derivatives_at(m.material[t], m.rest[t], F0_[t], R_[t], nullptr, &H, true);
+        F0[t] = deformation_gradient(m.rest[t], xs);
+        tet_derivatives_at(m.material[t], m.rest[t], F0[t], R_[t], nullptr, &H, true);
       },
       [&](size_t t, const Mat12& H) { scatter_hessian(pattern, t, dt * dt, H, K0_.data()); }, true);
   element_hessians_ = static_cast<int>(m.tets.size());
@@ -279,8 +281,8 @@ VecX SoftStep::full_velocity(const VecX& v_free) const {
 }
 
 void SoftStep::add_gradient(const Eigen::Ref<const VecX>& v_free, Eigen::Ref<VecX> g) const {
-  elastic_gradient(body, x0 + dt * full_velocity(v_free), R_, gradient_buffer_, grad_);
-  for (int f = 0; f < pattern.num_free; ++f) g[f] += dt * grad_[pattern.dof_of_free[f]];
+  elastic_gradient(body, x0 + dt * full_velocity(v_free), R_, storage_.gradients, storage_.grad);
+  for (int f = 0; f < pattern.num_free; ++f) g[f] += dt * storage_.grad[pattern.dof_of_free[f]];
 }
 
 void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix<real>& K) const {
@@ -289,26 +291,28 @@ void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix
   std::copy(K0_.begin(), K0_.end(), K.valuePtr());
   // the elements deformed beyond the reuse strain since x0 (or not finite) replace their
   // Hessian at x0 by the one at x; the others keep it
-  changed_.clear();
-  changed_F_.clear();
+  std::vector<int>& changed = storage_.changed;
+  std::vector<Mat3>& changed_F = storage_.changed_F;
+  changed.clear();
+  changed_F.clear();
   for (size_t t = 0; t < m.tets.size(); ++t) {
     Vec3 xs[4];
     gather(m.tets[t], x, xs);
     const Mat3 F = deformation_gradient(m.rest[t], xs);
-    if (!((F - F0_[t]).cwiseAbs().maxCoeff() <= reuse_strain_)) {
-      changed_.push_back(static_cast<int>(t));
-      changed_F_.push_back(F);
+    if (!((F - storage_.F0[t]).cwiseAbs().maxCoeff() <= reuse_strain_)) {
+      changed.push_back(static_cast<int>(t));
+      changed_F.push_back(F);
     }
   }
   for_each_tet(
-      changed_.size(), hessian_buffer_,
+      changed.size(), storage_.hessians,
       [&](size_t i, Mat12& H) {
-        const int t = changed_[i];
-        tet_derivatives_at(m.material[t], m.rest[t], changed_F_[i], R_[t], nullptr, &H, true);
-        H -= H0_[t];
+        const int t = changed[i];
+        tet_derivatives_at(m.material[t], m.rest[t], changed_F[i], R_[t], nullptr, &H, true);
+        H -= storage_.H0[t];
       },
-      [&](size_t i, const Mat12& H) { scatter_hessian(pattern, changed_[i], dt * dt, H, K.valuePtr()); });
-  element_hessians_ += static_cast<int>(changed_.size());
+      [&](size_t i, const Mat12& H) { scatter_hessian(pattern, changed[i], dt * dt, H, K.valuePtr()); });
+  element_hessians_ += static_cast<int>(changed.size());
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -62,12 +62,25 @@ struct SoftPattern {
   int slot(int row, int col) const;
 };
 
+// Storage of a soft body's steps, kept across steps so that a step does not allocate it: what is
+// in it is overwritten by every step, none of it is state.
+struct SoftStepStorage {
+  std::vector<Mat3> F0;            // per tetrahedron: the deformation gradient at the start of the step
+  std::vector<Mat12> H0;           // per tetrahedron: its (projected) Hessian there, unscaled
+  std::vector<Mat12> hessians;     // per tetrahedron results of the element loops on worker threads
+  std::vector<Vec12> gradients;
+  std::vector<int> changed;        // tetrahedra whose Hessian the current iterate recomputes
+  std::vector<Mat3> changed_F;     // and their deformation gradients there
+  VecX grad;                       // the elastic gradient on all nodes (3N)
+};
+
 struct SoftBody {
   ActorHandle handle = 0;
   SoftModel model;
   SoftState state;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
   std::unique_ptr<SoftPattern> pattern;  // built on first use
+  SoftStepStorage step_storage;
 };
 
 // Builds a soft body from a registered tet mesh placed at X_WL; throws naming `where`.
@@ -113,17 +126,9 @@ class SoftStep {
   std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
   std::vector<real> K0_;    // dt^2 P^T hess Psi(x0) P, in the pattern's value order
   real reuse_strain_;       // largest change of an entry of F for which an element keeps its Hessian at x0
-  std::vector<Mat3> F0_;    // per tetrahedron: the deformation gradient at x0
-  std::vector<Mat12> H0_;   // per tetrahedron: its (projected) Hessian at x0, unscaled
-  mutable std::vector<int> changed_;   // tetrahedra whose Hessian the current iterate recomputes
-  mutable std::vector<Mat3> changed_F_;  // and their deformation gradients there
+  SoftStepStorage& storage_;  // the body's
   mutable int element_hessians_ = 0;
   int factorizations_at_start_;
-  // working storage of the element loops, kept across the step's Newton iterations: per
-  // tetrahedron results on worker threads, and the gradient on all nodes (3N)
-  mutable std::vector<Mat12> hessian_buffer_;
-  mutable std::vector<Vec12> gradient_buffer_;
-  mutable VecX grad_;
 };
 
 // Total elastic energy at positions x (J).
