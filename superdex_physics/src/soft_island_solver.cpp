@@ -179,9 +179,10 @@ class SoftAlgebra {
     return false;
   }
 
-  // a dozen iterations cost about as much as one factorization of a prop of a few thousand
-  // tetrahedra; the tolerance is the Newton loop's default relative one, so that an inexact
-  // direction costs no extra Newton iteration
+  // past a dozen iterations the matrix has moved too far from the factored one, and factoring it
+  // is the cheaper way on; the tolerance is the Newton loop's default relative one, so that an
+  // inexact direction costs no extra Newton iteration (the pressed duck and the soft blocks take
+  // as many iterations as with direct solves, or fewer)
   static constexpr int kCgIterations = 12;
   static constexpr real kCgTolerance = kUsesDoublePrecision ? real(1e-8) : real(1e-5);
 
