@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cstring>
 #include <initializer_list>
+#include <mutex>
 #include <utility>
 #include <vector>
-#include <mutex>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {

@@ -21,8 +21,9 @@ class SparseCholesky {
 
   // Symbolic analysis (fill-reducing ordering) of H's structure; H square, full symmetric storage.
   void analyze(const Eigen::SparseMatrix<real>& H);
-  // Numeric factorization of H with the analysed structure (a new analysis when H's structure
-  // differs); false when H is not positive definite. Values equal bit for bit to those of the
+  // Numeric factorization of H with the analysed structure (a new analysis first when H's size
+  // or number of entries differs from the analysed matrix's, or H is not compressed); false when
+  // H is not positive definite. Values equal bit for bit to those of the
   // last successful factorization keep that factor.
   bool factorize(const Eigen::SparseMatrix<real>& H);
   // Numeric factorizations done so far (those kept are not counted).
