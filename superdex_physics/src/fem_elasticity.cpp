@@ -207,7 +207,7 @@ Mat9 neo_hookean_projected_stress_derivative(const ElasticMaterial& m, const Mat
 }
 
 void tet_derivatives_at(const ElasticMaterial& m, const TetRest& rest, const Mat3& F, const Mat3& R, Vec12* gradient,
-                    Mat12* hessian, bool project_spd) {
+                        Mat12* hessian, bool project_spd) {
   if (!gradient && !hessian) return;
   // F = Ds Dm^-1 is linear in the node positions: dF(i, j)/dx_a(c) = delta_ic D(a, j), with D's
   // rows those of Dm^-1 for nodes 1-3 and minus their sum for node 0

@@ -250,9 +250,8 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
     mass[f] = m.node_mass[d / 3];
     r[f] = mass[f] * v0[f] + dt * (mass[f] * g_W[d % 3] + b.state.tau_external[d]);
   }
-  // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration
-  // the element Hessians at x0 are kept, with their deformation gradients, for the iterations
-  // that reuse them (hessian())
+  // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration, and the
+  // element Hessians at x0 with their deformation gradients for the iterations that reuse them
   K0_.assign(pattern.H.nonZeros(), real(0));
   std::vector<Mat3>& F0 = storage_.F0;
   F0.resize(m.tets.size());
