@@ -131,14 +131,18 @@ void BotPipeline::pre_step(real dt) {
   if (controllers_.empty() && actuators_.empty()) return;
 
   // 3. generalized forces: actuator efforts, and commanded efforts on DOFs without an actuator
-  std::vector<real> tau(nv, 0);
-  std::vector<std::uint8_t> driven(nv, 0);
+  std::vector<real>& tau = tau_;
+  std::vector<std::uint8_t>& driven = driven_;
+  tau.assign(nv, 0);
+  driven.assign(nv, 0);
   for (const ActuatorSlot& a : actuators_) tau[a.dof] += a.held, driven[a.dof] = 1;
   for (int d = 0; d < nv; ++d)
     if (!driven[d] && merged_.has_effort[d]) tau[d] += merged_.effort[d];
-  std::vector<int> dofs(nv);
-  for (int d = 0; d < nv; ++d) dofs[d] = d;
-  scene_.set_external_forces_on_dofs(articulation_, dofs, tau);
+  if (static_cast<int>(all_dofs_.size()) != nv) {
+    all_dofs_.resize(nv);
+    for (int d = 0; d < nv; ++d) all_dofs_[d] = d;
+  }
+  scene_.set_external_forces_on_dofs(articulation_, all_dofs_, tau);
   wrote_forces_ = true;
 }
 

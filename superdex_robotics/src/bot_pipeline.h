@@ -80,6 +80,10 @@ class BotPipeline {
   std::vector<ActuatorSlot> actuators_;
   std::vector<SensorSlot> sensors_;
   DofCommands merged_;
+  // the generalized forces written each step, kept so that a step does not allocate
+  std::vector<real> tau_;
+  std::vector<std::uint8_t> driven_;
+  std::vector<int> all_dofs_;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -60,14 +60,14 @@ class JointPdController final : public ControllerComponent {
   }
 
   void compute(const Tick&, DofCommands& out) override {
-    const VecX q = scene_.pose(articulation_);
-    const VecX v = scene_.joint_velocities(articulation_);
-    const VecX c = gravity_compensation_ ? scene_.bias_forces(articulation_) : VecX::Zero(q.size());
+    scene_.pose(articulation_, q_);
+    scene_.joint_velocities(articulation_, v_);
+    if (gravity_compensation_) c_ = scene_.bias_forces(articulation_);
     for (int i = 0; i < kp_.size(); ++i) {
       const int d = root_ + i;
-      real e = target_pose_[i] - q[d];
+      real e = target_pose_[i] - q_[d];
       if (std::abs(e) < deadband_[i]) e = 0;
-      real tau = kp_[i] * e + kd_[i] * (target_velocity_[i] - v[d]) + c[d];
+      real tau = kp_[i] * e + kd_[i] * (target_velocity_[i] - v_[d]) + (gravity_compensation_ ? c_[d] : real(0));
       if (saturation_[i] >= 0) tau = std::clamp(tau, -saturation_[i], saturation_[i]);
       out.set_effort(d, tau);
     }
@@ -79,6 +79,7 @@ class JointPdController final : public ControllerComponent {
   int root_ = 0;
   VecX kp_, kd_, saturation_, deadband_, target_pose_, target_velocity_;
   bool gravity_compensation_ = false;
+  VecX q_, v_, c_;  // the state read each step, kept so that a step does not allocate
 };
 
 }  // namespace
