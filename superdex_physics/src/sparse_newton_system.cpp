@@ -7,18 +7,6 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-namespace {
-
-// Value index of entry (row, col) of a compressed column-major matrix, or -1.
-int value_slot(const SparseMat& H, int row, int col) {
-  const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
-  const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  return it != end && *it == row ? static_cast<int>(it - H.innerIndexPtr()) : -1;
-}
-
-}  // namespace
-
 void SparseNewtonSystem::BlockColumns::gather(const ConstraintRows& rows) {
   cols.clear();
   col_start.assign(1, 0);
@@ -52,39 +40,45 @@ SparseNewtonSystem::SparseNewtonSystem(const SparseMat& A, const ConstraintRows&
   const size_t num_blocks = rows.blocks.size();
   A_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
   A_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  // the pattern: A's entries, the diagonal, and every block's column pairs
-  std::vector<Eigen::Triplet<real>> entries;
+  // the bodies: A is block diagonal, each body's block dense, so a body starts at the column whose
+  // first entry is on the diagonal (an empty column is a block of its own)
+  std::vector<int> body_of(n), local_of(n), body_sizes;
   for (int c = 0; c < n; ++c) {
-    entries.emplace_back(c, c, real(0));
-    for (SparseMat::InnerIterator it(A, c); it; ++it) entries.emplace_back(static_cast<int>(it.row()), c, real(0));
+    const bool starts = A.outerIndexPtr()[c] == A.outerIndexPtr()[c + 1] || A.innerIndexPtr()[A.outerIndexPtr()[c]] >= c;
+    if (starts || body_sizes.empty()) body_sizes.push_back(0);
+    body_of[c] = static_cast<int>(body_sizes.size()) - 1;
+    local_of[c] = body_sizes.back()++;
   }
+  // the body pairs that constraint blocks couple
+  std::vector<std::pair<int, int>> pairs;
   for (size_t k = 0; k < num_blocks; ++k)
     for (int i = col_start[k]; i < col_start[k + 1]; ++i)
-      for (int j = col_start[k]; j < col_start[k + 1]; ++j) entries.emplace_back(cols[i], cols[j], real(0));
-  H_.resize(n, n);
-  H_.setFromTriplets(entries.begin(), entries.end());
-  H_.makeCompressed();
+      for (int j = col_start[k]; j < i; ++j)
+        if (body_of[cols[i]] != body_of[cols[j]]) pairs.emplace_back(body_of[cols[i]], body_of[cols[j]]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  H_.analyze(body_sizes, pairs);
+  auto slot = [&](int row, int col) { return H_.value_index(body_of[row], local_of[row], body_of[col], local_of[col]); };
   A_slots_.clear();
   for (int c = 0; c < n; ++c)
-    for (SparseMat::InnerIterator it(A, c); it; ++it) A_slots_.push_back(value_slot(H_, static_cast<int>(it.row()), c));
+    for (SparseMat::InnerIterator it(A, c); it; ++it) A_slots_.push_back(slot(static_cast<int>(it.row()), c));
   load_A_values(A);
+  slots_.clear();
   slot_start_.assign(1, 0);
   for (size_t k = 0; k < num_blocks; ++k) {
     for (int i = col_start[k]; i < col_start[k + 1]; ++i)
-      for (int j = col_start[k]; j < col_start[k + 1]; ++j) slots_.push_back(value_slot(H_, cols[i], cols[j]));
+      for (int j = col_start[k]; j < col_start[k + 1]; ++j) slots_.push_back(slot(cols[i], cols[j]));
     slot_start_.push_back(static_cast<int>(slots_.size()));
   }
-  H_double_ = H_.cast<double>();
-  cholesky_.analyzePattern(H_double_);
 }
 
 void SparseNewtonSystem::load_A_values(const SparseMat& A) {
-  A_values_.assign(H_.nonZeros(), real(0));
+  A_values_.assign(H_.values().size(), 0.0);
   for (Eigen::Index k = 0; k < A.nonZeros(); ++k) A_values_[A_slots_[k]] += A.valuePtr()[k];
 }
 
 bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
-  if (A.rows() != H_.rows() || !A.isCompressed() ||
+  if (A.rows() != H_.dimension() || !A.isCompressed() ||
       !std::equal(A_outer_.begin(), A_outer_.end(), A.outerIndexPtr()) ||
       static_cast<size_t>(A.nonZeros()) != A_inner_.size() ||
       !std::equal(A_inner_.begin(), A_inner_.end(), A.innerIndexPtr()))
@@ -98,32 +92,39 @@ bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
 }
 
 VecX SparseNewtonSystem::solve(const VecX& b) const {
-  const Eigen::VectorXd x = cholesky_.solve(b.cast<double>());
-  return x.cast<real>();
+  x_ = b.cast<double>();
+  H_.solve(x_.data(), x_.data());
+  return x_.cast<real>();
 }
 
 bool SparseNewtonSystem::factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
-  real* values = H_.valuePtr();
-  std::copy(A_values_.begin(), A_values_.end(), values);
-  using MapRowMat = Eigen::Map<const Eigen::Matrix<real, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
-  MatX Hb;  // reallocated only when a block's column count changes
+  std::vector<double>& values = H_.values();
+  std::copy(A_values_.begin(), A_values_.end(), values.begin());
+  // J_b^T G_b J_b of each block, entry by entry into the slots stored (a block has 1 or 3 rows)
+  Eigen::Matrix<real, 3, Eigen::Dynamic>& GJ = GJ_;
   for (size_t k = 0; k < rows.blocks.size(); ++k) {
     const int s = rows.blocks[k].size();
-    const auto Gk = G[k].topLeftCorner(s, s);
-    if (Gk.isZero(0)) continue;  // an inactive block adds nothing
+    const Eigen::Matrix<real, 3, 3>& Gk = G[k];
+    if (s == 3 ? Gk.isZero(0) : Gk(0, 0) == 0) continue;  // an inactive block adds nothing
     const int nc = blocks_.col_start[k + 1] - blocks_.col_start[k];
-    const MapRowMat Jb(blocks_.J_values.data() + blocks_.J_start[k], s, nc);
-    // J_b^T G_b J_b, scattered into the block's slots
-    Hb.resize(nc, nc);
-    Hb.noalias() = Jb.transpose() * (Gk * Jb);
+    const real* Jb = blocks_.J_values.data() + blocks_.J_start[k];  // s x nc, row-major
     const int* slot = slots_.data() + slot_start_[k];
-    for (int j = 0; j < nc; ++j)
-      for (int i = 0; i < nc; ++i) values[slot[i * nc + j]] += Hb(i, j);
+    if (s == 1) {
+      for (int i = 0; i < nc; ++i)
+        for (int j = 0; j < nc; ++j)
+          if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += Gk(0, 0) * Jb[i] * Jb[j];
+      continue;
+    }
+    // GJ = G_b J_b (3 x nc), then entry (i, j) = J_b(:, i) . GJ(:, j)
+    GJ.resize(3, nc);
+    for (int j = 0; j < nc; ++j) GJ.col(j) = Gk * Eigen::Matrix<real, 3, 1>(Jb[j], Jb[nc + j], Jb[2 * nc + j]);
+    for (int i = 0; i < nc; ++i) {
+      const Eigen::Matrix<real, 3, 1> Ji(Jb[i], Jb[nc + i], Jb[2 * nc + i]);
+      for (int j = 0; j < nc; ++j)
+        if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += Ji.dot(GJ.col(j));
+    }
   }
-  Eigen::Map<Eigen::VectorXd>(H_double_.valuePtr(), H_double_.nonZeros()) =
-      Eigen::Map<const VecX>(values, H_.nonZeros()).cast<double>();
-  cholesky_.factorize(H_double_);
-  return cholesky_.info() == Eigen::Success;
+  return H_.factor();
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

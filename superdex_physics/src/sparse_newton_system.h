@@ -1,14 +1,14 @@
 #pragma once
 // The Newton matrix H = A + J^T G J of a large island (newton_solver.h) on a fixed sparsity
-// pattern: A's entries and, for every constraint block, the couplings among the columns its rows
-// touch. The pattern and its symbolic factorization are built once per problem; each Newton
-// iteration only writes values (a small dense J_b^T G_b J_b per block, scattered into known
-// slots) and refactors numerically.
+// pattern: A's diagonal blocks (one per body) and, for every constraint block, the couplings
+// among the bodies its rows touch. The pattern and its block Cholesky analysis are built once
+// per problem; each Newton iteration only writes values (a small dense J_b^T G_b J_b per block,
+// scattered into known slots) and refactors numerically (block_cholesky.h).
 
 #include <vector>
 
+#include "block_cholesky.h"
 #include "newton_solver.h"
-#include <Eigen/SparseCholesky>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -38,17 +38,17 @@ class SparseNewtonSystem {
   };
   void load_A_values(const SparseMat& A);
 
-  SparseMat H_;                      // full symmetric storage; values rewritten by factor()
   std::vector<int> A_outer_, A_inner_;  // A's pattern
   std::vector<int> A_slots_;         // value index in H of each of A's entries
-  std::vector<real> A_values_;       // A's entries in H's value order
+  std::vector<double> A_values_;     // A's entries in H's value order
   BlockColumns blocks_;
-  std::vector<int> slots_;           // per block: value index of (cols[i], cols[j]) in H (nc x nc)
+  // per constraint block: value index in H of (cols[i], cols[j]) (nc x nc), -1 for the entries
+  // whose transpose is the one stored
+  std::vector<int> slots_;
   std::vector<int> slot_start_;      // per block: first index into slots_
-  // rigid islands have a few hundred DOFs: a simplicial factorization (no BLAS, no OpenMP team)
-  // in double precision
-  Eigen::SparseMatrix<double> H_double_;
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> cholesky_;
+  BlockCholesky H_;                  // H's values, and its factor
+  Eigen::Matrix<real, 3, Eigen::Dynamic> GJ_;  // factor()'s G_b J_b of a 3-row block
+  mutable Eigen::VectorXd x_;        // solve()'s right-hand side and solution
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
