@@ -125,6 +125,7 @@ void export_scene(nb::module_& m) {
       .def_ro("num_contacts", &SolverStats::num_contacts)
       .def_ro("soft_element_hessians", &SolverStats::soft_element_hessians)
       .def_ro("soft_factorizations", &SolverStats::soft_factorizations)
+      .def_ro("friction_passes", &SolverStats::friction_passes)
       .def_ro("time_kinematics", &SolverStats::time_kinematics)
       .def_ro("time_collision", &SolverStats::time_collision)
       .def_ro("time_solve", &SolverStats::time_solve)

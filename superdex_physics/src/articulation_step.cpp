@@ -2,7 +2,6 @@
 
 #include "articulation_step.h"
 
-#include <chrono>
 #include <numbers>
 
 #include "dynamics.h"
@@ -133,10 +132,10 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
 }  // namespace
 
 void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Ticks t0 = ticks_now();
   const ArticulationModel& model = a.model;
   t.joint_rows.clear();
-  t.seconds = 0;
+  t.ticks = 0;
   t.have_inverse_diagonal_ = false;
   if (model.nv == 0) {
     t.A.resize(0, 0);
@@ -157,7 +156,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   t.v_free = t.A_llt.solve(t.r);
   joint_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
-  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.ticks = ticks_now() - t0;
 }
 
 real ArticulationTerms::inverse_diagonal(int k) const {

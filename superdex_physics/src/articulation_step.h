@@ -5,6 +5,7 @@
 
 #include "newton_solver.h"
 #include "scene_data.h"
+#include "step_ticks.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -31,7 +32,7 @@ struct ArticulationTerms {
   // uninitialized, and copying the terms of a body without DOFs read it (UBSan, issue 9)
   Eigen::LLT<MatX> A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
-  double seconds = 0;            // time spent computing these
+  Ticks ticks = 0;               // time spent computing these (step_ticks.h)
   VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r
   // working storage: bias forces
   VecX c;

@@ -2,7 +2,6 @@
 
 #include "island_solver.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "contact_block.h"
@@ -157,9 +156,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const MatXR& J = found->J_WL;
     w.J_point.noalias() = J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>();
   };
-  // adds the rows of one side (an articulation link) of a contact in frame R_C, with its
-  // Delassus block and free-motion normal velocity
-  auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Mat3& W, real& vn_free) {
+  // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
+  // diagonal of its Delassus block (the only part the contact block reads) and free-motion
+  // normal velocity
+  auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Vec3& W_diag, real& vn_free) {
     const int nb = s.articulations[body]->model.nv;
     if (nb == 0) return;
     point_jacobian(body, link, p_W);
@@ -169,18 +169,19 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < nb; ++k)
         if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
-    w.AinvJct = Jc.transpose();
-    terms[body].A_llt.solveInPlace(w.AinvJct);
-    W.noalias() += Jc * w.AinvJct;
+    // diag(Jc A^-1 Jc^T) = squared column norms of L^-1 Jc^T, with A = L L^T
+    w.LinvJct = Jc.transpose();
+    terms[body].A_llt.matrixL().solveInPlace(w.LinvJct);
+    W_diag += w.LinvJct.colwise().squaredNorm().transpose();
     vn_free += Jc.row(2).dot(v_start.segment(o, nb));
   };
   std::vector<Mat3>& frames = w.frames;
   std::vector<real>& contact_mu = w.contact_mu;
   frames.clear();
   contact_mu.clear();
-  // the frictional block of a contact with Delassus block W and free-motion normal velocity
-  auto push_contact_block = [&](const ContactMaterial& material, real phi, const Mat3& W, real vn_free) {
-    ConstraintBlock blk = frictional_contact_block(material, phi, W.trace() / 3, W(2, 2), vn_free, dt, params);
+  // the frictional block of a contact with Delassus diagonal W_diag and free-motion normal velocity
+  auto push_contact_block = [&](const ContactMaterial& material, real phi, const Vec3& W_diag, real vn_free) {
+    ConstraintBlock blk = frictional_contact_block(material, phi, W_diag.sum() / 3, W_diag[2], vn_free, dt, params);
     blk.row = row;
     contact_mu.push_back(material.friction);
     rows.blocks.push_back(blk);
@@ -190,11 +191,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const Contact& c = contacts[ci];
     const Mat3 R_C = contact_frame(c.n_W);
     frames.push_back(R_C);
-    Mat3 W = Mat3::Zero();
+    Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
-    add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W, vn_free);
-    add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W, vn_free);
-    push_contact_block(c.material, c.phi, W, vn_free);
+    add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W_diag, vn_free);
+    add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W_diag, vn_free);
+    push_contact_block(c.material, c.phi, W_diag, vn_free);
   }
   // soft contacts: a point moving with up to three nodes by barycentric weights (side a, the
   // compliance of the lumped node masses) against a link (side b)
@@ -203,7 +204,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const SoftStep& st = *soft_steps[c.soft];
     const Mat3 R_C = contact_frame(c.n_W);
     frames.push_back(R_C);
-    Mat3 W = Mat3::Zero();
+    Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
     const int o = soft_offset[c.soft];
     for (int j = 0; j < 3; ++j) {
@@ -215,10 +216,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
           if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + f, w * R_C(a, i));
         vn_free += w * R_C(a, 2) * (st.r[f] / st.mass[f]);
       }
-      W += (w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]]) * Mat3::Identity();
+      W_diag.array() += w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]];
     }
-    add_link_side(c.body, c.link, c.p_W, R_C, -1, W, vn_free);
-    push_contact_block(c.material, c.phi, W, vn_free);
+    add_link_side(c.body, c.link, c.p_W, R_C, -1, W_diag, vn_free);
+    push_contact_block(c.material, c.phi, W_diag, vn_free);
   }
 
   // same-row entries of a contact with both bodies on one articulation add up
@@ -272,6 +273,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     sliding = g[2] > 0 && std::hypot(g[0], g[1]) >= real(0.999) * rows.blocks[k].bound * g[2] &&
               std::hypot(row_velocity(r0), row_velocity(r0 + 1)) > params.friction_pass_min_slip;
   }
+  int passes = 0;
   for (int pass = 0; pass < params.max_friction_passes && sliding; ++pass) {
     real change = 0, scale = 0;
     for (size_t k = first_contact; k < rows.blocks.size(); ++k) {
@@ -288,9 +290,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     v_start = sol.v;  // each pass starts from the last solution (a nearby problem)
     solve();          // into sol
     sol.iterations += previous;
+    ++passes;
   }
   if (sparse_cache) *sparse_cache = system;
   out.iterations = sol.iterations;
+  out.friction_passes = passes;
   out.residual = sol.residual;
   out.converged = sol.converged;
   out.active_rows = 0;
@@ -334,16 +338,17 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                   const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
                   IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Ticks t0 = ticks_now();
   solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, w, sparse_cache, out);
   // a deferred limit row is inactive at the solution unless it says otherwise: then the same
   // problem with every row (rare: the free motion kept them far from acting)
   if (violates_deferred_rows(island, terms, out.v)) {
-    const int iterations = out.iterations;
+    const int iterations = out.iterations, passes = out.friction_passes;
     solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, true, w, sparse_cache, out);
     out.iterations += iterations;
+    out.friction_passes += passes;
   }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.ticks = ticks_now() - t0;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

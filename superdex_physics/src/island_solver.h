@@ -17,10 +17,11 @@ struct IslandSolution {
   std::vector<VecX> soft_v;         // next node velocities (3N), per island soft body
   std::vector<Vec3> soft_contact_force;  // per island soft contact: force on the node (N), world
   int iterations = 0;
+  int friction_passes = 0;          // friction refinement re-solves
   real residual = 0;
   bool converged = true;
   int active_rows = 0;              // joint rows with a non-zero impulse
-  double seconds = 0;
+  Ticks ticks = 0;                  // time spent solving (step_ticks.h)
 };
 
 // Working storage of one island's solve, kept across steps (SceneData::island_workspaces, by
@@ -50,7 +51,7 @@ struct IslandWorkspace {
   };
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
-  MatX J_point, Jc, AinvJct;  // one contact side: point Jacobian, in the contact frame, A^-1 Jc^T
+  MatX J_point, Jc, LinvJct;  // one contact side: point Jacobian, in the contact frame, L^-1 Jc^T (A = L L^T)
   std::vector<Mat3> frames;
   std::vector<real> contact_mu;
   NewtonScratch newton;

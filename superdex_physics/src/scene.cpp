@@ -321,8 +321,9 @@ void Scene::step(real dt) {
 
 void Scene::step_dynamics(real dt) {
   SceneData& s = scene_data(handle_);
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+  // the step's wall time by steady_clock; its parts in time-stamp ticks (step_ticks.h)
+  const auto t0 = std::chrono::steady_clock::now();
+  const Ticks k0 = ticks_now();
   const size_t n = s.articulations.size();
   const auto parallel = run_on_worker_threads;
 
@@ -331,10 +332,10 @@ void Scene::step_dynamics(real dt) {
 
   // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem
   // (the costliest items, first), the dynamics terms of every body and the narrow phase
-  const auto t1 = Clock::now();
+  const Ticks k1 = ticks_now();
   ContactPairs& pairs = ws.pairs;
   find_contact_pairs(s, s.params.contact_margin, dt, pairs);
-  double time_collision = std::chrono::duration<double>(Clock::now() - t1).count();
+  Ticks collision_ticks = ticks_now() - k1;
   const size_t num_soft = s.soft_bodies.size();
   std::vector<std::unique_ptr<SoftStep>> soft_steps(num_soft);
   std::vector<int>& soft_free = ws.soft_free;
@@ -346,8 +347,8 @@ void Scene::step_dynamics(real dt) {
   std::vector<std::vector<Contact>>& chunk_contacts = ws.chunk_contacts;
   chunk_contacts.resize(pairs.num_chunks());
   for (auto& chunk : chunk_contacts) chunk.clear();
-  std::vector<double>& chunk_seconds = ws.chunk_seconds;
-  chunk_seconds.assign(pairs.num_chunks(), 0);
+  std::vector<Ticks>& chunk_ticks = ws.chunk_ticks;
+  chunk_ticks.assign(pairs.num_chunks(), 0);
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
       if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
@@ -355,20 +356,20 @@ void Scene::step_dynamics(real dt) {
       articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params, terms[i - num_soft]);
     } else {
       const size_t c = i - num_soft - n;
-      const auto t = Clock::now();
+      const Ticks t = ticks_now();
       collide_pairs(s, pairs, c, chunk_contacts[c]);
-      chunk_seconds[c] = std::chrono::duration<double>(Clock::now() - t).count();
+      chunk_ticks[c] = ticks_now() - t;
     }
   };
   // by reference: a std::function holds a reference without allocating (the lambda is too large)
   parallel(num_soft + n + pairs.num_chunks(), std::cref(prepare));
   // 2. the contact list, and soft contacts
-  const auto t2 = Clock::now();
+  const Ticks k2 = ticks_now();
   std::vector<Contact>& contacts = ws.contacts;
   join_contacts(chunk_contacts, contacts);
   const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
-  time_collision += std::chrono::duration<double>(Clock::now() - t2).count();
-  for (double seconds : chunk_seconds) time_collision += seconds;
+  collision_ticks += ticks_now() - k2;
+  for (Ticks ticks : chunk_ticks) collision_ticks += ticks;
   // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
   std::vector<int>& num_dofs = ws.num_dofs;
   num_dofs.resize(n);
@@ -487,8 +488,8 @@ void Scene::step_dynamics(real dt) {
   SolverStats stats;
   stats.num_islands = static_cast<int>(islands.size());
   stats.num_contacts = static_cast<int>(contacts.size());
-  stats.time_collision = time_collision;
-  for (const ArticulationTerms& t : terms) stats.time_kinematics += t.seconds;
+  Ticks kinematics_ticks = 0, solve_ticks = 0;
+  for (const ArticulationTerms& t : terms) kinematics_ticks += t.ticks;
   for (const auto& st : soft_steps)
     if (st) {
       stats.soft_element_hessians += st->element_hessians();
@@ -497,14 +498,19 @@ void Scene::step_dynamics(real dt) {
   for (const IslandSolution& sol : solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;
+    stats.friction_passes += sol.friction_passes;
     stats.residual = std::max(stats.residual, sol.residual);
     stats.converged = stats.converged && sol.converged;
     stats.num_constraints += sol.active_rows;
-    stats.time_solve += sol.seconds;
+    solve_ticks += sol.ticks;
   }
   s.time += dt;
   s.step_count += 1;
-  stats.time_total = std::chrono::duration<double>(Clock::now() - t0).count();
+  stats.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double tick_seconds = seconds_per_tick(stats.time_total, ticks_now() - k0);
+  stats.time_kinematics = tick_seconds * static_cast<double>(kinematics_ticks);
+  stats.time_collision = tick_seconds * static_cast<double>(collision_ticks);
+  stats.time_solve = tick_seconds * static_cast<double>(solve_ticks);
   s.stats = stats;
 }
 

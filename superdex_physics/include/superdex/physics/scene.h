@@ -106,6 +106,8 @@ struct SolverStats {
   /// of a solve is solved by conjugate gradients preconditioned by the last factorization, and
   /// factors its matrix only when they do not converge in a few iterations.
   int soft_factorizations = 0;
+  /// Friction refinement re-solves (see SolverParams::max_friction_passes), summed over islands.
+  int friction_passes = 0;
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
   double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves
