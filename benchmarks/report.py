@@ -297,10 +297,7 @@ this run's.
   velocities when bodies touch (about 3 iterations per step); the Newton matrix's pattern is built
   once per island and kept across steps while the island keeps its contacts (A's structure is
   its bodies' blocks, whatever their values); each block's J_b^T G_b J_b is scattered into known
-  slots; rigid islands use a simplicial Cholesky in double (no BLAS or OpenMP threads). What
-  remains: the scalar simplicial factorization and the line search's per-block evaluations (a
-  supernodal Cholesky on the 6 x 6 body blocks would be next), and the landing phase, where the
-  contact set changes every step and the pattern is rebuilt. Measured next (solver statistics per
+  slots; rigid islands use a simplicial Cholesky in double (no BLAS or OpenMP threads). Measured next (solver statistics per
   step, float): the settled pile costs about 1.1 to 1.7 ms per step at 3 Newton iterations, but
   the landing (steps 30 to 100 of the 1000 timed) takes 50 to 100 iterations per step, the
   friction passes included, at about 0.35 ms each: 15 to 50 ms per step, about half of the timed
@@ -313,6 +310,21 @@ this run's.
   19 Newton iterations per step instead of 63 and the whole timed run 1.34 s instead of 2.47 s,
   so the passes are half of the run; without them the ratio to MuJoCo would still be about 3,
   from the landing's 19 iterations and a settled step of 0.9 ms (3 iterations at 0.3 ms).
+  Found next (perf): the scalar simplicial factorization, with Eigen's permuted copy of the
+  matrix before each one, was about a quarter of the run, and the dense product J_b^T G_b J_b of
+  each contact block a tenth. Fixed: a block-sparse Cholesky on the bodies' dense blocks
+  (block_cholesky.h: AMD on the graph of bodies once per pattern, dense 6 x 6 kernels, double
+  precision), into whose stored blocks each contact writes its J_b^T G_b J_b entry by entry:
+  the timed run 2.23 to 1.68 s, 9.1 to 6.5 ms per landing step, 1.0 to 0.83 ms per settled step
+  (solver statistics per step, float). What remains: the landing's Newton iterations, about 40
+  per step, two thirds of them in the friction passes (SolverStats.friction_passes: 4 re-solves
+  in most landing steps, each a solve from the last solution whose slow first phase crosses the
+  kinks of many contacts); and in float, the settled pile's largest island takes 2 to 3
+  iterations per step where double takes 1: float round-off keeps the pile from a steady state
+  and the residual ends near float's floor. A stopping test at an estimated round-off floor was
+  tried and not kept (the estimates were off by two orders of magnitude one way or the other).
+  MuJoCo, whose softer contacts make a smoother problem, takes 3 iterations per landing step and
+  1 per settled step.
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -332,7 +344,15 @@ this run's.
   spatial-algebra libraries reach 20 to 30: the 6-vectors are written as two 3-vector halves and
   then read as packets that straddle them, which stalls store forwarding; building with
   -march=native did not change that (mass matrix 647 to 562 ns, kinematics and inverse dynamics
-  unchanged), so the next step is spatial vectors kept as 3-vector pairs.
+  unchanged), so the next step is spatial vectors kept as 3-vector pairs. Found next (perf and
+  callgrind, the Panda on the table after it settles, 6.4 us per step): the solver statistics'
+  timers read steady_clock 12 times per step (4 %); the bot pipeline and BASIC_JSC_PD allocated
+  six vectors per step; a contact's compliance estimate solved with A for the whole 3 x 3
+  Delassus block, of which only the diagonal is read. Fixed: the timers read the time-stamp
+  counter (seconds from the step's own steady_clock interval); the vectors are kept; the
+  diagonal comes from L^-1 alone: 6.4 to 5.9 us per settled step. A build for x86-64-v3 (AVX2,
+  FMA) was measured and not adopted: kinematics 14 % and box-box collision 12 % faster, the mass
+  matrix and inverse dynamics unchanged, the pile step 4 %.
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
