@@ -106,6 +106,9 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
     const SpatialTransform& X = kin.X_WL[link];
     const Vec3 position_error = d.target.translation - X.p;
     const Vec3 rotation_error = quat_log(d.target.rotation * Quat(X.R).conjugate());
+    // the compliance J_i A^-1 J_i^T of each of the link Jacobian's six rows
+    MatX Jt = J.transpose();
+    const VecX w = compliance_diagonal(A_llt, Jt);
     for (int part = 0; part < 2; ++part) {
       const real K = part == 0 ? d.linear_stiffness : d.angular_stiffness;
       const real D = part == 0 ? d.linear_damping : d.angular_damping;
@@ -117,10 +120,9 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
         JointRow row;
         row.J = J.row(3 * part + axis).transpose();
         if (row.J.squaredNorm() < real(1e-20)) continue;  // the articulation cannot move along it
-        const real w = row.J.dot(A_llt.solve(row.J));
         const real per_velocity = dt * K + D;
         row.block.kind = BlockKind::Bounded;
-        row.block.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w);
+        row.block.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w[3 * part + axis]);
         row.block.vhat = (K * error[axis] + D * target_velocity[axis]) / per_velocity;
         row.block.bound = limit >= 0 ? dt * limit : std::numeric_limits<real>::infinity();
         rows.push_back(std::move(row));
@@ -161,10 +163,9 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
 
 real ArticulationTerms::inverse_diagonal(int k) const {
   if (!have_inverse_diagonal_) {
-    // diagonal of A^-1 = L^-T L^-1: squared column norms of L^-1
+    // diagonal of A^-1 = L^-T L^-1
     L_inv_.setIdentity(A.rows(), A.cols());
-    A_llt.matrixL().solveInPlace(L_inv_);
-    A_inv_diagonal_.noalias() = L_inv_.colwise().squaredNorm().transpose();
+    A_inv_diagonal_ = compliance_diagonal(A_llt, L_inv_);
     have_inverse_diagonal_ = true;
   }
   return A_inv_diagonal_[k];

@@ -25,6 +25,13 @@ struct JointRow {
   VecX J;              // full row, for rows that involve several DOFs
 };
 
+// diag(X^T A^-1 X) for the SPD matrix A = L L^T factored in A_llt: the squared column norms of
+// L^-1 X, one triangular solve. X (n x k) is overwritten by L^-1 X; the result reads it.
+inline auto compliance_diagonal(const Eigen::LLT<MatX>& A_llt, MatX& X) {
+  A_llt.matrixL().solveInPlace(X);
+  return X.colwise().squaredNorm().transpose();
+}
+
 struct ArticulationTerms {
   MatX A;                        // nv x nv
   VecX r;                        // nv

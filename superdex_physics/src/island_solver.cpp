@@ -169,10 +169,8 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < nb; ++k)
         if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
-    // diag(Jc A^-1 Jc^T) = squared column norms of L^-1 Jc^T, with A = L L^T
     w.LinvJct = Jc.transpose();
-    terms[body].A_llt.matrixL().solveInPlace(w.LinvJct);
-    W_diag += w.LinvJct.colwise().squaredNorm().transpose();
+    W_diag += compliance_diagonal(terms[body].A_llt, w.LinvJct);
     vn_free += Jc.row(2).dot(v_start.segment(o, nb));
   };
   std::vector<Mat3>& frames = w.frames;
