@@ -106,7 +106,8 @@ namespace {
 // Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
 class DenseAlgebra {
  public:
-  DenseAlgebra(const MatX& A, const SparseRowMat& J, NewtonScratch& w) : A_(A), J_(w.J), H_(w.H), GJ_(w.GJ), llt_(w.llt) {
+  DenseAlgebra(const MatX& A, const SparseRowMat& J, NewtonScratch& w)
+      : A_(A), J_(w.J), H_(w.H), J_active_(w.J_active), GJ_(w.GJ), llt_(w.llt) {
     J_ = J;
   }
   int n() const { return static_cast<int>(A_.rows()); }
@@ -120,13 +121,25 @@ class DenseAlgebra {
   real smooth_curvature(const VecX&) const { return 0; }
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
     H_ = A_;
-    if (J_.rows() > 0) {
-      GJ_.resize(J_.rows(), J_.cols());
+    // only the blocks with a non-zero G (the active ones: speculative contacts that stay apart
+    // are often most rows) add to H, packed together
+    int m_active = 0;
+    for (size_t k = 0; k < rows.blocks.size(); ++k) {
+      const int s = rows.blocks[k].size();
+      if (!(G[k].topLeftCorner(s, s).array() == 0).all()) m_active += s;
+    }
+    if (m_active > 0) {
+      J_active_.resize(m_active, J_.cols());
+      GJ_.resize(m_active, J_.cols());
+      int row = 0;
       for (size_t k = 0; k < rows.blocks.size(); ++k) {
         const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-        GJ_.middleRows(r0, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+        if ((G[k].topLeftCorner(s, s).array() == 0).all()) continue;
+        J_active_.middleRows(row, s) = J_.middleRows(r0, s);
+        GJ_.middleRows(row, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+        row += s;
       }
-      H_.noalias() += J_.transpose() * GJ_;
+      H_.noalias() += J_active_.transpose() * GJ_;
     }
     llt_.compute(H_);
   }
@@ -138,7 +151,7 @@ class DenseAlgebra {
  private:
   const MatX& A_;
   MatX& J_;
-  MatX &H_, &GJ_;
+  MatX &H_, &J_active_, &GJ_;
   Eigen::LLT<MatX>& llt_;
 };
 

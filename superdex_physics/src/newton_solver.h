@@ -73,7 +73,7 @@ struct NewtonScratch {
   ConvexResult result;  // the last solve's
   VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
   std::vector<Eigen::Matrix<real, 3, 3>> G;
-  MatX J, H, GJ;  // dense algebra: J as a dense matrix, the Hessian, G J
+  MatX J, H, J_active, GJ;  // dense algebra: J as a dense matrix, the Hessian, J's active rows, G J on them
   Eigen::LLT<MatX> llt;
 };
 

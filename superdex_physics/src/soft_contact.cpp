@@ -2,7 +2,7 @@
 
 #include "soft_contact.h"
 
-#include <memory>
+#include <algorithm>
 
 #include "collision_geometry.h"
 #include "triangle_bvh.h"
@@ -19,15 +19,29 @@ constexpr std::array<std::array<real, 3>, 4> kFacePoints = {{{kThird, kThird, kT
                                                              {kOther, kCentreToCorner, kOther},
                                                              {kOther, kOther, kCentreToCorner}}};
 
-// The soft body's surface at its current node positions, with a closest-triangle hierarchy.
+// The part of a soft body's surface near a collider, at the current node positions, with a
+// closest-triangle hierarchy: the faces whose bounds overlap `box` (world).
 struct DeformedSurface {
   std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;
   TriangleBvh bvh;
-  explicit DeformedSurface(const SoftBody& soft) : vertices(positions(soft)), bvh(vertices, soft.model.surface_faces) {}
+  DeformedSurface(const SoftBody& soft, const Aabb& box)
+      : vertices(positions(soft)), faces(near_faces(soft, box)), bvh(vertices, faces) {}
+  DeformedSurface(const DeformedSurface&) = delete;  // the hierarchy refers to the members
   static std::vector<Eigen::Vector3d> positions(const SoftBody& soft) {
     std::vector<Eigen::Vector3d> v(soft.state.x.size() / 3);
     for (size_t i = 0; i < v.size(); ++i) v[i] = soft.state.x.segment<3>(3 * i).cast<double>();
     return v;
+  }
+  static std::vector<std::array<int, 3>> near_faces(const SoftBody& soft, const Aabb& box) {
+    std::vector<std::array<int, 3>> out;
+    const VecX& x = soft.state.x;
+    for (const auto& face : soft.model.surface_faces) {
+      Aabb bounds;
+      for (int v : face) bounds.extend(x.segment<3>(3 * v));
+      if (bounds.overlaps(box)) out.push_back(face);
+    }
+    return out;
   }
 };
 
@@ -50,7 +64,6 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     if (!(bounds.min.array() <= bounds.max.array()).all()) continue;  // every surface node pinned
     // samples deeper than a quarter of the body's smallest extent are left to the node contacts
     const real max_depth = (bounds.max - bounds.min).minCoeff() / 4;
-    std::unique_ptr<DeformedSurface> surface;  // built when a collider with samples comes near
     for (size_t b = 0; b < s.articulations.size(); ++b) {
       const Articulation& a = *s.articulations[b];
       for (const LinkCollider& col : a.model.colliders) {
@@ -58,20 +71,24 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         if (actor_pair_disabled(s, soft.handle, a.handle) || actor_pair_disabled(s, soft.handle, a.link_handles[col.link]))
           continue;
         const SpatialTransform X_WS = a.kin.X_WL[col.link] * col.X_LS;
-        const real reach = margin + node_sweep + collider_sweep(a, col, dt);
+        const real sweep = node_sweep + collider_sweep(a, col, dt);
+        const real reach = margin + sweep;
         const bool plane = std::holds_alternative<PlaneShape>(col.shape);
+        // a bounded collider's box grown by the reach: no point outside it can touch
+        Aabb box;
         if (!plane) {
-          Aabb box = world_bounds(col.aabb_S, X_WS);
+          box = world_bounds(col.aabb_S, X_WS);
           box.min.array() -= reach;
           box.max.array() += reach;
           if (!box.overlaps(bounds)) continue;
         }
+        auto near = [&](const Vec3& p) { return plane || ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all()); };
         const ContactMaterial material = combine_materials(soft.model.contact, col.material);
         auto add = [&](const std::array<int, 3>& nodes, const std::array<real, 3>& weights, const Vec3& p_W, const Vec3& n_W,
                        real phi) {
           SoftContact c;
           c.soft = static_cast<int>(k), c.nodes = nodes, c.weights = weights, c.body = static_cast<int>(b), c.link = col.link;
-          c.p_W = p_W, c.n_W = n_W, c.phi = phi, c.material = material;
+          c.p_W = p_W, c.n_W = n_W, c.phi = phi, c.sweep = sweep, c.material = material;
           out.push_back(c);
         };
         // a point of the soft surface (weights over its nodes) against the collider's distance field
@@ -81,7 +98,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           if (phi < reach) add(nodes, weights, p, X_WS.R * g_S, phi);
         };
         for (int i : soft.model.surface_nodes)
-          if (!soft.model.pinned[i]) against_field({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i));
+          if (!soft.model.pinned[i] && near(x.segment<3>(3 * i))) against_field({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i));
         // points inside the surface triangles (barycentric quadrature points) against bounded
         // colliders: a body smaller than a few elements is then held by the faces it rests on,
         // not only by the nearest nodes, and its contact force does not jump from node to node
@@ -90,20 +107,28 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           for (const auto& face : soft.model.surface_faces) {
             if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
             const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
+            Aabb face_box;
+            face_box.extend(a0), face_box.extend(a1), face_box.extend(a2);
+            if (!face_box.overlaps(box)) continue;
             for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
           }
         // the collider's samples against the deformed surface triangles
         if (col.samples_S.empty()) continue;
-        if (!surface) surface = std::make_unique<DeformedSurface>(soft);
+        // the faces within reach of the collider, or within the deepest penetration kept
+        Aabb near_box = box;
+        near_box.min.array() -= std::max<real>(0, max_depth - reach);
+        near_box.max.array() += std::max<real>(0, max_depth - reach);
+        const DeformedSurface surface(soft, near_box);
+        if (surface.faces.empty()) continue;
         int hint = -1;
         for (const Vec3& sample_S : col.samples_S) {
           const Vec3 p = X_WS.R * sample_S + X_WS.p;
           if (!(p.array() >= bounds.min.array() - reach).all() || !(p.array() <= bounds.max.array() + reach).all()) continue;
-          const TriangleBvh::Hit hit = surface->bvh.closest(p.cast<double>(), hint);
+          const TriangleBvh::Hit hit = surface.bvh.closest(p.cast<double>(), hint);
           if (hit.triangle < 0) continue;
           hint = hit.triangle;
-          const auto& face = soft.model.surface_faces[hit.triangle];
-          const Eigen::Vector3d a = surface->vertices[face[0]], bb = surface->vertices[face[1]], cc = surface->vertices[face[2]];
+          const auto& face = surface.faces[hit.triangle];
+          const Eigen::Vector3d a = surface.vertices[face[0]], bb = surface.vertices[face[1]], cc = surface.vertices[face[2]];
           const Eigen::Vector3d normal = (bb - a).cross(cc - a);
           if (normal.norm() <= 0) continue;
           const Eigen::Vector3d n_out = normal.normalized();

@@ -20,6 +20,7 @@ struct SoftContact {
   Vec3 p_W = Vec3::Zero();   // contact point (m), world: the node, or the collider's sample
   Vec3 n_W = Vec3::UnitZ();  // unit normal from the collider towards the soft body
   real phi = 0;              // signed distance between the surfaces (m), negative when penetrating
+  real sweep = 0;            // how far the two sides can move towards each other within the step (m)
   ContactMaterial material;  // combined for the pair
 };
 
