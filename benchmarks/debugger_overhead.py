@@ -17,7 +17,7 @@ from pathlib import Path
 import superdex.physics as sdp
 
 REPO = Path(__file__).resolve().parents[1]
-DUCK = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+DUCK = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.mochi_prefab"
 
 
 def boxes(scene):

@@ -1,8 +1,9 @@
 """Soft duck drop: the soft duck-lamp prop falls onto the ground, squashes a little and comes to rest.
 
 The duck lamp (assets/prefabs/duck_lamp) is a tetrahedral finite-element body of soft silicone
-(Neo-Hookean, E = 100 kPa). It is loaded from its prefab with sdp.prefab.add_to_scene, as in the
-seed example, but 3 cm higher and centred on the origin. The prefab pins the duck's flat belly
+(Neo-Hookean, E = 100 kPa). It is loaded with sdp.prefab.add_to_scene from the full finite-element
+twin of the seed's prefab (the seed's duck is a reduced soft body, which cannot be released), 3 cm
+higher and centred on the origin. The prefab pins the duck's flat belly
 (its "fixedRegion") so that it stays put under the seed's arm; this example releases those nodes
 so the whole body falls. The elastic body and its frictional contact with the ground are solved
 together in every implicit step.
@@ -26,7 +27,8 @@ import numpy as np
 import superdex.physics as sdp
 
 GRAVITY = 9.81  # m/s^2
-DUCK_LAMP_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab"
+# the full finite-element twin of the seed's (reduced, pinned) duck: dropped, the duck is free
+DUCK_LAMP_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent_full.mochi_prefab"
 PREFAB_OFFSET_X = -0.3  # m: where the prefab places the duck (under the seed's arm)
 
 

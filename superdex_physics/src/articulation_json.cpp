@@ -323,7 +323,13 @@ SoftMaterial soft_material_from_json(const json& j, const std::string& source, c
       m.damping_alpha = r.number("dampingAlpha");
       if (!(m.damping_alpha >= 0)) r.fail(r.field_path("dampingAlpha"), "must be >= 0 (1/s)" + got(m.damping_alpha));
     }
-    r.check_unknown({"type", "youngsModulus", "poissonRatio", "density", "damping", "dampingAlpha"}, {});
+    if (r.has("reducedModes")) {
+      const real modes = r.number("reducedModes");
+      if (!(modes >= 0 && modes <= 10000 && modes == std::floor(modes)))
+        r.fail(r.field_path("reducedModes"), "must be a whole number of modes from 0 (the full model) to 10000" + got(modes));
+      m.reduced_modes = static_cast<int>(modes);
+    }
+    r.check_unknown({"type", "youngsModulus", "poissonRatio", "density", "damping", "dampingAlpha", "reducedModes"}, {});
     return m;
   });
 }

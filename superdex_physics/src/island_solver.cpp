@@ -2,6 +2,7 @@
 
 #include "island_solver.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact_block.h"
@@ -64,7 +65,12 @@ bool island_is_sparse(const SceneData& s, const Island& island, const SolverPara
 
 namespace {
 
-// One solve of the island, with or without the deferred joint-limit rows.
+// A soft contact too far apart to close within the step at the current speeds: it is left out of
+// the first solve, and joins a second one only if that solve's velocities would close (half) its
+// gap. Most speculative contacts of a soft surface are such.
+bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
+
+// One solve of the island, with or without the deferred joint-limit rows and soft contacts.
 void solve_island_once(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                        const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                        const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
@@ -77,10 +83,40 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   soft_offset.assign(soft_steps.size(), -1);
   int n = 0;
   for (int b : island.bodies) offset[b] = n, n += s.articulations[b]->model.nv;
+  // the soft contacts that take part (positions in island.soft_contacts)
+  std::vector<int>& solved_soft = w.solved_soft_contacts;
+  solved_soft.clear();
+  for (size_t j = 0; j < island.soft_contacts.size(); ++j)
+    if (include_deferred || !soft_contact_deferred(soft_contacts[island.soft_contacts[j]])) solved_soft.push_back(static_cast<int>(j));
+  // reduced soft bodies: dense variables after the articulations' DOFs, with the residual
+  // velocities of the free nodes of the contacts that take part
+  std::vector<ReducedVariables>& reduced = w.reduced;
+  std::vector<int>& reduced_of = w.reduced_of;
+  reduced.resize(0);
+  reduced_of.assign(soft_steps.size(), -1);
+  for (int k : island.soft_bodies) {
+    const SoftBody& body = *s.soft_bodies[k];
+    if (!body.reduced) continue;
+    std::vector<int> nodes;
+    for (int j : solved_soft) {
+      const SoftContact& c = soft_contacts[island.soft_contacts[j]];
+      if (c.soft != k) continue;
+      for (int v = 0; v < 3; ++v)
+        if (c.nodes[v] >= 0 && c.weights[v] != 0 && body.reduced->free_of_dof[3 * c.nodes[v]] >= 0) nodes.push_back(c.nodes[v]);
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    reduced_of[k] = static_cast<int>(reduced.size());
+    reduced.emplace_back();
+    reduced_variables(body, k, s.gravity, dt, std::move(nodes), reduced.back());
+    reduced.back().offset = soft_offset[k] = n;
+    n += reduced.back().size();
+  }
   const int n_rigid = n;
   std::vector<SoftStep*>& soft = w.soft;
   soft.clear();
   for (int k : island.soft_bodies) {
+    if (reduced_of[k] >= 0) continue;
     soft.push_back(soft_steps[k].get());
     soft_offset[k] = n;
     n += soft.back()->size();
@@ -96,7 +132,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   }
   const int joint_rows = static_cast<int>(solved_rows.size());
   int m = joint_rows;
-  const int num_contacts = static_cast<int>(island.contacts.size() + island.soft_contacts.size());
+  const int num_contacts = static_cast<int>(island.contacts.size() + solved_soft.size());
   m += 3 * num_contacts;
 
   MatX& A = w.A;
@@ -112,10 +148,23 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     // reference of the near-rigid target compensation
     v_start.segment(o, nb) = terms[b].v_free;
   }
-  for (size_t j = 0; j < soft.size(); ++j) {
-    const int o = soft_offset[island.soft_bodies[j]];
-    r.segment(o, soft[j]->size()) = soft[j]->r;
-    v_start.segment(o, soft[j]->size()) = soft[j]->v0;
+  // a reduced body: the modal block (diagonal) and the contact nodes' residual stiffness and
+  // damping h G^-1; its free motion leaves the modes to themselves and relaxes the residual
+  for (const ReducedVariables& rv : reduced) {
+    const int o = rv.offset, nq = static_cast<int>(rv.A_q.size()), k3 = rv.size() - nq;
+    A.diagonal().segment(o, nq) = rv.A_q;
+    r.segment(o, nq) = rv.r_q;
+    v_start.segment(o, nq) = rv.r_q.cwiseQuotient(rv.A_q);
+    if (k3 == 0) continue;
+    A.block(o + nq, o + nq, k3, k3) = rv.h * rv.G_inv;
+    r.segment(o + nq, k3).noalias() = -dt * (rv.G_inv * rv.u_old);
+    v_start.segment(o + nq, k3) = -(dt / rv.h) * rv.u_old;
+  }
+  for (int k : island.soft_bodies) {
+    if (reduced_of[k] >= 0) continue;
+    const SoftStep& st = *soft_steps[k];
+    r.segment(soft_offset[k], st.size()) = st.r;
+    v_start.segment(soft_offset[k], st.size()) = st.v0;
   }
   ConstraintRows& rows = w.rows;
   std::vector<Eigen::Triplet<real>>& J_entries = w.J_entries;
@@ -195,15 +244,56 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W_diag, vn_free);
     push_contact_block(c.material, c.phi, W_diag, vn_free);
   }
+  // a contact point on a reduced body moves with its nodes' modal and residual velocities: adds
+  // its rows (side a), their Delassus diagonal and free-motion normal velocity
+  auto add_reduced_side = [&](const ReducedVariables& rv, const SoftContact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free) {
+    const ReducedSoftModel& model = *s.soft_bodies[c.soft]->reduced;
+    const int o = rv.offset, nq = model.num_modes();
+    MatX& Jq = w.Jc;
+    Jq.setZero(3, nq);
+    for (int j = 0; j < 3; ++j)
+      if (c.nodes[j] >= 0 && c.weights[j] != 0) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < nq; ++k)
+        if (Jq(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jq(i, k));
+    W_diag += (Jq.array().square().rowwise() / rv.A_q.transpose().array()).rowwise().sum().matrix();
+    // the contact's regularization takes the full body's Delassus estimate too (its lumped node
+    // masses), so that a reduced body and its full twin press alike
+    for (int j = 0; j < 3; ++j)
+      if (c.nodes[j] >= 0 && c.weights[j] != 0 && model.free_of_dof[3 * c.nodes[j]] >= 0)
+        W_diag.array() += c.weights[j] * c.weights[j] / s.soft_bodies[c.soft]->model.node_mass[c.nodes[j]];
+    vn_free += Jq.row(2).dot(rv.r_q.cwiseQuotient(rv.A_q));
+    // residual columns: the node's own velocity w, weighted; compliance G / h among them
+    for (int j = 0; j < 3; ++j) {
+      const int cj = c.nodes[j] >= 0 && c.weights[j] != 0 ? rv.column(c.nodes[j], 0) : -1;
+      if (cj < 0) continue;
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+          if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + cj + a, c.weights[j] * R_C(a, i));
+      vn_free -= c.weights[j] * (dt / rv.h) * R_C.col(2).dot(rv.u_old.segment<3>(cj - nq));
+      for (int l = 0; l < 3; ++l) {
+        const int cl = c.nodes[l] >= 0 && c.weights[l] != 0 ? rv.column(c.nodes[l], 0) : -1;
+        if (cl < 0) continue;
+        const Mat3 G_jl = R_C.transpose() * rv.G.block<3, 3>(cj - nq, cl - nq) * R_C;
+        W_diag += (c.weights[j] * c.weights[l] / rv.h) * G_jl.diagonal();
+      }
+    }
+  };
   // soft contacts: a point moving with up to three nodes by barycentric weights (side a, the
   // compliance of the lumped node masses) against a link (side b)
-  for (int ci : island.soft_contacts) {
-    const SoftContact& c = soft_contacts[ci];
-    const SoftStep& st = *soft_steps[c.soft];
+  for (int j : solved_soft) {
+    const SoftContact& c = soft_contacts[island.soft_contacts[j]];
     const Mat3 R_C = contact_frame(c.n_W);
     frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
+    if (reduced_of[c.soft] >= 0) {
+      add_reduced_side(reduced[reduced_of[c.soft]], c, R_C, W_diag, vn_free);
+      add_link_side(c.body, c.link, c.p_W, R_C, -1, W_diag, vn_free);
+      push_contact_block(c.material, c.phi, W_diag, vn_free);
+      continue;
+    }
+    const SoftStep& st = *soft_steps[c.soft];
     const int o = soft_offset[c.soft];
     for (int j = 0; j < 3; ++j) {
       if (c.nodes[j] < 0 || c.weights[j] == 0 || st.pattern.free_of_dof[3 * c.nodes[j]] < 0) continue;
@@ -227,8 +317,14 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // bodies: block elimination. The first solve starts from the free motion A^-1 r, or, when
   // bodies touch, from their current velocities: resting and pressing contacts change little
   // from one step to the next, and the problem is convex, so any start converges.
-  if (num_contacts > 0)
+  if (num_contacts > 0) {
     for (int b : island.bodies) v_start.segment(offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
+    // a reduced body: its modes' velocities, and contact nodes that keep their residual
+    for (const ReducedVariables& rv : reduced) {
+      v_start.segment(rv.offset, rv.A_q.size()) = s.soft_bodies[rv.soft]->state.qd;
+      v_start.segment(rv.offset + rv.A_q.size(), rv.size() - rv.A_q.size()).setZero();
+    }
+  }
   SparseMat& A_sparse = w.A_sparse;
   std::shared_ptr<SparseNewtonSystem> system;
   const bool sparse = island_is_sparse(s, island, params);
@@ -311,15 +407,26 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const JointRow& jr = terms[island.bodies[j]].joint_rows[i];
     if (jr.drive) out.drive_efforts[j][jr.dof] += jr.sign * sol.gamma[k] / dt;
   }
-  out.soft_v.resize(soft.size());
-  for (size_t j = 0; j < soft.size(); ++j)
-    out.soft_v[j] = soft[j]->full_velocity(sol.v.segment(soft_offset[island.soft_bodies[j]], soft[j]->size()));
+  out.soft_v.resize(island.soft_bodies.size());
+  out.soft_reduced.resize(island.soft_bodies.size());
+  for (size_t j = 0; j < island.soft_bodies.size(); ++j) {
+    const int k = island.soft_bodies[j];
+    if (reduced_of[k] >= 0) {
+      const ReducedVariables& rv = reduced[reduced_of[k]];
+      reduced_next_state(*s.soft_bodies[k], rv, sol.v.segment(rv.offset, rv.size()), s.gravity, dt, out.soft_reduced[j]);
+      out.soft_v[j] = out.soft_reduced[j].v;
+    } else {
+      out.soft_reduced[j].q.resize(0);
+      out.soft_v[j] = soft_steps[k]->full_velocity(sol.v.segment(soft_offset[k], soft_steps[k]->size()));
+    }
+  }
   out.contact_force.clear();
   out.soft_contact_force.clear();
   for (size_t k = 0; k < island.contacts.size(); ++k)
     out.contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+  out.soft_contact_force.assign(island.soft_contacts.size(), Vec3::Zero());
   for (size_t k = island.contacts.size(); k < frames.size(); ++k)
-    out.soft_contact_force.push_back(frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+    out.soft_contact_force[solved_soft[k - island.contacts.size()]] = frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt;
 }
 
 // Whether the island's solution `v` (per body) would make a deferred joint-limit row act.
@@ -327,6 +434,43 @@ bool violates_deferred_rows(const Island& island, const std::vector<Articulation
   for (size_t j = 0; j < island.bodies.size(); ++j)
     for (const JointRow& row : terms[island.bodies[j]].joint_rows)
       if (row.deferred && row.sign * v[j][row.dof] < row.block.vhat) return true;
+  return false;
+}
+
+// Whether the island's solution would close more than half the gap of a deferred soft contact
+// (half the gap its contact block would let close before acting).
+bool violates_deferred_soft_contacts(const SceneData& s, const Island& island, const std::vector<SoftContact>& soft_contacts,
+                                     real dt, const IslandSolution& out) {
+  // world twist of each touched link at the solution (linear part at the link origin, angular)
+  struct LinkTwist {
+    int body, link;
+    Vec6 V;
+  };
+  std::vector<LinkTwist> twists;
+  MatXR J_WL;
+  auto point_velocity = [&](int body, int link, const Vec3& p_W) -> Vec3 {
+    const Articulation& a = *s.articulations[body];
+    if (a.model.nv == 0) return Vec3::Zero();
+    auto it = std::find_if(twists.begin(), twists.end(), [&](const LinkTwist& t) { return t.body == body && t.link == link; });
+    if (it == twists.end()) {
+      const int j = static_cast<int>(std::find(island.bodies.begin(), island.bodies.end(), body) - island.bodies.begin());
+      link_jacobian_world(a.model, a.kin, link, J_WL);
+      twists.push_back({body, link, J_WL * out.v[j]});
+      it = std::prev(twists.end());
+    }
+    return it->V.head<3>() + it->V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
+  };
+  for (size_t j = 0; j < island.soft_contacts.size(); ++j) {
+    const SoftContact& c = soft_contacts[island.soft_contacts[j]];
+    if (!soft_contact_deferred(c)) continue;
+    const VecX& v_soft = out.soft_v[std::find(island.soft_bodies.begin(), island.soft_bodies.end(), c.soft) - island.soft_bodies.begin()];
+    Vec3 v_point = Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (c.nodes[k] >= 0) v_point += c.weights[k] * v_soft.segment<3>(3 * c.nodes[k]);
+    const real vn = c.n_W.dot(v_point - point_velocity(c.body, c.link, c.p_W));
+    const real allowed = c.material.stiffness > 0 ? c.phi / (dt + std::max<real>(c.material.dissipation_time, 0)) : c.phi / dt;
+    if (vn < -allowed / 2) return true;
+  }
   return false;
 }
 
@@ -338,9 +482,9 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
                   IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
   const Ticks t0 = ticks_now();
   solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, w, sparse_cache, out);
-  // a deferred limit row is inactive at the solution unless it says otherwise: then the same
-  // problem with every row (rare: the free motion kept them far from acting)
-  if (violates_deferred_rows(island, terms, out.v)) {
+  // a deferred limit row or soft contact is inactive at the solution unless it says otherwise:
+  // then the same problem with every row (rare: the free motion kept them far from acting)
+  if (violates_deferred_rows(island, terms, out.v) || violates_deferred_soft_contacts(s, island, soft_contacts, dt, out)) {
     const int iterations = out.iterations, passes = out.friction_passes;
     solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, true, w, sparse_cache, out);
     out.iterations += iterations;

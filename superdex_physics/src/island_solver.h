@@ -5,6 +5,7 @@
 
 #include "articulation_step.h"
 #include "islands.h"
+#include "reduced_soft.h"
 #include "soft_body.h"
 
 namespace superdex::physics {
@@ -15,6 +16,7 @@ struct IslandSolution {
   std::vector<VecX> drive_efforts;  // joint drive efforts (N m or N), per island body
   std::vector<Vec3> contact_force;  // per island contact: force on body a (N), world
   std::vector<VecX> soft_v;         // next node velocities (3N), per island soft body
+  std::vector<SoftState> soft_reduced;  // next states of reduced soft bodies, per island soft body (empty for full ones)
   std::vector<Vec3> soft_contact_force;  // per island soft contact: force on the node (N), world
   int iterations = 0;
   int friction_passes = 0;          // friction refinement re-solves
@@ -32,12 +34,15 @@ struct IslandWorkspace {
   std::vector<int> body_offset;   // by articulation index: first variable, or -1 when not in the island
   std::vector<int> soft_offset;   // by soft step index: first variable
   std::vector<SoftStep*> soft;
+  std::vector<ReducedVariables> reduced;  // the island's reduced soft bodies
+  std::vector<int> reduced_of;            // by island soft body: its index in `reduced`, or -1
   // a joint row that takes part in the solve: the body's position in the island, and the row's
   // index in its terms' joint_rows
   struct JointRowRef {
     int body, row;
   };
   std::vector<JointRowRef> solved_joint_rows;  // in the order of their constraint rows
+  std::vector<int> solved_soft_contacts;       // the soft contacts that take part (positions in the island's list)
   MatX A;
   SparseMat A_sparse;  // A on the sparse path
   VecX r, v_start;

@@ -167,12 +167,20 @@ void check_nodes(const SoftBody& b, const std::vector<int>& nodes, const char* w
                   " is out of range (" + std::to_string(n) + " nodes)");
 }
 
+// A reduced body's modes hold for its pinned nodes at rest: they cannot change.
+void refuse_reduced(const SoftBody& b, const char* what) {
+  if (b.reduced)
+    throw Error(std::string(what) + ": soft actor '" + b.model.name +
+                "' is reduced (material.reducedModes): its modes are those of its pinned nodes held at rest, which cannot change");
+}
+
 }  // namespace
 
 void Scene::set_boundary_nodes(ActorHandle h, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W) {
   const char* what = "add_boundary_condition_nodes_world";
   SoftBody& b = soft_actor(scene_data(handle_), h, what);
   check_nodes(b, nodes, what);
+  refuse_reduced(b, what);
   if (positions_W.size() != nodes.size())
     throw Error(std::string(what) + ": " + std::to_string(nodes.size()) + " node indices but " + std::to_string(positions_W.size()) +
                 " positions");
@@ -189,6 +197,7 @@ void Scene::release_boundary_nodes(ActorHandle h, const std::vector<int>& nodes)
   const char* what = "remove_boundary_condition_nodes";
   SoftBody& b = soft_actor(scene_data(handle_), h, what);
   check_nodes(b, nodes, what);
+  refuse_reduced(b, what);
   for (int i : nodes) {
     if (b.model.pinned[i]) b.pattern.reset();
     b.model.pinned[i] = 0;
@@ -351,7 +360,7 @@ void Scene::step_dynamics(real dt) {
   chunk_ticks.assign(pairs.num_chunks(), 0);
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
-      if (soft_free[i] > 0) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
+      if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
     } else if (i < num_soft + n) {
       articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params, terms[i - num_soft]);
     } else {
@@ -440,8 +449,14 @@ void Scene::step_dynamics(real dt) {
   for (size_t i = 0; i < islands.size(); ++i) {
     for (size_t j = 0; j < islands[i].soft_bodies.size(); ++j) {
       const int k = islands[i].soft_bodies[j];
-      soft_next[k].v = solutions[i].soft_v[j];
-      soft_next[k].x += dt * soft_next[k].v;
+      if (s.soft_bodies[k]->reduced) {
+        // the solve's positions and reduced state; a clamped island keeps the last ones, at rest
+        if (solutions[i].soft_reduced[j].q.size() > 0) soft_next[k] = std::move(solutions[i].soft_reduced[j]);
+        else soft_next[k].v.setZero(), soft_next[k].qd.setZero();
+      } else {
+        soft_next[k].v = solutions[i].soft_v[j];
+        soft_next[k].x += dt * soft_next[k].v;
+      }
       guard.check_soft(k, soft_next[k]);
     }
     for (size_t j = 0; j < islands[i].soft_contacts.size(); ++j) {

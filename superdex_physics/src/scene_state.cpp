@@ -6,7 +6,9 @@
 // joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
 // 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
 // velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
-// Then u32 soft body count; per soft body: u32 3N, node positions, velocities and forces (3N each).
+// Then u32 soft body count; per soft body: u32 3N, node positions, velocities and forces (3N each),
+// u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
+// velocities (r each) and residual contact displacement (3N).
 
 #include <cstring>
 
@@ -21,7 +23,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kVersion = 4;
 
 class Writer {
  public:
@@ -101,6 +103,11 @@ std::vector<std::uint8_t> Scene::capture_state() const {
     w.put_reals(b->state.x.data(), b->state.x.size());
     w.put_reals(b->state.v.data(), b->state.v.size());
     w.put_reals(b->state.tau_external.data(), b->state.tau_external.size());
+    w.put(static_cast<std::uint32_t>(b->state.q.size()));
+    if (b->state.q.size() == 0) continue;
+    w.put_reals(b->state.q.data(), b->state.q.size());
+    w.put_reals(b->state.qd.data(), b->state.qd.size());
+    w.put_reals(b->state.u_c.data(), b->state.u_c.size());
   }
   return std::move(w.bytes);
 }
@@ -177,6 +184,18 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
     r.get_reals(st.x.data(), n, "soft positions");
     r.get_reals(st.v.data(), n, "soft velocities");
     r.get_reals(st.tau_external.data(), n, "soft forces");
+    const auto modes = r.get<std::uint32_t>("soft modes");
+    if (modes != s.soft_bodies[i]->state.q.size())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " of the state has " + std::to_string(modes) + " reduced modes but '" +
+                  s.soft_bodies[i]->model.name + "' has " + std::to_string(s.soft_bodies[i]->state.q.size()));
+    if (modes > 0) {
+      st.q.resize(modes), st.qd.resize(modes), st.u_c.resize(n);
+      r.get_reals(st.q.data(), modes, "soft modal amplitudes");
+      r.get_reals(st.qd.data(), modes, "soft modal velocities");
+      r.get_reals(st.u_c.data(), n, "soft residual displacements");
+      if (!st.q.allFinite() || !st.qd.allFinite() || !st.u_c.allFinite())
+        throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
+    }
     if (!st.x.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
   }

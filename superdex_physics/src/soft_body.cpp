@@ -9,6 +9,7 @@
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 
+#include "reduced_soft.h"
 #include "scene_data.h"
 #include "superdex/physics/error.h"
 
@@ -167,6 +168,11 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
       throw Error(where + ": fixed_nodes[" + std::to_string(k) + "] = " + std::to_string(fixed_nodes[k]) + " is out of range (" +
                   std::to_string(n) + " nodes)");
     m.pinned[fixed_nodes[k]] = 1;
+  }
+  if (material.reduced_modes > 0) {
+    body->reduced = build_reduced_model(m, body->state.x, material.reduced_modes, where);
+    body->state.q = body->state.qd = VecX::Zero(material.reduced_modes);
+    body->state.u_c = VecX::Zero(3 * n);
   }
   return body;
 }

@@ -26,6 +26,8 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
+struct ReducedSoftModel;
+
 struct SoftModel {
   std::string name;
   std::shared_ptr<const TetMesh> mesh;   // rest mesh in the actor frame
@@ -46,6 +48,9 @@ struct SoftState {
   VecX x;             // node positions, world (3N)
   VecX v;             // node velocities, world (3N)
   VecX tau_external;  // user forces on the nodes (N), world (3N)
+  // reduced bodies only (reduced_soft.h), empty otherwise: modal amplitudes (m sqrt(kg)), their
+  // velocities, and the residual static displacement of the last step's contact forces (3N, m)
+  VecX q, qd, u_c;
 };
 
 // The fixed sparsity of a soft body's Newton matrix over its free DOFs and its symbolic
@@ -80,6 +85,7 @@ struct SoftBody {
   SoftState state;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
   std::unique_ptr<SoftPattern> pattern;  // built on first use
+  std::shared_ptr<const ReducedSoftModel> reduced;  // the modes of a reduced body (reduced_soft.h), else null
   SoftStepStorage step_storage;
 };
 

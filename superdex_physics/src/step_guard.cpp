@@ -71,6 +71,7 @@ bool StepGuard::check_island(const Island& island, IslandSolution& sol) {
   for (size_t j = 0; j < island.bodies.size(); ++j) sol.v[j].setZero(s_.articulations[island.bodies[j]]->model.nv);
   for (VecX& e : sol.drive_efforts) e.setZero();
   for (VecX& v : sol.soft_v) v.setZero();
+  for (SoftState& st : sol.soft_reduced) st.q.resize(0);  // reduced bodies keep their state
   for (Vec3& f : sol.contact_force) f.setZero();
   for (Vec3& f : sol.soft_contact_force) f.setZero();
   return true;

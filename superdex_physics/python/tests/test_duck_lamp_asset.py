@@ -189,3 +189,13 @@ def test_prefab_names_the_shape_file(prefab, actor):
     assert actor["worldFromLocal"]["translation"] == pytest.approx([-0.30, 0.0, 0.0])
     assert actor["contact"]["coulombFrictionCoefficient"] > 0
     assert prefab["scene"]["gravity"] == [0, 0, -9.81]
+
+
+def test_full_prefab_is_the_seed_prefab_without_the_reduction(prefab):
+    """The seed's prefab makes the duck a reduced soft body; its _full twin is the same prop as a
+    full nonlinear finite-element model."""
+    full = json.loads((ASSET_DIR / "duck_lamp_recumbent_full.mochi_prefab").read_text())
+    reduced = json.loads(json.dumps(prefab))
+    assert reduced["actors"]["soft"][0]["material"].pop("reducedModes") > 0
+    assert "reducedModes" not in full["actors"]["soft"][0]["material"]
+    assert full == reduced

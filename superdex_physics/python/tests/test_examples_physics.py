@@ -87,7 +87,7 @@ def test_falling_boxes_settle_into_a_standing_stack():
 
 def duck_weight_from_files() -> float:
     """m g with m = density x volume of the tetrahedra, read from the prefab and the mesh file."""
-    prefab_path = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+    prefab_path = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.mochi_prefab"
     (entry,) = json.loads(prefab_path.read_text())["actors"]["soft"]
     with h5py.File(prefab_path.parent / entry["shape"].removeprefix("./"), "r") as f:
         nodes = f["mesh/coordinates"][()]

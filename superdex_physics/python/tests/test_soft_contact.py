@@ -20,7 +20,7 @@ import pytest
 import superdex.physics as sdp
 from test_soft_bodies import box_tet_mesh
 
-DUCK = Path(__file__).resolve().parents[3] / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+DUCK = Path(__file__).resolve().parents[3] / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.mochi_prefab"
 
 
 def soft_block(scene, size=0.1, cells=5, E=1e5):

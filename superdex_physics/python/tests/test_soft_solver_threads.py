@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[3]
-DUCK = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent.mochi_prefab"
+DUCK = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.mochi_prefab"
 
 CHILD = r"""
 import ctypes, os, sys

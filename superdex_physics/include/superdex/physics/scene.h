@@ -124,6 +124,10 @@ struct SoftMaterial {
   real density = 1000;              ///< kg/m^3
   real damping_alpha = 0;           ///< Rayleigh mass-proportional damping (1/s)
   real damping_beta = 0;            ///< Rayleigh stiffness-proportional damping (s)
+  /// 0: the full nonlinear finite-element model. r > 0: a reduced model, linear about the rest
+  /// shape, in its r lowest vibration modes plus the exact static response to gravity and contact
+  /// forces; needs pinned nodes (a prop held in place). Much faster, for small deformations.
+  int reduced_modes = 0;
 };
 
 /// One joint's slice of the generalized coordinates.
