@@ -10,6 +10,9 @@ Variants
   compute(t, dt) -> joint velocity commands). The script's loop only calls scene.step.
 - physics only: the same scene with no components at all (the arm falls onto the duck): the
   floor under both, what the simulation alone costs.
+- seed loop, full-FEM duck: the seed loop with the duck's full nonlinear finite-element twin
+  (duck_lamp_recumbent_full.mochi_prefab) instead of the seed's reduced duck, for comparison; no
+  target applies to it.
 """
 
 from __future__ import annotations
@@ -24,7 +27,8 @@ from benchmarks.scenes import arm
 
 NUMBER = 1
 TITLE = "Seed scene: 2-DOF arm, ground, soft duck (250 Hz)"
-VARIANTS = ("seed loop", "C++ pipeline", "physics only")
+VARIANTS = ("seed loop", "C++ pipeline", "physics only", "seed loop, full-FEM duck")
+FULL_DUCK_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent_full.mochi_prefab"
 
 
 def cases(opts):
@@ -41,7 +45,7 @@ def load_seed():
     return module
 
 
-def build(seed, ctx, prefab):
+def build(seed, ctx, prefab, duck_asset=None):
     physics, robotics = seed.physics, seed.robotics
     scene = physics.create_scene("Custom Components Example")
     scene.set_gravity([0, 0, -9.81])
@@ -50,19 +54,19 @@ def build(seed, ctx, prefab):
         bot = robotics.create_bot(scene, prefab, ctx)
     scene.create_rigid_actor(name="ground", shape=physics.create_plane_shape(normal=[0, 0, 1], distance=0), is_static=True)
     duck = physics.prefab.add_to_scene(
-        prefab_path=str(physics.paths.resolve_asset(seed.DUCK_LAMP_ASSET)), root_path=str(physics.paths.get_assets_root()),
+        prefab_path=str(physics.paths.resolve_asset(duck_asset or seed.DUCK_LAMP_ASSET)), root_path=str(physics.paths.get_assets_root()),
         scene=scene, params=physics.prefab.PrefabParams(name="duck_lamp"))
     return scene, bot, scene.get_actor(duck.actors[0])
 
 
-def run_seed_loop(seed, steps):
+def run_seed_loop(seed, steps, duck_asset=None):
     """The seed's main(), its loop run `steps` times instead of while a debugger is attached."""
     physics, robotics = seed.physics, seed.robotics
     physics.initialize(num_worker_threads=0)
     bot_prefab = robotics.load_bot_prefab_from_file(seed.get_default_bot_path())
     robotics_context = robotics.create_context()
     seed.register_component_types(robotics_context)
-    scene, bot, duck = build(seed, robotics_context, bot_prefab)
+    scene, bot, duck = build(seed, robotics_context, bot_prefab, duck_asset)
     bot_actor = bot.get_articulated_actor()
     handle = robotics_context.create_controller("MY_VELOCITY_FORCE_CONTROLLER", None, bot_actor, "my_controller")
     controller = robotics.get_python_controller(robotics_context, handle)
@@ -151,8 +155,9 @@ def run_pipeline(seed, steps, with_components=True):
 def run_case(case):
     seed = load_seed()
     steps = int(round(case["seconds"] * seed.CONTROL_RATE_HZ))
-    if case["variant"] == "seed loop":
-        wall, scene, bot_actor, duck, checks = run_seed_loop(seed, steps)
+    if case["variant"].startswith("seed loop"):
+        full = case["variant"] == "seed loop, full-FEM duck"
+        wall, scene, bot_actor, duck, checks = run_seed_loop(seed, steps, FULL_DUCK_ASSET if full else None)
     else:
         wall, scene, bot_actor, duck, checks = run_pipeline(seed, steps, case["variant"] == "C++ pipeline")
     xf = seed.physics.DynamicArrayTransformRT(4)
