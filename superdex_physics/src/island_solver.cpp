@@ -249,10 +249,17 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   auto add_reduced_side = [&](const ReducedVariables& rv, const SoftContact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free) {
     const ReducedSoftModel& model = *s.soft_bodies[c.soft]->reduced;
     const int o = rv.offset, nq = model.num_modes();
+    // the contact's nodes (weight non-zero) and their residual columns (-1: pinned)
+    bool node[3];
+    int col[3];
+    for (int j = 0; j < 3; ++j) {
+      node[j] = c.nodes[j] >= 0 && c.weights[j] != 0;
+      col[j] = node[j] ? rv.column(c.nodes[j], 0) : -1;
+    }
     MatX& Jq = w.Jc;
     Jq.setZero(3, nq);
     for (int j = 0; j < 3; ++j)
-      if (c.nodes[j] >= 0 && c.weights[j] != 0) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
+      if (node[j]) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < nq; ++k)
         if (Jq(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jq(i, k));
@@ -260,19 +267,19 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     // the contact's regularization takes the full body's Delassus estimate too (its lumped node
     // masses), so that a reduced body and its full twin press alike
     for (int j = 0; j < 3; ++j)
-      if (c.nodes[j] >= 0 && c.weights[j] != 0 && model.free_of_dof[3 * c.nodes[j]] >= 0)
+      if (node[j] && model.free_of_dof[3 * c.nodes[j]] >= 0)
         W_diag.array() += c.weights[j] * c.weights[j] / s.soft_bodies[c.soft]->model.node_mass[c.nodes[j]];
     vn_free += Jq.row(2).dot(rv.r_q.cwiseQuotient(rv.A_q));
     // residual columns: the node's own velocity w, weighted; compliance G / h among them
     for (int j = 0; j < 3; ++j) {
-      const int cj = c.nodes[j] >= 0 && c.weights[j] != 0 ? rv.column(c.nodes[j], 0) : -1;
+      const int cj = col[j];
       if (cj < 0) continue;
       for (int a = 0; a < 3; ++a)
         for (int i = 0; i < 3; ++i)
           if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + cj + a, c.weights[j] * R_C(a, i));
       vn_free -= c.weights[j] * (dt / rv.h) * R_C.col(2).dot(rv.u_old.segment<3>(cj - nq));
       for (int l = 0; l < 3; ++l) {
-        const int cl = c.nodes[l] >= 0 && c.weights[l] != 0 ? rv.column(c.nodes[l], 0) : -1;
+        const int cl = col[l];
         if (cl < 0) continue;
         const Mat3 G_jl = R_C.transpose() * rv.G.block<3, 3>(cj - nq, cl - nq) * R_C;
         W_diag += (c.weights[j] * c.weights[l] / rv.h) * G_jl.diagonal();

@@ -110,18 +110,20 @@ const MatX& ReducedSoftModel::residual(int node) const {
   return residual_columns.emplace(node, std::move(columns)).first->second;
 }
 
-const VecX& ReducedSoftModel::gravity_residual(const VecX& node_mass, const Vec3& g_W) const {
-  if (g_W == gravity_of_u_g) return u_g;
+const ReducedSoftModel::Gravity& ReducedSoftModel::gravity(const VecX& node_mass, const Vec3& g_W) const {
+  Gravity& out = gravity_response;
+  if (g_W == out.g_W) return out;
   const int nf = static_cast<int>(dof_of_free.size());
   Eigen::VectorXd f(nf);
   for (int k = 0; k < nf; ++k) f[k] = static_cast<double>(node_mass[dof_of_free[k] / 3] * g_W[dof_of_free[k] % 3]);
   const Eigen::VectorXd u = K->ldlt.solve(f);
-  u_g = VecX::Zero(free_of_dof.size());
+  out.u_g = VecX::Zero(free_of_dof.size());
   VecX f_full = VecX::Zero(free_of_dof.size());
-  for (int k = 0; k < nf; ++k) u_g[dof_of_free[k]] = static_cast<real>(u[k]), f_full[dof_of_free[k]] = static_cast<real>(f[k]);
-  u_g.noalias() -= Phi * (lambda.cwiseInverse().asDiagonal() * (Phi.transpose() * f_full));
-  gravity_of_u_g = g_W;
-  return u_g;
+  for (int k = 0; k < nf; ++k) out.u_g[dof_of_free[k]] = static_cast<real>(u[k]), f_full[dof_of_free[k]] = static_cast<real>(f[k]);
+  out.modal_force = Phi.transpose() * f_full;
+  out.u_g.noalias() -= Phi * (lambda.cwiseInverse().asDiagonal() * out.modal_force);
+  out.g_W = g_W;
+  return out;
 }
 
 int ReducedVariables::column(int node, int axis) const {
@@ -139,9 +141,8 @@ void reduced_variables(const SoftBody& b, int soft, const Vec3& g_W, real dt, st
   // modal block: implicit Euler of q'' + (alpha + beta Lambda) q' + Lambda q = Phi^T f
   const VecX& lambda = model.lambda;
   out.A_q = VecX::Ones(lambda.size()) + dt * (m.alpha * VecX::Ones(lambda.size()) + m.beta * lambda) + dt * dt * lambda;
-  VecX f = st.tau_external;
-  for (Eigen::Index d = 0; d < f.size(); ++d) f[d] += m.node_mass[d / 3] * g_W[d % 3];
-  out.r_q = st.qd + dt * (model.Phi.transpose() * f) - dt * lambda.cwiseProduct(st.q);
+  out.r_q = st.qd + dt * model.gravity(m.node_mass, g_W).modal_force - dt * lambda.cwiseProduct(st.q);
+  if ((st.tau_external.array() != 0).any()) out.r_q.noalias() += dt * (model.Phi.transpose() * st.tau_external);
   // residual block of the contact nodes
   out.h = dt * (dt + m.beta);
   const int k3 = 3 * static_cast<int>(out.nodes.size());
@@ -179,7 +180,7 @@ void reduced_next_state(const SoftBody& b, const ReducedVariables& vars, const E
     const VecX f = vars.G_inv * u_new;
     for (size_t j = 0; j < vars.nodes.size(); ++j) next.u_c.noalias() += model.residual(vars.nodes[j]) * f.segment<3>(3 * j);
   }
-  next.x = model.x_rest + model.gravity_residual(b.model.node_mass, g_W) + next.u_c;
+  next.x = model.x_rest + model.gravity(b.model.node_mass, g_W).u_g + next.u_c;
   next.x.noalias() += model.Phi * next.q;
   next.v = (next.x - st.x) / dt;
 }

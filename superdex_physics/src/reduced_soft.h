@@ -39,14 +39,19 @@ struct ReducedSoftModel {
   // per node: the residual compliance columns (K^-1 - Phi Lambda^-1 Phi^T) of its three DOFs
   // (3N x 3, m/N), computed when the node first touches something
   mutable std::map<int, MatX> residual_columns;
-  mutable Vec3 gravity_of_u_g = Vec3::Constant(std::numeric_limits<real>::quiet_NaN());
-  mutable VecX u_g;              // (3N) the residual static response to gravity (m)
+  // the body's response to one gravity g_W (world, m/s^2)
+  struct Gravity {
+    Vec3 g_W = Vec3::Constant(std::numeric_limits<real>::quiet_NaN());
+    VecX u_g;          // (3N) the residual static response (m)
+    VecX modal_force;  // (r) Phi^T M g (sqrt(kg) m / s^2)
+  };
+  mutable Gravity gravity_response;
 
   int num_modes() const { return static_cast<int>(lambda.size()); }
   // Residual compliance columns of a free node (computed and kept on first use).
   const MatX& residual(int node) const;
-  // u_g for gravity g_W (recomputed when g_W changes).
-  const VecX& gravity_residual(const VecX& node_mass, const Vec3& g_W) const;
+  // The response to gravity g_W (recomputed when g_W changes).
+  const Gravity& gravity(const VecX& node_mass, const Vec3& g_W) const;
 };
 
 // The r lowest modes of a soft body's rest stiffness (every element's material linearized at

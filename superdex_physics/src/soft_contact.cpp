@@ -19,28 +19,25 @@ constexpr std::array<std::array<real, 3>, 4> kFacePoints = {{{kThird, kThird, kT
                                                              {kOther, kCentreToCorner, kOther},
                                                              {kOther, kOther, kCentreToCorner}}};
 
-// The part of a soft body's surface near a collider, at the current node positions, with a
-// closest-triangle hierarchy: the faces whose bounds overlap `box` (world).
-struct DeformedSurface {
-  std::vector<Eigen::Vector3d> vertices;
+// Bounds of a surface face at node positions x (3N, world).
+Aabb face_bounds(const VecX& x, const std::array<int, 3>& face) {
+  Aabb bounds;
+  for (int v : face) bounds.extend(x.segment<3>(3 * v));
+  return bounds;
+}
+
+// The faces of a soft body's surface whose bounds overlap `box` (world), with a closest-triangle
+// hierarchy over them at the node positions `vertices` (which it refers to).
+struct NearSurface {
   std::vector<std::array<int, 3>> faces;
   TriangleBvh bvh;
-  DeformedSurface(const SoftBody& soft, const Aabb& box)
-      : vertices(positions(soft)), faces(near_faces(soft, box)), bvh(vertices, faces) {}
-  DeformedSurface(const DeformedSurface&) = delete;  // the hierarchy refers to the members
-  static std::vector<Eigen::Vector3d> positions(const SoftBody& soft) {
-    std::vector<Eigen::Vector3d> v(soft.state.x.size() / 3);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = soft.state.x.segment<3>(3 * i).cast<double>();
-    return v;
-  }
+  NearSurface(const SoftBody& soft, const std::vector<Eigen::Vector3d>& vertices, const Aabb& box)
+      : faces(near_faces(soft, box)), bvh(vertices, faces) {}
+  NearSurface(const NearSurface&) = delete;  // the hierarchy refers to the members
   static std::vector<std::array<int, 3>> near_faces(const SoftBody& soft, const Aabb& box) {
     std::vector<std::array<int, 3>> out;
-    const VecX& x = soft.state.x;
-    for (const auto& face : soft.model.surface_faces) {
-      Aabb bounds;
-      for (int v : face) bounds.extend(x.segment<3>(3 * v));
-      if (bounds.overlaps(box)) out.push_back(face);
-    }
+    for (const auto& face : soft.model.surface_faces)
+      if (face_bounds(soft.state.x, face).overlaps(box)) out.push_back(face);
     return out;
   }
 };
@@ -64,6 +61,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     if (!(bounds.min.array() <= bounds.max.array()).all()) continue;  // every surface node pinned
     // samples deeper than a quarter of the body's smallest extent are left to the node contacts
     const real max_depth = (bounds.max - bounds.min).minCoeff() / 4;
+    std::vector<Eigen::Vector3d> vertices;  // the node positions in double, when a collider with samples comes near
     for (size_t b = 0; b < s.articulations.size(); ++b) {
       const Articulation& a = *s.articulations[b];
       for (const LinkCollider& col : a.model.colliders) {
@@ -106,10 +104,8 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         if (!plane)
           for (const auto& face : soft.model.surface_faces) {
             if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
+            if (!face_bounds(x, face).overlaps(box)) continue;
             const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
-            Aabb face_box;
-            face_box.extend(a0), face_box.extend(a1), face_box.extend(a2);
-            if (!face_box.overlaps(box)) continue;
             for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
           }
         // the collider's samples against the deformed surface triangles
@@ -118,7 +114,9 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         Aabb near_box = box;
         near_box.min.array() -= std::max<real>(0, max_depth - reach);
         near_box.max.array() += std::max<real>(0, max_depth - reach);
-        const DeformedSurface surface(soft, near_box);
+        if (vertices.empty())
+          for (int i = 0; i < static_cast<int>(x.size() / 3); ++i) vertices.push_back(x.segment<3>(3 * i).cast<double>());
+        const NearSurface surface(soft, vertices, near_box);
         if (surface.faces.empty()) continue;
         int hint = -1;
         for (const Vec3& sample_S : col.samples_S) {
@@ -128,7 +126,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           if (hit.triangle < 0) continue;
           hint = hit.triangle;
           const auto& face = surface.faces[hit.triangle];
-          const Eigen::Vector3d a = surface.vertices[face[0]], bb = surface.vertices[face[1]], cc = surface.vertices[face[2]];
+          const Eigen::Vector3d a = vertices[face[0]], bb = vertices[face[1]], cc = vertices[face[2]];
           const Eigen::Vector3d normal = (bb - a).cross(cc - a);
           if (normal.norm() <= 0) continue;
           const Eigen::Vector3d n_out = normal.normalized();

@@ -50,6 +50,18 @@ def static_displacement(K, free_dofs, load):
     return u.reshape(-1, 3)
 
 
+def ball_slider(scene, translation, radius, ball_mass, push):
+    """A ball on a vertical slider welded at `translation` (world), pushed down with `push` (N)."""
+    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
+             {"name": "ball", "parentLink": 0, "mass": ball_mass, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
+              "shape": {"sphere": {"radius": radius, "center": [0, 0, 0]}}}]
+    joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": list(translation)}},
+              {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
+    slider = scene.create_articulated_actor("slider", links, joints)
+    slider.set_external_forces_on_dofs([0], [-push])
+    return slider
+
+
 def material(modes, damping=0.0):
     return {"type": "NeoHookean", "youngsModulus": E, "poissonRatio": NU, "density": RHO, "damping": damping, "reducedModes": modes}
 
@@ -112,13 +124,7 @@ def test_pressed_block_takes_the_linear_fem_shape_of_its_contact_forces(scene):
                                     fixed_nodes=bottom)
     block.register_query(sdp.QueryType.NODE_CONTACT_FORCES)
     radius, push, ball_mass = 0.012, 0.5, 0.05
-    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
-             {"name": "ball", "parentLink": 0, "mass": ball_mass, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
-              "shape": {"sphere": {"radius": radius, "center": [0, 0, 0]}}}]
-    joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0.004, -0.003, 0.03 + radius + 0.002]}},
-              {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
-    slider = scene.create_articulated_actor("slider", links, joints)
-    slider.set_external_forces_on_dofs([0], [-push])
+    slider = ball_slider(scene, [0.004, -0.003, 0.03 + radius + 0.002], radius, ball_mass, push)
     for _ in range(400):
         scene.step(0.004)
     x = block.get_node_positions_world().astype(np.float64)
@@ -183,13 +189,7 @@ def pressed_duck(prefab):
         for _ in range(50):
             scene.step(0.004)
         rest = duck.get_node_positions_world().astype(np.float64)
-        links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
-                 {"name": "ball", "parentLink": 0, "mass": 0.05, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
-                  "shape": {"sphere": {"radius": 0.015, "center": [0, 0, 0]}}}]
-        joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [-0.30, 0, rest[:, 2].max() + 0.016]}},
-                  {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
-        slider = scene.create_articulated_actor("slider", links, joints)
-        slider.set_external_forces_on_dofs([0], [-0.5])
+        ball_slider(scene, [-0.30, 0, rest[:, 2].max() + 0.016], 0.015, 0.05, 0.5)
         for _ in range(200):
             scene.step(0.004)
         return start, rest, duck.get_node_positions_world().astype(np.float64)
