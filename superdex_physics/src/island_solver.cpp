@@ -70,12 +70,13 @@ namespace {
 // gap. Most speculative contacts of a soft surface are such.
 bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
 
-// One solve of the island, with or without the deferred joint-limit rows and soft contacts.
+// One solve of the island, with or without the deferred joint-limit rows, and with the deferred
+// soft contacts `admitted` flags (per island soft contact).
 void solve_island_once(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                        const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                        const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                       bool include_deferred, IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache,
-                       IslandSolution& out) {
+                       bool include_deferred, const std::vector<char>& admitted, IslandWorkspace& w,
+                       std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
   std::vector<int>& offset = w.body_offset;
   std::vector<int>& soft_offset = w.soft_offset;
@@ -87,7 +88,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   std::vector<int>& solved_soft = w.solved_soft_contacts;
   solved_soft.clear();
   for (size_t j = 0; j < island.soft_contacts.size(); ++j)
-    if (include_deferred || !soft_contact_deferred(soft_contacts[island.soft_contacts[j]])) solved_soft.push_back(static_cast<int>(j));
+    if (admitted[j] || !soft_contact_deferred(soft_contacts[island.soft_contacts[j]])) solved_soft.push_back(static_cast<int>(j));
   // reduced soft bodies: dense variables after the articulations' DOFs, with the residual
   // velocities of the free nodes of the contacts that take part
   std::vector<ReducedVariables>& reduced = w.reduced;
@@ -444,10 +445,11 @@ bool violates_deferred_rows(const Island& island, const std::vector<Articulation
   return false;
 }
 
-// Whether the island's solution would close more than half the gap of a deferred soft contact
-// (half the gap its contact block would let close before acting).
-bool violates_deferred_soft_contacts(const SceneData& s, const Island& island, const std::vector<SoftContact>& soft_contacts,
-                                     real dt, const IslandSolution& out) {
+// Admits the deferred soft contacts not yet `admitted` whose gap the island's solution would close
+// by more than half (half the gap its contact block would let close before acting); returns how
+// many.
+int admit_closing_soft_contacts(const SceneData& s, const Island& island, const std::vector<SoftContact>& soft_contacts, real dt,
+                                const IslandSolution& out, std::vector<char>& admitted) {
   // world twist of each touched link at the solution (linear part at the link origin, angular)
   struct LinkTwist {
     int body, link;
@@ -455,6 +457,7 @@ bool violates_deferred_soft_contacts(const SceneData& s, const Island& island, c
   };
   std::vector<LinkTwist> twists;
   MatXR J_WL;
+  int count = 0;
   auto point_velocity = [&](int body, int link, const Vec3& p_W) -> Vec3 {
     const Articulation& a = *s.articulations[body];
     if (a.model.nv == 0) return Vec3::Zero();
@@ -469,16 +472,16 @@ bool violates_deferred_soft_contacts(const SceneData& s, const Island& island, c
   };
   for (size_t j = 0; j < island.soft_contacts.size(); ++j) {
     const SoftContact& c = soft_contacts[island.soft_contacts[j]];
-    if (!soft_contact_deferred(c)) continue;
+    if (admitted[j] || !soft_contact_deferred(c)) continue;
     const VecX& v_soft = out.soft_v[std::find(island.soft_bodies.begin(), island.soft_bodies.end(), c.soft) - island.soft_bodies.begin()];
     Vec3 v_point = Vec3::Zero();
     for (int k = 0; k < 3; ++k)
       if (c.nodes[k] >= 0) v_point += c.weights[k] * v_soft.segment<3>(3 * c.nodes[k]);
     const real vn = c.n_W.dot(v_point - point_velocity(c.body, c.link, c.p_W));
     const real allowed = c.material.stiffness > 0 ? c.phi / (dt + std::max<real>(c.material.dissipation_time, 0)) : c.phi / dt;
-    if (vn < -allowed / 2) return true;
+    if (vn < -allowed / 2) admitted[j] = 1, ++count;
   }
-  return false;
+  return count;
 }
 
 }  // namespace
@@ -488,14 +491,25 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
                   const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
                   IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
   const Ticks t0 = ticks_now();
-  solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, w, sparse_cache, out);
+  std::vector<char>& admitted = w.admitted_soft_contacts;
+  admitted.assign(island.soft_contacts.size(), 0);
+  solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, admitted, w, sparse_cache, out);
   // a deferred limit row or soft contact is inactive at the solution unless it says otherwise:
-  // then the same problem with every row (rare: the free motion kept them far from acting)
-  if (violates_deferred_rows(island, terms, out.v) || violates_deferred_soft_contacts(s, island, soft_contacts, dt, out)) {
+  // then the same problem with every limit row and the soft contacts the solution would close,
+  // until no other would (rare: the free motion kept them far from acting)
+  bool all_rows = false;
+  for (int round = 0;; ++round) {
+    const bool rows = !all_rows && violates_deferred_rows(island, terms, out.v);
+    const int closing = admit_closing_soft_contacts(s, island, soft_contacts, dt, out, admitted);
+    if (!rows && closing == 0) break;
+    all_rows = all_rows || rows;
+    // after a few rounds, every deferred contact joins
+    if (round == 3) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
     const int iterations = out.iterations, passes = out.friction_passes;
-    solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, true, w, sparse_cache, out);
+    solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, all_rows, admitted, w, sparse_cache, out);
     out.iterations += iterations;
     out.friction_passes += passes;
+    if (round == 3) break;
   }
   out.ticks = ticks_now() - t0;
 }

@@ -43,6 +43,7 @@ struct IslandWorkspace {
   };
   std::vector<JointRowRef> solved_joint_rows;  // in the order of their constraint rows
   std::vector<int> solved_soft_contacts;       // the soft contacts that take part (positions in the island's list)
+  std::vector<char> admitted_soft_contacts;    // per island soft contact: a deferred one that takes part
   MatX A;
   SparseMat A_sparse;  // A on the sparse path
   VecX r, v_start;
