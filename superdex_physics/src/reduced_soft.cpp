@@ -1,8 +1,8 @@
 // Reduced soft bodies: their modes, residual compliances and step (reduced_soft.h).
 
 #include "reduced_soft.h"
+#include "sparse_cholesky.h"
 
-#include <Eigen/SparseCholesky>
 #include <Spectra/SymEigsSolver.h>
 #include <algorithm>
 #include <cmath>
@@ -12,9 +12,9 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-// K on the free DOFs, factored in double precision whatever `real` is.
+// K on the free DOFs, its solves in double precision whatever `real` is.
 struct ReducedSoftModel::Stiffness {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  SparseCholesky llt;
 };
 
 namespace {
@@ -24,19 +24,21 @@ namespace {
 class InverseStiffnessOp {
  public:
   using Scalar = double;
-  InverseStiffnessOp(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& K, const Eigen::VectorXd& sqrt_mass)
-      : K_(K), s_(sqrt_mass) {}
+  InverseStiffnessOp(const SparseCholesky& K, const Eigen::VectorXd& sqrt_mass) : K_(K), s_(sqrt_mass), y_(sqrt_mass.size(), 1) {}
   Eigen::Index rows() const { return s_.size(); }
   Eigen::Index cols() const { return s_.size(); }
   void perform_op(const double* x_in, double* y_out) const {
     Eigen::Map<const Eigen::VectorXd> x(x_in, s_.size());
     Eigen::Map<Eigen::VectorXd> y(y_out, s_.size());
-    y = s_.cwiseProduct(K_.solve(s_.cwiseProduct(x)));
+    y_.col(0) = s_.cwiseProduct(x);
+    K_.solve_in_place(y_);
+    y = s_.cwiseProduct(y_.col(0));
   }
 
  private:
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& K_;
+  const SparseCholesky& K_;
   const Eigen::VectorXd& s_;
+  mutable Eigen::MatrixXd y_;
 };
 
 }  // namespace
@@ -70,13 +72,13 @@ std::shared_ptr<ReducedSoftModel> build_reduced_model(const SoftModel& m, const 
   Eigen::SparseMatrix<double> K(nf, nf);
   K.setFromTriplets(entries.begin(), entries.end());
   auto stiffness = std::make_shared<ReducedSoftModel::Stiffness>();
-  stiffness->ldlt.compute(K);
-  if (stiffness->ldlt.info() != Eigen::Success || !(stiffness->ldlt.vectorD().minCoeff() > 0))
+  // (rounded to `real`: the float build's stiffness to 1e-7)
+  if (!stiffness->llt.compute(K.cast<real>()))
     throw Error(where + ": the rest stiffness with the pinned nodes held is not positive definite (a part of the body is not held)");
   Eigen::VectorXd sqrt_mass(nf);
   for (int f = 0; f < nf; ++f) sqrt_mass[f] = std::sqrt(static_cast<double>(m.node_mass[model->dof_of_free[f] / 3]));
   // the largest eigenvalues of M^1/2 K^-1 M^1/2, by Spectra's implicitly restarted Lanczos
-  InverseStiffnessOp op(stiffness->ldlt, sqrt_mass);
+  InverseStiffnessOp op(stiffness->llt, sqrt_mass);
   const Eigen::Index ncv = std::min<Eigen::Index>(nf, std::max(2 * modes + 1, modes + 20));
   Spectra::SymEigsSolver<InverseStiffnessOp> eigs(op, modes, ncv);
   eigs.init();
@@ -96,30 +98,45 @@ std::shared_ptr<ReducedSoftModel> build_reduced_model(const SoftModel& m, const 
   return model;
 }
 
+void ReducedSoftModel::prepare_residuals(const std::vector<int>& nodes) const {
+  std::vector<int> missing;
+  for (int node : nodes)
+    if (!residual_columns.count(node)) missing.push_back(node);
+  if (missing.empty()) return;
+  // K^-1 of the missing nodes' unit loads, in one solve
+  const int nf = static_cast<int>(dof_of_free.size()), m = static_cast<int>(missing.size());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(nf, 3 * m);
+  for (int j = 0; j < m; ++j)
+    for (int a = 0; a < 3; ++a) C(free_of_dof[3 * missing[j] + a], 3 * j + a) = 1;
+  K->llt.solve_in_place(C);
+  // less the modes' static part Phi Lambda^-1 Phi_S^T of them all
+  MatX Phi_S(3 * m, num_modes());
+  for (int j = 0; j < m; ++j) Phi_S.middleRows<3>(3 * j) = Phi.middleRows<3>(3 * missing[j]);
+  MatX columns = -Phi * (lambda.cwiseInverse().asDiagonal() * Phi_S.transpose());
+  for (int j = 0; j < m; ++j) {
+    for (int f = 0; f < nf; ++f) columns.block<1, 3>(dof_of_free[f], 3 * j) += C.block<1, 3>(f, 3 * j).cast<real>();
+    residual_columns.emplace(missing[j], columns.middleCols<3>(3 * j));
+  }
+}
+
 const MatX& ReducedSoftModel::residual(int node) const {
   auto it = residual_columns.find(node);
   if (it != residual_columns.end()) return it->second;
-  const int nf = static_cast<int>(dof_of_free.size());
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nf, 3);
-  for (int a = 0; a < 3; ++a) E(free_of_dof[3 * node + a], a) = 1;
-  const Eigen::MatrixXd C = K->ldlt.solve(E);
-  MatX columns = MatX::Zero(free_of_dof.size(), 3);
-  for (int f = 0; f < nf; ++f) columns.row(dof_of_free[f]) = C.row(f).cast<real>();
-  // less the modes' static part Phi Lambda^-1 Phi_node^T
-  columns.noalias() -= Phi * (lambda.cwiseInverse().asDiagonal() * Phi.middleRows<3>(3 * node).transpose());
-  return residual_columns.emplace(node, std::move(columns)).first->second;
+  prepare_residuals({node});
+  return residual_columns.at(node);
 }
 
 const ReducedSoftModel::Gravity& ReducedSoftModel::gravity(const VecX& node_mass, const Vec3& g_W) const {
   Gravity& out = gravity_response;
   if (g_W == out.g_W) return out;
   const int nf = static_cast<int>(dof_of_free.size());
-  Eigen::VectorXd f(nf);
-  for (int k = 0; k < nf; ++k) f[k] = static_cast<double>(node_mass[dof_of_free[k] / 3] * g_W[dof_of_free[k] % 3]);
-  const Eigen::VectorXd u = K->ldlt.solve(f);
+  Eigen::MatrixXd f(nf, 1);
+  for (int k = 0; k < nf; ++k) f(k, 0) = static_cast<double>(node_mass[dof_of_free[k] / 3] * g_W[dof_of_free[k] % 3]);
+  Eigen::MatrixXd u = f;
+  K->llt.solve_in_place(u);
   out.u_g = VecX::Zero(free_of_dof.size());
   VecX f_full = VecX::Zero(free_of_dof.size());
-  for (int k = 0; k < nf; ++k) out.u_g[dof_of_free[k]] = static_cast<real>(u[k]), f_full[dof_of_free[k]] = static_cast<real>(f[k]);
+  for (int k = 0; k < nf; ++k) out.u_g[dof_of_free[k]] = static_cast<real>(u(k, 0)), f_full[dof_of_free[k]] = static_cast<real>(f(k, 0));
   out.modal_force = Phi.transpose() * f_full;
   out.u_g.noalias() -= Phi * (lambda.cwiseInverse().asDiagonal() * out.modal_force);
   out.g_W = g_W;
@@ -148,6 +165,7 @@ void reduced_variables(const SoftBody& b, int soft, const Vec3& g_W, real dt, st
   const int k3 = 3 * static_cast<int>(out.nodes.size());
   out.G.resize(k3, k3);
   out.u_old.resize(k3);
+  model.prepare_residuals(out.nodes);
   for (size_t j = 0; j < out.nodes.size(); ++j) {
     const MatX& C = model.residual(out.nodes[j]);
     for (size_t i = 0; i < out.nodes.size(); ++i) out.G.block<3, 3>(3 * i, 3 * j) = C.middleRows<3>(3 * out.nodes[i]);

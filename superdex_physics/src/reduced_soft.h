@@ -50,6 +50,8 @@ struct ReducedSoftModel {
   int num_modes() const { return static_cast<int>(lambda.size()); }
   // Residual compliance columns of a free node (computed and kept on first use).
   const MatX& residual(int node) const;
+  // Computes the residual columns of those free `nodes` that have none yet, together.
+  void prepare_residuals(const std::vector<int>& nodes) const;
   // The response to gravity g_W (recomputed when g_W changes).
   const Gravity& gravity(const VecX& node_mass, const Vec3& g_W) const;
 };

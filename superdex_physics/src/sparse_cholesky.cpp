@@ -175,5 +175,17 @@ MatX SparseCholesky::solve(const MatX& b) const {
   return x;
 }
 
+void SparseCholesky::solve_in_place(Eigen::MatrixXd& b) const {
+  const Impl& m = *impl_;
+  const int n = static_cast<int>(m.perm.size());
+  // permuted column by column (b is column-major)
+  Eigen::MatrixXd bp(n, b.cols());
+  for (Eigen::Index j = 0; j < b.cols(); ++j)
+    for (int k = 0; k < n; ++k) bp(k, j) = b(m.perm[k], j);
+  const Eigen::MatrixXd xp = m.llt.solve(bp);
+  for (Eigen::Index j = 0; j < b.cols(); ++j)
+    for (int k = 0; k < n; ++k) b(m.perm[k], j) = xp(k, j);
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -33,6 +33,8 @@ class SparseCholesky {
   // H^-1 b for one or several right-hand sides.
   VecX solve(const VecX& b) const;
   MatX solve(const MatX& b) const;
+  // H^-1 b in double precision whatever `real` is, in place.
+  void solve_in_place(Eigen::MatrixXd& b) const;
 
  private:
   struct Impl;
