@@ -139,7 +139,8 @@ class DenseAlgebra {
         GJ_.middleRows(row, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
         row += s;
       }
-      H_.noalias() += J_active_.transpose() * GJ_;
+      // the lower triangle only: the Cholesky factorization reads no other
+      H_.triangularView<Eigen::Lower>() += J_active_.transpose() * GJ_;
     }
     llt_.compute(H_);
   }

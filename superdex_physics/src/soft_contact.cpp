@@ -3,6 +3,7 @@
 #include "soft_contact.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "collision_geometry.h"
 #include "triangle_bvh.h"
@@ -26,21 +27,25 @@ Aabb face_bounds(const VecX& x, const std::array<int, 3>& face) {
   return bounds;
 }
 
-// The faces of a soft body's surface whose bounds overlap `box` (world), with a closest-triangle
-// hierarchy over them at the node positions `vertices` (which it refers to).
-struct NearSurface {
-  std::vector<std::array<int, 3>> faces;
-  TriangleBvh bvh;
-  NearSurface(const SoftBody& soft, const std::vector<Eigen::Vector3d>& vertices, const Aabb& box)
-      : faces(near_faces(soft, box)), bvh(vertices, faces) {}
-  NearSurface(const NearSurface&) = delete;  // the hierarchy refers to the members
-  static std::vector<std::array<int, 3>> near_faces(const SoftBody& soft, const Aabb& box) {
-    std::vector<std::array<int, 3>> out;
-    for (const auto& face : soft.model.surface_faces)
-      if (face_bounds(soft.state.x, face).overlaps(box)) out.push_back(face);
-    return out;
+// Collider samples up to this many are matched against the near faces one by one; more, through
+// a closest-triangle hierarchy built over those faces.
+constexpr size_t kSamplesWithoutHierarchy = 32;
+
+// The closest of `faces` to p (double precision) among those whose bounds `boxes` lie within
+// `max_distance`; triangle -1 when none.
+TriangleBvh::Hit closest_face(const Eigen::Vector3d& p, const std::vector<std::array<int, 3>>& faces, const std::vector<Aabb>& boxes,
+                              const std::vector<Eigen::Vector3d>& vertices, double max_distance) {
+  TriangleBvh::Hit best;
+  best.distance_squared = max_distance * max_distance;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const Eigen::Vector3d gap = (boxes[f].min.cast<double>() - p).cwiseMax(p - boxes[f].max.cast<double>()).cwiseMax(0.0);
+    if (gap.squaredNorm() >= best.distance_squared) continue;
+    const ClosestPoint cp = closest_point_on_triangle(p, vertices[faces[f][0]], vertices[faces[f][1]], vertices[faces[f][2]]);
+    const double d2 = (cp.point - p).squaredNorm();
+    if (d2 < best.distance_squared) best = {d2, static_cast<int>(f), cp};
   }
-};
+  return best;
+}
 
 }  // namespace
 
@@ -62,6 +67,13 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     // samples deeper than a quarter of the body's smallest extent are left to the node contacts
     const real max_depth = (bounds.max - bounds.min).minCoeff() / 4;
     std::vector<Eigen::Vector3d> vertices;  // the node positions in double, when a collider with samples comes near
+    // the bounds of the surface faces, when a bounded collider comes near
+    std::vector<Aabb> face_box;
+    auto face_boxes = [&]() -> const std::vector<Aabb>& {
+      if (face_box.empty())
+        for (const auto& face : soft.model.surface_faces) face_box.push_back(face_bounds(x, face));
+      return face_box;
+    };
     for (size_t b = 0; b < s.articulations.size(); ++b) {
       const Articulation& a = *s.articulations[b];
       for (const LinkCollider& col : a.model.colliders) {
@@ -102,9 +114,10 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         // not only by the nearest nodes, and its contact force does not jump from node to node
         // as it slides
         if (!plane)
-          for (const auto& face : soft.model.surface_faces) {
+          for (size_t f = 0; f < soft.model.surface_faces.size(); ++f) {
+            const auto& face = soft.model.surface_faces[f];
+            if (!face_boxes()[f].overlaps(box)) continue;
             if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
-            if (!face_bounds(x, face).overlaps(box)) continue;
             const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
             for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
           }
@@ -116,16 +129,23 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         near_box.max.array() += std::max<real>(0, max_depth - reach);
         if (vertices.empty())
           for (int i = 0; i < static_cast<int>(x.size() / 3); ++i) vertices.push_back(x.segment<3>(3 * i).cast<double>());
-        const NearSurface surface(soft, vertices, near_box);
-        if (surface.faces.empty()) continue;
+        std::vector<std::array<int, 3>> faces;
+        std::vector<Aabb> boxes;
+        for (size_t f = 0; f < soft.model.surface_faces.size(); ++f)
+          if (face_boxes()[f].overlaps(near_box)) faces.push_back(soft.model.surface_faces[f]), boxes.push_back(face_boxes()[f]);
+        if (faces.empty()) continue;
+        // a hierarchy pays for itself only over many samples
+        std::optional<TriangleBvh> bvh;
+        if (col.samples_S.size() > kSamplesWithoutHierarchy) bvh.emplace(vertices, faces);
+        const double max_distance = std::max(reach, max_depth);
         int hint = -1;
         for (const Vec3& sample_S : col.samples_S) {
           const Vec3 p = X_WS.R * sample_S + X_WS.p;
           if (!(p.array() >= bounds.min.array() - reach).all() || !(p.array() <= bounds.max.array() + reach).all()) continue;
-          const TriangleBvh::Hit hit = surface.bvh.closest(p.cast<double>(), hint);
+          const TriangleBvh::Hit hit = bvh ? bvh->closest(p.cast<double>(), hint) : closest_face(p.cast<double>(), faces, boxes, vertices, max_distance);
           if (hit.triangle < 0) continue;
           hint = hit.triangle;
-          const auto& face = surface.faces[hit.triangle];
+          const auto& face = faces[hit.triangle];
           const Eigen::Vector3d a = vertices[face[0]], bb = vertices[face[1]], cc = vertices[face[2]];
           const Eigen::Vector3d normal = (bb - a).cross(cc - a);
           if (normal.norm() <= 0) continue;
