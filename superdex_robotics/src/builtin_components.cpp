@@ -13,6 +13,7 @@ void register_builtin_components(Context& ctx) {
   ctx.register_type(K::Controller, "BASIC_JSC_PD", make_joint_pd_controller);
   ctx.register_type(K::Controller, "BASIC_OSC_PD", make_osc_pd_controller);
   ctx.register_type(K::Controller, "ARTICULATED_POSE", make_articulated_pose_controller);
+  ctx.register_type(K::Controller, "HYBRID_FORCE_VELOCITY", make_hybrid_force_velocity_controller);
   ctx.register_type(K::Actuator, "IDEAL_PD", make_ideal_pd_actuator);
   ctx.register_type(K::Actuator, "DC_MOTOR", make_dc_motor_actuator, dc_motor_armature);
   ctx.register_type(K::Actuator, "VELOCITY_SERVO", make_velocity_servo_actuator);

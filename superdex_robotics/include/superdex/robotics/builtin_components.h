@@ -19,6 +19,9 @@
 ///                     (default false: adds the bias forces c(q, v), gravity and Coriolis).
 ///   BASIC_OSC_PD      operational-space PD of an end-effector link relative to a base link.
 ///   ARTICULATED_POSE  stiff joint pose tracking, implicit in the step's dt.
+///   HYBRID_FORCE_VELOCITY  resolved-rate velocity control of a link's origin along a Cartesian
+///                     target or trajectory, with force regulation along one axis in contact;
+///                     writes joint velocities (for velocity actuators).
 /// Actuators (actor: a link whose joint has one DOF)
 ///   IDEAL_PD, DC_MOTOR, VELOCITY_SERVO, DELAYED
 /// Sensors (actor: a link)
