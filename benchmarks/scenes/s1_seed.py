@@ -4,10 +4,12 @@ duck has no counterpart in the peers).
 Variants
 - seed loop: the seed example's own Python classes and loop (superdex_robotics/examples/advanced/
   example_custom_components.py, imported, its main loop without the debugger).
-- C++ pipeline: the bot's sensor and servos as the built-in C++ CONTACT_FORCE and VELOCITY_SERVO
-  (same parameters) run by the bot pipeline inside scene.step; the seed's controller law has no
-  built-in counterpart, so it runs as a pipeline controller written in Python (one call per step:
-  compute(t, dt) -> joint velocity commands). The script's loop only calls scene.step.
+- C++ pipeline: the seed's three components as their built-in C++ counterparts, run by the bot
+  pipeline inside scene.step: CONTACT_FORCE for the sensor, VELOCITY_SERVO (same parameters) for
+  the servos, and HYBRID_FORCE_VELOCITY with the seed's gains for its controller, following the
+  seed's circle sampled at the control rate. The script's loop only calls scene.step.
+- C++ pipeline, Python controller: the same, with the seed's controller law written in Python as
+  a pipeline controller (one call per step: compute(t, dt) -> joint velocity commands).
 - physics only: the same scene with no components at all (the arm falls onto the duck): the
   floor under both, what the simulation alone costs.
 - seed loop, full-FEM duck: the seed loop with the duck's full nonlinear finite-element twin
@@ -18,6 +20,7 @@ Variants
 from __future__ import annotations
 
 import importlib.util
+import json
 import warnings
 
 import numpy as np
@@ -27,7 +30,7 @@ from benchmarks.scenes import arm
 
 NUMBER = 1
 TITLE = "Seed scene: 2-DOF arm, ground, soft duck (250 Hz)"
-VARIANTS = ("seed loop", "C++ pipeline", "physics only", "seed loop, full-FEM duck")
+VARIANTS = ("seed loop", "C++ pipeline", "C++ pipeline, Python controller", "physics only", "seed loop, full-FEM duck")
 FULL_DUCK_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent_full.mochi_prefab"
 
 
@@ -121,7 +124,20 @@ class PipelineSeedController:
         return {"velocity": self.law.compute(x, J, f_z, t)}
 
 
-def run_pipeline(seed, steps, with_components=True):
+def seed_controller_params(seed, steps):
+    """HYBRID_FORCE_VELOCITY parameters for the seed's controller: its gains, and its circle
+    sampled at the control rate over the run."""
+    law = arm.Controller()
+    times = [k / seed.CONTROL_RATE_HZ for k in range(steps + 1)]
+    targets = [seed.compute_trajectory_target(t) for t in times]
+    return json.dumps({
+        "link": "ball", "axes": [0, 2], "kp": law.k_p, "kf": law.k_f, "force_target": law.f_z_target,
+        "exit_margin": law.exit_margin, "force_axis": [0, 0, 1],
+        "trajectory": {"times": times, "positions": [tg["x"].tolist() for tg in targets],
+                       "velocities": [tg["x_dot"].tolist() for tg in targets]}})
+
+
+def run_pipeline(seed, steps, with_components=True, python_controller=True):
     physics, robotics = seed.physics, seed.robotics
     physics.initialize(num_worker_threads=0)
     prefab = robotics.load_bot_prefab_from_file(seed.get_default_bot_path())
@@ -136,11 +152,14 @@ def run_pipeline(seed, steps, with_components=True):
     robotics.register_python_controller(ctx, "SEED_PIPELINE_CONTROLLER", PipelineSeedController)
     scene, bot, duck = build(seed, ctx, prefab)
     controller = None
-    if with_components:
+    if with_components and python_controller:
         handle = bot.create_controller("SEED_PIPELINE_CONTROLLER", "seed_controller")
         controller = robotics.get_python_controller(ctx, handle)
         controller.ctx = ctx
         controller.sensor = bot.find_sensors_by_name(seed.SENSOR_NAME)[0]
+    elif with_components:
+        bot.create_controller("HYBRID_FORCE_VELOCITY", "seed_controller", seed_controller_params(seed, steps))
+    if with_components:
         assert bot.is_pipeline_active()
     dt = 1.0 / seed.CONTROL_RATE_HZ
     with Timer() as timer:
@@ -159,7 +178,8 @@ def run_case(case):
         full = case["variant"] == "seed loop, full-FEM duck"
         wall, scene, bot_actor, duck, checks = run_seed_loop(seed, steps, FULL_DUCK_ASSET if full else None)
     else:
-        wall, scene, bot_actor, duck, checks = run_pipeline(seed, steps, case["variant"] == "C++ pipeline")
+        wall, scene, bot_actor, duck, checks = run_pipeline(seed, steps, case["variant"] != "physics only",
+                                                            case["variant"] == "C++ pipeline, Python controller")
     xf = seed.physics.DynamicArrayTransformRT(4)
     bot_actor.get_articulated_link_transforms(xf)
     ball = np.array(xf[arm.BALL_LINK].translation, dtype=np.float64)
