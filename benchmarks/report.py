@@ -295,13 +295,25 @@ this run's.
   only active rows join J^T G J (1.3 to 0.58 ms per step); soft contacts that cannot close
   within the step at the current speeds are deferred, joining a second solve only if the first
   one's velocities would close half their gap (0.58 to 0.5); the hierarchy holds only the faces
-  near the collider (collision 0.3 to 0.06 ms). What remains per pressing step (about 0.5 ms):
-  the Python controller and the island's per-contact work (rows, their Jacobians, the compliance
-  of each contact, about 100 candidate contacts a step, 10 to 40 active), and the first touch
-  of each duck node, which solves the rest stiffness for its residual compliance (about 1 ms per
-  node, cached). The physics alone is at 40x real time; 10x with the seed's Python loop needs
-  the per-contact work roughly halved, 30x with the C++ pipeline needs the controller in C++
-  too (the seed's law runs in Python in that variant).
+  near the collider (collision 0.3 to 0.06 ms). Found next (per-step timings of the C++
+  pipeline, 0.37 s for 3 s): one step of 184 ms at the first touch, where the second solve took
+  every deferred candidate and so some 150 duck nodes needed their residual compliance at once,
+  each a solve of the rest stiffness (0.8 ms a node with Eigen's simplicial LDL^T); the
+  closest-triangle hierarchy still rebuilt every step for a ball of six samples. Fixed: deferred
+  contacts join the re-solve one by one as the solution closes them (the spike went, 0.37 to
+  0.19 s); the rest stiffness is factored by CHOLMOD and a step's new nodes are solved together
+  (0.8 to 0.33-0.48 ms a node); face bounds are computed once per body and step, and colliders of
+  at most 32 samples are matched against the near faces directly (collision 0.087 to 0.060 ms
+  per pressing step). The seed's controller law now has a built-in C++ counterpart,
+  HYBRID_FORCE_VELOCITY (tested step by step against the seed's own Python components: paths
+  agree to 1e-7 m), so the C++ pipeline variant runs all three components in C++; with the law
+  in Python it is listed apart. What remains (perf, C++ pipeline, 0.11 s for 3 s): the 275
+  pressing steps take 0.34 ms each, the 475 others 0.043 ms. Of a pressing step: the residual
+  compliance of nodes touched for the first time, about 30 % (some 90 nodes in the run, 0.3 ms
+  each, cached after; it is one sparse triangular solve pair per node, bound by the factor's
+  size); the dense Newton over the arm, the 24 modes and the contact nodes (n about 60, 30
+  contacts, two friction passes a step while the ball slides), about 28 %; the contact search,
+  15 %. 30x needs 0.13 ms per step on average: a pressing step some 20 % cheaper.
 - Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
   exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.22 on the EPYC):
   it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
