@@ -92,9 +92,10 @@ void ServerCore::on_message(WebSocketSession& from, const std::string& text) {
   const std::string action = action_value.get<std::string>();
   {
     std::lock_guard lock(control_mutex);
+    // playing drops a single step still pending: it would run on the next pause
     if (action == "pause") play.paused = true;
-    else if (action == "play") play = {false, true};
-    else if (action == "fast") play = {false, false};
+    else if (action == "play") play = {false, true}, step_tokens = 0;
+    else if (action == "fast") play = {false, false}, step_tokens = 0;
     else if (action == "step") {
       play.paused = true;
       step_tokens = 1;
