@@ -70,6 +70,20 @@ namespace {
 // gap. Most speculative contacts of a soft surface are such.
 bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
 
+// The world Jacobian J_WL (6 x nv) of a link of an island's body, computed once per solve of the
+// island (w.link_jacobians_used is reset at its start) and kept in `w`.
+const MatXR& cached_link_jacobian(const SceneData& s, int body, int link, IslandWorkspace& w) {
+  for (size_t k = 0; k < w.link_jacobians_used; ++k)
+    if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) return w.link_jacobians[k].J_WL;
+  if (w.link_jacobians_used == w.link_jacobians.size()) w.link_jacobians.emplace_back();
+  IslandWorkspace::LinkJacobian& added = w.link_jacobians[w.link_jacobians_used++];
+  added.body = body;
+  added.link = link;
+  const Articulation& a = *s.articulations[body];
+  link_jacobian_world(a.model, a.kin, link, added.J_WL);
+  return added.J_WL;
+}
+
 // One solve of the island, with or without the deferred joint-limit rows, and with the deferred
 // soft contacts `admitted` flags (per island soft contact).
 void solve_island_once(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
@@ -192,19 +206,8 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   w.link_jacobians_used = 0;
   // the linear-velocity Jacobian of point p_W of a link, into w.J_point (3 x nv)
   auto point_jacobian = [&](int body, int link, const Vec3& p_W) {
-    const Articulation& a = *s.articulations[body];
-    IslandWorkspace::LinkJacobian* found = nullptr;
-    for (size_t k = 0; k < w.link_jacobians_used && !found; ++k)
-      if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) found = &w.link_jacobians[k];
-    if (!found) {
-      if (w.link_jacobians_used == w.link_jacobians.size()) w.link_jacobians.emplace_back();
-      found = &w.link_jacobians[w.link_jacobians_used++];
-      found->body = body;
-      found->link = link;
-      link_jacobian_world(a.model, a.kin, link, found->J_WL);
-    }
-    const MatXR& J = found->J_WL;
-    w.J_point.noalias() = J.topRows<3>() - skew(p_W - a.kin.X_WL[link].p) * J.bottomRows<3>();
+    const MatXR& J = cached_link_jacobian(s, body, link, w);
+    w.J_point.noalias() = J.topRows<3>() - skew(p_W - s.articulations[body]->kin.X_WL[link].p) * J.bottomRows<3>();
   };
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
   // diagonal of its Delassus block (the only part the contact block reads) and free-motion
@@ -449,26 +452,15 @@ bool violates_deferred_rows(const Island& island, const std::vector<Articulation
 // by more than half (half the gap its contact block would let close before acting); returns how
 // many.
 int admit_closing_soft_contacts(const SceneData& s, const Island& island, const std::vector<SoftContact>& soft_contacts, real dt,
-                                const IslandSolution& out, std::vector<char>& admitted) {
-  // world twist of each touched link at the solution (linear part at the link origin, angular)
-  struct LinkTwist {
-    int body, link;
-    Vec6 V;
-  };
-  std::vector<LinkTwist> twists;
-  MatXR J_WL;
+                                const IslandSolution& out, IslandWorkspace& w, std::vector<char>& admitted) {
   int count = 0;
+  // velocity of point p_W of a link at the solution (world), by the link Jacobians of the solve
   auto point_velocity = [&](int body, int link, const Vec3& p_W) -> Vec3 {
     const Articulation& a = *s.articulations[body];
     if (a.model.nv == 0) return Vec3::Zero();
-    auto it = std::find_if(twists.begin(), twists.end(), [&](const LinkTwist& t) { return t.body == body && t.link == link; });
-    if (it == twists.end()) {
-      const int j = static_cast<int>(std::find(island.bodies.begin(), island.bodies.end(), body) - island.bodies.begin());
-      link_jacobian_world(a.model, a.kin, link, J_WL);
-      twists.push_back({body, link, J_WL * out.v[j]});
-      it = std::prev(twists.end());
-    }
-    return it->V.head<3>() + it->V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
+    const int j = static_cast<int>(std::find(island.bodies.begin(), island.bodies.end(), body) - island.bodies.begin());
+    const Vec6 V = cached_link_jacobian(s, body, link, w) * out.v[j];
+    return V.head<3>() + V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
   };
   for (size_t j = 0; j < island.soft_contacts.size(); ++j) {
     const SoftContact& c = soft_contacts[island.soft_contacts[j]];
@@ -497,19 +489,19 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
   // a deferred limit row or soft contact is inactive at the solution unless it says otherwise:
   // then the same problem with every limit row and the soft contacts the solution would close,
   // until no other would (rare: the free motion kept them far from acting)
+  constexpr int kLastRound = 3;  // after which every deferred contact joins
   bool all_rows = false;
   for (int round = 0;; ++round) {
     const bool rows = !all_rows && violates_deferred_rows(island, terms, out.v);
-    const int closing = admit_closing_soft_contacts(s, island, soft_contacts, dt, out, admitted);
+    const int closing = admit_closing_soft_contacts(s, island, soft_contacts, dt, out, w, admitted);
     if (!rows && closing == 0) break;
     all_rows = all_rows || rows;
-    // after a few rounds, every deferred contact joins
-    if (round == 3) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
+    if (round == kLastRound) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
     const int iterations = out.iterations, passes = out.friction_passes;
     solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, all_rows, admitted, w, sparse_cache, out);
     out.iterations += iterations;
     out.friction_passes += passes;
-    if (round == 3) break;
+    if (round == kLastRound) break;
   }
   out.ticks = ticks_now() - t0;
 }

@@ -154,25 +154,15 @@ bool SparseCholesky::compute(const Eigen::SparseMatrix<real>& H) {
 }
 
 VecX SparseCholesky::solve(const VecX& b) const {
-  const Impl& m = *impl_;
-  const int n = static_cast<int>(m.perm.size());
-  Eigen::VectorXd bp(n);
-  for (int k = 0; k < n; ++k) bp[k] = b[m.perm[k]];
-  const Eigen::VectorXd xp = m.llt.solve(bp);
-  VecX x(n);
-  for (int k = 0; k < n; ++k) x[m.perm[k]] = static_cast<real>(xp[k]);
-  return x;
+  Eigen::MatrixXd x = b.cast<double>();
+  solve_in_place(x);
+  return x.col(0).cast<real>();
 }
 
 MatX SparseCholesky::solve(const MatX& b) const {
-  const Impl& m = *impl_;
-  const int n = static_cast<int>(m.perm.size());
-  Eigen::MatrixXd bp(n, b.cols());
-  for (int k = 0; k < n; ++k) bp.row(k) = b.row(m.perm[k]).cast<double>();
-  const Eigen::MatrixXd xp = m.llt.solve(bp);
-  MatX x(n, b.cols());
-  for (int k = 0; k < n; ++k) x.row(m.perm[k]) = xp.row(k).cast<real>();
-  return x;
+  Eigen::MatrixXd x = b.cast<double>();
+  solve_in_place(x);
+  return x.cast<real>();
 }
 
 void SparseCholesky::solve_in_place(Eigen::MatrixXd& b) const {
