@@ -50,8 +50,8 @@ struct ArticulationTerms {
 
  private:
   friend void articulation_terms(const Articulation&, const Vec3&, real, const SolverParams&, ArticulationTerms&);
-  // cache of inverse_diagonal(): A's inverse Cholesky factor and the diagonal of A^-1
-  mutable MatX L_inv_;
+  // cache of inverse_diagonal(): a column of A's inverse Cholesky factor, and A^-1's diagonal
+  mutable VecX L_inv_column_;
   mutable VecX A_inv_diagonal_;
   mutable bool have_inverse_diagonal_ = false;
 };

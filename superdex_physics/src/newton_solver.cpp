@@ -106,6 +106,9 @@ namespace {
 // Dense linear algebra for the Newton loop: A and J as dense matrices, Cholesky of H.
 class DenseAlgebra {
  public:
+  // up to this many variables, the Hessian's constraint part is added block by block
+  static constexpr int kSmallHessian = 24;
+
   DenseAlgebra(const MatX& A, const SparseRowMat& J, NewtonScratch& w)
       : A_(A), J_(w.J), H_(w.H), J_active_(w.J_active), GJ_(w.GJ), llt_(w.llt) {
     J_ = J;
@@ -128,7 +131,28 @@ class DenseAlgebra {
       const int s = rows.blocks[k].size();
       if (!(G[k].topLeftCorner(s, s).array() == 0).all()) m_active += s;
     }
-    if (m_active > 0) {
+    if (m_active > 0 && n() <= kSmallHessian) {
+      // small problems: each active block's J_b^T (G_b J_b) straight into H's lower triangle
+      // (a blocked matrix product costs more in packing than it saves at these sizes)
+      const int n = this->n();
+      GJ_.resize(3, n);
+      for (size_t k = 0; k < rows.blocks.size(); ++k) {
+        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+        if ((G[k].topLeftCorner(s, s).array() == 0).all()) continue;
+        GJ_.topRows(s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+        // H(r, c) += sum_i J(r0 + i, r) (G J)(i, c) for r >= c; J's rows are contiguous
+        for (int i = 0; i < s; ++i) {
+          const real* J_i = J_.row(r0 + i).data();
+          const real* GJ_i = GJ_.row(i).data();
+          for (int c = 0; c < n; ++c) {
+            const real g = GJ_i[c];
+            if (g == 0) continue;
+            real* H_c = H_.col(c).data();
+            for (int r = c; r < n; ++r) H_c[r] += g * J_i[r];
+          }
+        }
+      }
+    } else if (m_active > 0) {
       J_active_.resize(m_active, J_.cols());
       GJ_.resize(m_active, J_.cols());
       int row = 0;
@@ -151,8 +175,9 @@ class DenseAlgebra {
 
  private:
   const MatX& A_;
-  MatX& J_;
-  MatX &H_, &J_active_, &GJ_;
+  MatXR& J_;
+  MatX& H_;
+  MatXR &J_active_, &GJ_;
   Eigen::LLT<MatX>& llt_;
 };
 

@@ -73,7 +73,8 @@ struct NewtonScratch {
   ConvexResult result;  // the last solve's
   VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
   std::vector<Eigen::Matrix<real, 3, 3>> G;
-  MatX J, H, J_active, GJ;  // dense algebra: J as a dense matrix, the Hessian, J's active rows, G J on them
+  MatXR J, J_active, GJ;  // dense algebra: J as a dense matrix, its active rows, G J on them
+  MatX H;                 // and the Hessian
   Eigen::LLT<MatX> llt;
 };
 
