@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "articulation_model.h"
+#include "dynamics.h"
 #include "superdex/physics/error.h"
 
 namespace superdex::physics {
@@ -307,6 +308,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
   for (size_t k = 0; k < desc.default_pose.size(); ++k)
     if (!std::isfinite(desc.default_pose[k])) r.fail(at("defaultPose", k), "must be finite");
   m.desc = desc;
+  merge_welded_links(m);
   return m;
 }
 

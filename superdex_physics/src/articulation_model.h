@@ -51,6 +51,11 @@ struct ArticulationModel {
   std::vector<JointModel> joints;      // joint i attaches link i (num_links)
   std::vector<SpatialInertia> inertia; // spatial inertia of each link about its origin (num_links)
   std::vector<char> has_gravity;       // per link (num_links)
+  // What the dynamics (mass matrix, inverse dynamics) visit: a link welded (Hard joint) to its
+  // parent, with only welded links below it and the same gravity flag, moves as part of the
+  // parent, so its inertia is added to the parent's and the dynamics skip it.
+  std::vector<int> dynamics_order;               // the other links, parents first
+  std::vector<SpatialInertia> dynamics_inertia;  // per link: its own plus the welded ones it carries (num_links)
   std::vector<std::string> link_names, joint_names;
   std::vector<LinkCollider> colliders; // collision shapes, in link order
   std::map<std::pair<int, int>, bool> contact_overrides;  // (link a < link b) -> enabled

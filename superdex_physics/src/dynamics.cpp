@@ -16,8 +16,8 @@ void rnea(const ArticulationModel& model, const ArticulationState& state, const 
   A.resize(n);
   F.resize(n);
   auto accel = [&](int k) { return a ? (*a)[k] : real(0); };
-  // forward pass: link accelerations
-  for (int i : model.order) {
+  // forward pass: link accelerations (welded links move with their parents: dynamics_order)
+  for (int i : model.dynamics_order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
     // joint velocity and acceleration, column by column (nv is at most 6)
@@ -31,14 +31,14 @@ void rnea(const ArticulationModel& model, const ArticulationState& state, const 
     if (j.type == JointType::Free) A_i.head<3>() -= vJ.tail<3>().cross(vJ.head<3>());
     if (p >= 0) A_i += kin.X_PL[i].apply_motion_inverse(A[p]);
     A[i] = A_i;
-    const SpatialInertia& I = model.inertia[i];
+    const SpatialInertia& I = model.dynamics_inertia[i];
     Vec6 A_net = A_i;
     if (model.has_gravity[i]) A_net.head<3>() -= kin.X_WL[i].R.transpose() * g_W;
     F[i] = I.apply(A_net) + cross_force(kin.V_L[i], I.apply(kin.V_L[i]));
   }
   // backward pass: project onto joint axes and accumulate into parents
   tau.resize(model.nv);
-  for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
+  for (auto it = model.dynamics_order.rbegin(); it != model.dynamics_order.rend(); ++it) {
     const int i = *it;
     const JointModel& j = model.joints[i];
     // armature (rotor inertia) acts on the joint acceleration directly, as in mass_matrix()
@@ -118,15 +118,15 @@ void mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
   // composite inertias, leaves first, each expressed in its own link frame (kept per thread)
   thread_local std::vector<OriginInertia> Ic;
   Ic.resize(n);
-  for (int i = 0; i < n; ++i) Ic[i] = OriginInertia::of(model.inertia[i]);
-  for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
+  for (int i : model.dynamics_order) Ic[i] = OriginInertia::of(model.dynamics_inertia[i]);
+  for (auto it = model.dynamics_order.rbegin(); it != model.dynamics_order.rend(); ++it) {
     const int i = *it, p = model.parent[i];
     if (p >= 0) Ic[p] += Ic[i].in_parent(kin.X_PL[i]);
   }
   // column by column: the force that a unit motion of DOF (i, c) needs, carried up the tree and
   // projected onto each ancestor joint's motion subspace
   M.setZero(model.nv, model.nv);
-  for (int i = 0; i < n; ++i) {
+  for (int i : model.dynamics_order) {
     const JointModel& ji = model.joints[i];
     for (int c = 0; c < ji.nv; ++c) {
       const int col = ji.v_offset + c;
@@ -140,6 +140,37 @@ void mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
       }
       M(col, col) += ji.armature;
     }
+  }
+}
+
+void merge_welded_links(ArticulationModel& model) {
+  const int n = model.num_links;
+  // a link merges when welded below a parent, with the same gravity flag, and every child merges
+  std::vector<char> merged(n, 0), has_unmerged_child(n, 0);
+  std::vector<OriginInertia> carried(n);
+  for (int i = 0; i < n; ++i) carried[i] = OriginInertia::of(model.inertia[i]);
+  for (auto it = model.order.rbegin(); it != model.order.rend(); ++it) {
+    const int i = *it, p = model.parent[i];
+    if (p < 0) continue;
+    merged[i] = model.joints[i].type == JointType::Hard && !has_unmerged_child[i] && model.has_gravity[i] == model.has_gravity[p];
+    if (!merged[i]) {
+      has_unmerged_child[p] = 1;
+      continue;
+    }
+    // a welded joint's transform is its joint frame's (joint_transform of a Hard joint is identity)
+    carried[p] += carried[i].in_parent(model.joints[i].X_PJ);
+  }
+  model.dynamics_order.clear();
+  for (int i : model.order)
+    if (!merged[i]) model.dynamics_order.push_back(i);
+  // back to a spatial inertia about the centre of mass: I_com = I_o - m (|c|^2 1 - c c^T)
+  model.dynamics_inertia = model.inertia;
+  for (int i : model.dynamics_order) {
+    const OriginInertia& o = carried[i];
+    SpatialInertia& I = model.dynamics_inertia[i];
+    I.mass = o.m;
+    I.com = o.m > 0 ? Vec3(o.h / o.m) : Vec3::Zero();
+    I.inertia_com = o.I - o.m * (I.com.squaredNorm() * Mat3::Identity() - I.com * I.com.transpose());
   }
 }
 

@@ -20,6 +20,9 @@ VecX bias_forces(const ArticulationModel& model, const ArticulationState& state,
 void bias_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
                  const Vec3& g_W, VecX& c);
 
+// Fills model.dynamics_order and model.dynamics_inertia from the links, joints and inertias
+// (build_articulation_model calls it).
+void merge_welded_links(ArticulationModel& model);
 // Joint-space mass matrix M(q) (nv x nv) by the composite rigid body algorithm, armature
 // added on the diagonal.
 MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin);

@@ -217,5 +217,27 @@ TEST_F(DynamicsTest, PendulumForwardDynamicsMatchesAnalytic) {
   EXPECT_NEAR(scene.forward_dynamics(p, VecX::Constant(1, tau))[0], expected, 1e-12);
 }
 
+TEST_F(DynamicsTest, WeldedLinkAddsItsInertiaAndOnlyItsOwnWeight) {
+  // a pendulum (COM at L below the pivot) carrying a welded point-like tip at L2 below the
+  // pivot: I_pivot = i + m L^2 + i2 + m2 L2^2; the static torque is (m L + m2 L2) g sin(theta),
+  // or m L g sin(theta) when the tip does not feel gravity
+  const double m = 1.5, L = 0.8, i_com = 0.02, m2 = 0.7, L2 = 1.1, i2 = 0.003, theta = 0.7, tau = 0.9;
+  for (const bool tip_gravity : {true, false}) {
+    ArticulationDesc desc = one_dof_desc(JointType::Revolute, Vec3::UnitY(), m, Vec3(0, 0, -L), Vec3::Constant(i_com));
+    desc.links.push_back(make_link("tip", 1, m2, Vec3::Zero(), Vec3::Constant(i2)));
+    desc.links.back().has_gravity = tip_gravity;
+    desc.joints.push_back(make_joint("tip_weld", JointType::Hard, Vec3::UnitZ(), Transform{Quat::Identity(), Vec3(0, 0, -L2)}));
+    Scene scene = create_scene("welded_tip");
+    const ActorHandle p = scene.create_articulated_actor(desc, "pendulum");
+    scene.set_pose(p, VecX::Constant(1, theta));
+    const double inertia = i_com + m * L * L + i2 + m2 * L2 * L2;
+    const double weight_torque = (m * L + (tip_gravity ? m2 * L2 : 0)) * kG * std::sin(theta);
+    EXPECT_NEAR(scene.mass_matrix(p)(0, 0), inertia, 1e-12) << "tip gravity " << tip_gravity;
+    EXPECT_NEAR(scene.bias_forces(p)[0], weight_torque, 1e-12) << "tip gravity " << tip_gravity;
+    EXPECT_NEAR(scene.forward_dynamics(p, VecX::Constant(1, tau))[0], (tau - weight_torque) / inertia, 1e-12)
+        << "tip gravity " << tip_gravity;
+  }
+}
+
 }  // namespace
 }  // namespace superdex::physics::test
