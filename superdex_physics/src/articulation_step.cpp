@@ -163,23 +163,9 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
 
 real ArticulationTerms::inverse_diagonal(int k) const {
   if (!have_inverse_diagonal_) {
-    // diagonal of A^-1 = L^-T L^-1: the squared column norms of L^-1, whose column k is zero
-    // above row k (forward substitution from row k on)
-    const int n = static_cast<int>(A.rows());
-    const MatX& L = A_llt.matrixLLT();
-    VecX& x = L_inv_column_;
-    x.resize(n);
-    A_inv_diagonal_.resize(n);
-    for (int k = 0; k < n; ++k) {
-      real sum = 0;
-      for (int i = k; i < n; ++i) {
-        real y = i == k ? real(1) : real(0);
-        for (int l = k; l < i; ++l) y -= L(i, l) * x[l];
-        x[i] = y / L(i, i);
-        sum += x[i] * x[i];
-      }
-      A_inv_diagonal_[k] = sum;
-    }
+    // diagonal of A^-1 = L^-T L^-1
+    L_inv_.setIdentity(A.rows(), A.cols());
+    A_inv_diagonal_ = compliance_diagonal(A_llt, L_inv_);
     have_inverse_diagonal_ = true;
   }
   return A_inv_diagonal_[k];

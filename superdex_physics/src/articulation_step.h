@@ -25,10 +25,30 @@ struct JointRow {
   VecX J;              // full row, for rows that involve several DOFs
 };
 
+// X <- L^-1 X for the SPD matrix A = L L^T factored in A_llt (X: n x k).
+inline void solve_lower_in_place(const Eigen::LLT<MatX>& A_llt, Eigen::Ref<MatX> X) {
+  const MatX& L = A_llt.matrixLLT();
+  const int n = static_cast<int>(L.rows());
+  if (n > 32) {
+    A_llt.matrixL().solveInPlace(X);
+    return;
+  }
+  // small articulations: forward substitution, row by row over all columns at once (a blocked
+  // solve costs more in set-up than in arithmetic at these sizes)
+  for (int i = 0; i < n; ++i) {
+    const real inverse = 1 / L(i, i);
+    for (Eigen::Index c = 0; c < X.cols(); ++c) {
+      real y = X(i, c);
+      for (int l = 0; l < i; ++l) y -= L(i, l) * X(l, c);
+      X(i, c) = y * inverse;
+    }
+  }
+}
+
 // diag(X^T A^-1 X) for the SPD matrix A = L L^T factored in A_llt: the squared column norms of
 // L^-1 X, one triangular solve. X (n x k) is overwritten by L^-1 X; the result reads it.
 inline auto compliance_diagonal(const Eigen::LLT<MatX>& A_llt, MatX& X) {
-  A_llt.matrixL().solveInPlace(X);
+  solve_lower_in_place(A_llt, X);
   return X.colwise().squaredNorm().transpose();
 }
 
@@ -50,8 +70,8 @@ struct ArticulationTerms {
 
  private:
   friend void articulation_terms(const Articulation&, const Vec3&, real, const SolverParams&, ArticulationTerms&);
-  // cache of inverse_diagonal(): a column of A's inverse Cholesky factor, and A^-1's diagonal
-  mutable VecX L_inv_column_;
+  // cache of inverse_diagonal(): A's inverse Cholesky factor and the diagonal of A^-1
+  mutable MatX L_inv_;
   mutable VecX A_inv_diagonal_;
   mutable bool have_inverse_diagonal_ = false;
 };

@@ -204,27 +204,30 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
 
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
-  // the linear-velocity Jacobian of point p_W of a link, into w.J_point (3 x nv)
-  auto point_jacobian = [&](int body, int link, const Vec3& p_W) {
-    const MatXR& J = cached_link_jacobian(s, body, link, w);
-    w.J_point.noalias() = J.topRows<3>() - skew(p_W - s.articulations[body]->kin.X_WL[link].p) * J.bottomRows<3>();
-  };
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
   // diagonal of its Delassus block (the only part the contact block reads) and free-motion
   // normal velocity
   auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Vec3& W_diag, real& vn_free) {
     const int nb = s.articulations[body]->model.nv;
     if (nb == 0) return;
-    point_jacobian(body, link, p_W);
-    MatX& Jc = w.Jc;
-    Jc.noalias() = (sign * R_C.transpose()) * w.J_point;
+    const MatXR& J = cached_link_jacobian(s, body, link, w);
+    const Vec3 r = p_W - s.articulations[body]->kin.X_WL[link].p;
+    const Mat3 R = sign * R_C.transpose();
     const int o = offset[body];
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < nb; ++k)
-        if (Jc(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jc(i, k));
-    w.LinvJct = Jc.transpose();
-    W_diag += compliance_diagonal(terms[body].A_llt, w.LinvJct);
-    vn_free += Jc.row(2).dot(v_start.segment(o, nb));
+    // the side's rows, transposed (nb x 3; the workspace keeps the largest size it has had)
+    if (w.Jct.rows() < nb) w.Jct.resize(nb, 3);
+    auto Jct = w.Jct.topRows(nb);
+    for (int k = 0; k < nb; ++k) {
+      // velocity of point p_W per unit velocity of DOF k, in the contact frame
+      const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
+      for (int i = 0; i < 3; ++i)
+        if (v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
+      Jct.row(k) = v.transpose();
+    }
+    vn_free += Jct.col(2).dot(v_start.segment(o, nb));
+    // the Delassus diagonal diag(Jc A^-1 Jc^T): the squared column norms of L^-1 Jc^T
+    solve_lower_in_place(terms[body].A_llt, Jct);
+    W_diag += Jct.colwise().squaredNorm().transpose();
   };
   std::vector<Mat3>& frames = w.frames;
   std::vector<real>& contact_mu = w.contact_mu;

@@ -57,7 +57,8 @@ struct IslandWorkspace {
   };
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
-  MatX J_point, Jc, LinvJct;  // one contact side: point Jacobian, in the contact frame, L^-1 Jc^T (A = L L^T)
+  MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
+  MatX Jct;  // an articulation's side of a contact, transposed (DOFs x 3; L^-1 Jc^T after compliance_diagonal)
   std::vector<Mat3> frames;
   std::vector<real> contact_mu;
   NewtonScratch newton;
