@@ -307,13 +307,16 @@ this run's.
   per pressing step). The seed's controller law now has a built-in C++ counterpart,
   HYBRID_FORCE_VELOCITY (tested step by step against the seed's own Python components: paths
   agree to 1e-7 m), so the C++ pipeline variant runs all three components in C++; with the law
-  in Python it is listed apart. What remains (perf, C++ pipeline, 0.11 s for 3 s): the 275
+  in Python it is listed apart. Measured then (perf, C++ pipeline, 0.11 s for 3 s): the 275
   pressing steps take 0.34 ms each, the 475 others 0.043 ms. Of a pressing step: the residual
   compliance of nodes touched for the first time, about 30 % (some 90 nodes in the run, 0.3 ms
   each, cached after; it is one sparse triangular solve pair per node, bound by the factor's
   size); the dense Newton over the arm, the 24 modes and the contact nodes (n about 60, 30
   contacts, two friction passes a step while the ball slides), about 28 %; the contact search,
-  15 %. 30x needs 0.13 ms per step on average: a pressing step some 20 % cheaper.
+  15 %. The build for x86-64-v3 and the small-problem changes of scenes 2, 3 and 6 (below) took
+  the run to about 0.099 s, just past 30x: the target is met with little margin. Tried and not
+  kept: CHOLMOD's simplicial factor for the residual solves (the rest stiffness is factored once,
+  so only the solve matters): 0.44 to 0.42 ms for one node, 2.3 to 3.2 ms for eight.
 - Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
   exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.22 on the EPYC):
   it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
@@ -357,7 +360,16 @@ this run's.
   and the residual ends near float's floor. A stopping test at an estimated round-off floor was
   tried and not kept (the estimates were off by two orders of magnitude one way or the other).
   MuJoCo, whose softer contacts make a smoother problem, takes 3 iterations per landing step and
-  1 per settled step.
+  1 per settled step. Measured next (perf over landing steps 30 to 90, and each Newton
+  iteration's step length and line-search trials): the one big island (300 DOFs, about 440
+  contacts) takes 15 to 18 iterations in the first solve and 16, 17, 10 and 3 in the four friction
+  passes; most iterations are damped (step lengths 0.1 to 0.4) and their exact line searches take
+  5 to 25 trials, each a pass over every contact block: block_response alone is 18 % of a landing
+  step, the block Cholesky 33 %. The iteration counts are the same in double, so this is the
+  problem's, not round-off. A looser line search (stopping at 5 % of the initial slope, as the
+  soft bodies' does) made Newton fail to converge in 50 iterations; at 1e-3 it saved 8 % of the
+  run, not kept. What would change the ratio is fewer damped iterations (a better start for the
+  friction passes, or a smoother contact model during impacts), not a cheaper iteration.
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -383,9 +395,22 @@ this run's.
   six vectors per step; a contact's compliance estimate solved with A for the whole 3 x 3
   Delassus block, of which only the diagonal is read. Fixed: the timers read the time-stamp
   counter (seconds from the step's own steady_clock interval); the vectors are kept; the
-  diagonal comes from L^-1 alone: 6.4 to 5.9 us per settled step. A build for x86-64-v3 (AVX2,
-  FMA) was measured and not adopted: kinematics 14 % and box-box collision 12 % faster, the mass
-  matrix and inverse dynamics unchanged, the pile step 4 %.
+  diagonal comes from L^-1 alone: 6.4 to 5.9 us per settled step. Found next (perf, the Panda
+  resting on its joint limits in scene 6 with two active limit rows and 1 or 2 Newton iterations
+  a step; the Panda on the table; the arm on the ground in scene 2): Eigen's blocked kernels for
+  matrices of 2 to 9 rows (the packing of a matrix product for H's J^T G J, 6 % of a step; the
+  triangular solves against the identity for A^-1's diagonal and against a contact side's three
+  rows for its Delassus diagonal, 4 to 5 %); a contact side's rows built by two dynamic-size
+  matrix products; and the dynamics visiting the four links welded to the Panda's base and hand.
+  Fixed: below 24 variables each active block's J_b^T G_b J_b is added into H's lower triangle
+  directly; forward substitution for articulations of up to 32 DOFs; a side's rows column by
+  column as 3-vectors; welded links' inertias added to their parents' at model build (the
+  dynamics visit 7 of the Panda's 11 links). Scene 6's step 5.65 to 4.8 us, scene 2's physics
+  step 7.1 to 6.65 us. The build now targets x86-64-v3 (AVX2, FMA) when the build machine runs it
+  (CMake SUPERDEX_ARCH; MuJoCo's own wheels use AVX): with these changes, scene 6's step 4.8 to
+  4.5 us, the Panda on the table 6.45 to 6.2 us. Compiler-contracted FMA stays off
+  (-ffp-contract=off): with it a built-in component no longer matched the same law in Python bit
+  for bit.
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
