@@ -125,20 +125,19 @@ class DenseAlgebra {
   void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
     H_ = A_;
     // only the blocks with a non-zero G (the active ones: speculative contacts that stay apart
-    // are often most rows) add to H, packed together
-    int m_active = 0;
-    for (size_t k = 0; k < rows.blocks.size(); ++k) {
+    // are often most rows) add to H
+    auto active = [&](size_t k) {
       const int s = rows.blocks[k].size();
-      if (!(G[k].topLeftCorner(s, s).array() == 0).all()) m_active += s;
-    }
-    if (m_active > 0 && n() <= kSmallHessian) {
+      return !(G[k].topLeftCorner(s, s).array() == 0).all();
+    };
+    const int n = this->n();
+    if (n <= kSmallHessian) {
       // small problems: each active block's J_b^T (G_b J_b) straight into H's lower triangle
       // (a blocked matrix product costs more in packing than it saves at these sizes)
-      const int n = this->n();
       GJ_.resize(3, n);
       for (size_t k = 0; k < rows.blocks.size(); ++k) {
+        if (!active(k)) continue;
         const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-        if ((G[k].topLeftCorner(s, s).array() == 0).all()) continue;
         GJ_.topRows(s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
         // H(r, c) += sum_i J(r0 + i, r) (G J)(i, c) for r >= c; J's rows are contiguous
         for (int i = 0; i < s; ++i) {
@@ -152,19 +151,25 @@ class DenseAlgebra {
           }
         }
       }
-    } else if (m_active > 0) {
-      J_active_.resize(m_active, J_.cols());
-      GJ_.resize(m_active, J_.cols());
-      int row = 0;
-      for (size_t k = 0; k < rows.blocks.size(); ++k) {
-        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-        if ((G[k].topLeftCorner(s, s).array() == 0).all()) continue;
-        J_active_.middleRows(row, s) = J_.middleRows(r0, s);
-        GJ_.middleRows(row, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
-        row += s;
+    } else {
+      // larger ones: the active blocks' rows packed together, one matrix product
+      int m_active = 0;
+      for (size_t k = 0; k < rows.blocks.size(); ++k)
+        if (active(k)) m_active += rows.blocks[k].size();
+      if (m_active > 0) {
+        J_active_.resize(m_active, n);
+        GJ_.resize(m_active, n);
+        int row = 0;
+        for (size_t k = 0; k < rows.blocks.size(); ++k) {
+          if (!active(k)) continue;
+          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+          J_active_.middleRows(row, s) = J_.middleRows(r0, s);
+          GJ_.middleRows(row, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
+          row += s;
+        }
+        // the lower triangle only: the Cholesky factorization reads no other
+        H_.triangularView<Eigen::Lower>() += J_active_.transpose() * GJ_;
       }
-      // the lower triangle only: the Cholesky factorization reads no other
-      H_.triangularView<Eigen::Lower>() += J_active_.transpose() * GJ_;
     }
     llt_.compute(H_);
   }
