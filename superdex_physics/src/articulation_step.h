@@ -46,9 +46,11 @@ inline void solve_lower_in_place(const Eigen::LLT<MatX>& A_llt, Eigen::Ref<MatX>
 }
 
 // diag(X^T A^-1 X) for the SPD matrix A = L L^T factored in A_llt: the squared column norms of
-// L^-1 X, one triangular solve. X (n x k) is overwritten by L^-1 X; the result reads it.
-inline auto compliance_diagonal(const Eigen::LLT<MatX>& A_llt, MatX& X) {
-  solve_lower_in_place(A_llt, X);
+// L^-1 X, one triangular solve. X (n x k: a matrix, or a block of one) is overwritten by
+// L^-1 X; the result reads it.
+template <class Derived>
+auto compliance_diagonal(const Eigen::LLT<MatX>& A_llt, Eigen::MatrixBase<Derived>& X) {
+  solve_lower_in_place(A_llt, X.derived());
   return X.colwise().squaredNorm().transpose();
 }
 

@@ -225,9 +225,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       Jct.row(k) = v.transpose();
     }
     vn_free += Jct.col(2).dot(v_start.segment(o, nb));
-    // the Delassus diagonal diag(Jc A^-1 Jc^T): the squared column norms of L^-1 Jc^T
-    solve_lower_in_place(terms[body].A_llt, Jct);
-    W_diag += Jct.colwise().squaredNorm().transpose();
+    W_diag += compliance_diagonal(terms[body].A_llt, Jct);
   };
   std::vector<Mat3>& frames = w.frames;
   std::vector<real>& contact_mu = w.contact_mu;

@@ -58,7 +58,7 @@ struct IslandWorkspace {
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
   MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
-  MatX Jct;  // an articulation's side of a contact, transposed (DOFs x 3; L^-1 Jc^T after solve_lower_in_place)
+  MatX Jct;  // an articulation's side of a contact, transposed (DOFs x 3; L^-1 Jc^T after compliance_diagonal)
   std::vector<Mat3> frames;
   std::vector<real> contact_mu;
   NewtonScratch newton;
