@@ -89,6 +89,13 @@ def load_bot(tmp_path: Path, doc: dict, name: str = "bot.superdex_bot"):
     return sdr.load_bot_prefab_from_file(str(path))
 
 
+def create_bot_from_json(scene, tmp_path: Path, doc: dict, name: str = "bot.superdex_bot"):
+    """A new context and, in it, a bot made from `doc`: (context, bot, the bot's articulation)."""
+    ctx = sdr.create_context()
+    bot = sdr.create_bot(scene, load_bot(tmp_path, doc, name), ctx)
+    return ctx, bot, bot.get_articulated_actor()
+
+
 def link_actors(scene, bot):
     return [scene.get_actor(h) for h in bot.get_articulated_actor().get_nested_link_actors()]
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
-from pipeline_helpers import PANDA_READY, link_pose, load_bot, panda_bot_json, step
+from pipeline_helpers import PANDA_READY, create_bot_from_json, link_pose, panda_bot_json, step
 from robotics_helpers import scene  # noqa: F401
 import superdex.robotics as sdr
 
@@ -19,9 +19,7 @@ TARGET = np.array(PANDA_READY) + np.array([0.3, 0.25, -0.3, 0.35, 0.4, -0.3, 0.5
 
 
 def make_panda(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, panda_bot_json()), ctx)
-    return ctx, bot, bot.get_articulated_actor()
+    return create_bot_from_json(scene, tmp_path, panda_bot_json())
 
 
 def test_basic_jsc_pd_reaches_a_target_pose_within_1_mrad(scene, tmp_path):
@@ -120,9 +118,7 @@ def planar_arm_json() -> dict:
 
 def test_basic_osc_pd_position_only_on_a_planar_arm(scene, tmp_path):
     # a 3-row task of rank 2: the pseudo-inverse task inertia ignores the y direction
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, planar_arm_json()), ctx)
-    arm = bot.get_articulated_actor()
+    ctx, bot, arm = create_bot_from_json(scene, tmp_path, planar_arm_json())
     p0, _ = link_pose(arm, 3)
     target = p0 + np.array([0.05, 0.0, 0.05])
     bot.create_controller("BASIC_OSC_PD", "osc", {"control_orientation": False, "kp_p": 100.0, "kd_p": 20.0,

@@ -22,7 +22,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from pipeline_helpers import link_pose, load_bot, step
+from pipeline_helpers import create_bot_from_json, link_pose, load_bot, step
 from robotics_helpers import example_bot_json, scene  # noqa: F401
 
 REPO = Path(__file__).resolve().parents[3]
@@ -43,9 +43,7 @@ def builtin_bot_json() -> dict:
 
 
 def make_bot(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, builtin_bot_json()), ctx)
-    return ctx, bot, bot.get_articulated_actor()
+    return create_bot_from_json(scene, tmp_path, builtin_bot_json())
 
 
 def test_free_space_moves_along_the_straight_line_to_a_constant_target(scene, tmp_path):
