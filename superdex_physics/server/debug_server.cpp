@@ -50,16 +50,17 @@ std::string ServerCore::status_message() const {
 
 void ServerCore::on_open(const std::shared_ptr<WebSocketSession>& session) {
   sessions.insert(session);
+  // a page that attaches is described from scratch, and takes no frame built before that
+  if (!replay) session->set_generation(++generation);
   ++connections;
   if (replay) return;
-  // a page that attaches sees the simulation play in real time, described from scratch
+  // and it sees the simulation play in real time
   {
     std::lock_guard lock(control_mutex);
     play = DebugPlayState{};
     ++play_epoch;
   }
   control_changed.notify_all();
-  resync = true;
   session->send(std::make_shared<const std::string>(status_message()));
 }
 
@@ -115,8 +116,8 @@ void ServerCore::send_all(const std::shared_ptr<const std::string>& message) {
   update_backlog();
 }
 
-void ServerCore::send_frame_all(const std::shared_ptr<const std::string>& message) {
-  for (const auto& s : sessions) s->send_frame(message);
+void ServerCore::send_frame_all(const std::shared_ptr<const std::string>& message, std::uint64_t generation) {
+  for (const auto& s : sessions) s->send_frame(message, generation);
   update_backlog();
 }
 
@@ -138,6 +139,8 @@ struct DebugServer::Impl {
   // stepping thread's side
   Clock::time_point last_frame{};
   double frame_cost = 0;  // running mean of the seconds one frame costs the stepping thread
+  // the generation (ServerCore::generation) the stepping thread's descriptions were sent for
+  std::atomic<std::uint64_t> described_generation{0};
   struct Anchor {
     Clock::time_point wall;
     double sim = 0;
@@ -191,6 +194,7 @@ struct DebugServer::Impl {
     acceptor = std::move(new_acceptor);
     status_timer = std::make_unique<asio::steady_timer>(core->io);
     anchors.clear();
+    described_generation = 0;
     accept();
     tick_status(-1);
     thread = std::thread([this] { core->io.run(); });
@@ -326,7 +330,7 @@ void DebugServer::pace(std::uint64_t scene_key, double t) {
 bool DebugServer::wants_frame() const {
   ServerCore* core = impl_->core.get();
   if (!core || core->replay || core->connections == 0) return false;
-  if (core->resync) return true;
+  if (core->generation != impl_->described_generation) return true;
   const auto since = std::chrono::duration<double>(Clock::now() - impl_->last_frame).count();
   // at most 60 frames per second, and frames may cost the simulation at most 3 % of its time
   const double spacing = std::max(1.0 / 60, impl_->frame_cost / 0.03);
@@ -336,7 +340,9 @@ bool DebugServer::wants_frame() const {
 
 bool DebugServer::take_resync() {
   ServerCore* core = impl_->core.get();
-  return core && core->resync.exchange(false);
+  if (!core) return false;
+  const std::uint64_t generation = core->generation;
+  return impl_->described_generation.exchange(generation) != generation;
 }
 
 void DebugServer::broadcast(std::string lines, double build_seconds) {
@@ -347,7 +353,9 @@ void DebugServer::broadcast(std::string lines, double build_seconds) {
   // counted now so that wants_frame() sees the backlog before the server thread does
   ++core->max_backlog;
   auto message = std::make_shared<const std::string>(std::move(lines));
-  asio::post(core->io, [core, message] { core->send_frame_all(message); });
+  asio::post(core->io, [core, message, generation = impl_->described_generation.load()] {
+    core->send_frame_all(message, generation);
+  });
 }
 
 void DebugServer::report_progress(double t, std::int64_t step) {

@@ -34,7 +34,9 @@ struct ServerCore {
   std::atomic<int> connections{0};
   // the largest number of frames one page has not taken yet (see WebSocketSession::backlog)
   std::atomic<int> max_backlog{0};
-  std::atomic<bool> resync{false};
+  // goes up by one whenever a page attaches: the stepping thread then describes the scenes
+  // again, and frames built before (on older descriptions) are not sent to that page
+  std::atomic<std::uint64_t> generation{0};
 
   // play state set by the pages, waited on by the stepping thread
   mutable std::mutex control_mutex;
@@ -61,8 +63,9 @@ struct ServerCore {
   void on_message(WebSocketSession& from, const std::string& text);
   /// Sends to every page (server thread).
   void send_all(const std::shared_ptr<const std::string>& message);
-  /// Sends a frame to every page; each page acknowledges it (server thread).
-  void send_frame_all(const std::shared_ptr<const std::string>& message);
+  /// Sends a frame built on descriptions of `generation` to every page that has them; each page
+  /// acknowledges it (server thread).
+  void send_frame_all(const std::shared_ptr<const std::string>& message, std::uint64_t generation);
   /// Recomputes max_backlog (server thread).
   void update_backlog();
 };

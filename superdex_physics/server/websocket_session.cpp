@@ -46,8 +46,8 @@ void WebSocketSession::send(std::shared_ptr<const std::string> message) {
   if (queue_.size() == 1) write();
 }
 
-void WebSocketSession::send_frame(std::shared_ptr<const std::string> message) {
-  if (!open_) return;
+void WebSocketSession::send_frame(std::shared_ptr<const std::string> message, std::uint64_t generation) {
+  if (!open_ || generation < generation_) return;
   ++unacked_;
   send(std::move(message));
 }

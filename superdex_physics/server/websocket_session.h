@@ -22,8 +22,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   void accept(boost::beast::http::request<boost::beast::http::string_body> request);
   /// Queues a message (text).
   void send(std::shared_ptr<const std::string> message);
-  /// Queues a frame message: counted until the page acknowledges it.
-  void send_frame(std::shared_ptr<const std::string> message);
+  /// Queues a frame message, counted until the page acknowledges it; dropped if it was built
+  /// against descriptions older than this page (`generation` below the page's own).
+  void send_frame(std::shared_ptr<const std::string> message, std::uint64_t generation);
+  /// The description generation this page attached in (ServerCore::generation).
+  void set_generation(std::uint64_t generation) { generation_ = generation; }
   /// The page has taken a frame (`{"type": "ack"}`).
   void acknowledge() { unacked_ = std::max(0, unacked_ - 1); }
   /// Frames the page has not taken yet, or messages not yet written, whichever is more.
@@ -44,6 +47,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   std::size_t replay_next_ = 0;  // next line of the recording to send (replay mode)
   bool open_ = false;
   int unacked_ = 0;  // frames sent and not acknowledged
+  std::uint64_t generation_ = 0;  // frames of older generations lack this page's descriptions
 };
 
 }  // namespace superdex::physics::debug

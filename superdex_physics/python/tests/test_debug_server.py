@@ -271,6 +271,19 @@ def test_a_page_sees_the_scene_and_controls_the_simulation(server, stepping):
     page.close()
 
 
+def test_each_page_that_attaches_is_described_the_scene_once(server, stepping):
+    """A page that attaches while the scene steps gets each actor's description once, before
+    the frames that move it, however the attach falls between two steps."""
+    for _ in range(30):
+        page = Page(server)
+        assert page.wait_for(lambda: len(page.of_type("frame")) >= 3)
+        lines = [l for l in page.lines if l["type"] in ("actor", "frame")]
+        assert [l["name"] for l in lines if l["type"] == "actor"] == ["ground", "ball"]
+        assert lines[0]["type"] == "actor"
+        page.close()
+        assert page.wait_for(lambda: not server.has_connection())
+
+
 def test_closing_the_page_releases_a_paused_simulation(server, stepping):
     page = Page(server)
     assert page.wait_for(lambda: page.of_type("frame"))

@@ -67,7 +67,8 @@ class DebugServer {
   /// True when a frame should be built now: a page is connected, 1/60 s of wall time passed
   /// since the last frame, and the pages have taken the previous frames.
   bool wants_frame() const;
-  /// True once after a page connected: every scene and actor must be described again.
+  /// True once after a page connected: every scene and actor must be described again. Frames
+  /// broadcast before the next call are not sent to that page.
   bool take_resync();
   /// Sends JSON lines (one or more, '\n' separated) to every connected page; `build_seconds` is
   /// the stepping thread's time spent making them. Frames are spaced so that building them
