@@ -12,12 +12,14 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-using MapMat = Eigen::Map<Eigen::MatrixXd>;
-using ConstMapMat = Eigen::Map<const Eigen::MatrixXd>;
+// The dense kernels on column-major blocks. K > 0: every block involved is K x K, known at
+// compile time (islands of free bodies: K = 6), so that the loops unroll; K = 0: sizes as given.
 
-// In-place lower Cholesky factor of the s x s column-major block at D (its lower triangle is
-// read and written); false when the block is not positive definite.
-bool dense_cholesky(double* D, int s) {
+// In-place lower Cholesky factor of the s x s block at D (its lower triangle is read and
+// written); false when the block is not positive definite.
+template <int K>
+bool dense_cholesky(double* D, int s_) {
+  const int s = K > 0 ? K : s_;
   for (int k = 0; k < s; ++k) {
     double d = D[k + k * s];
     for (int m = 0; m < k; ++m) d -= D[k + m * s] * D[k + m * s];
@@ -31,6 +33,55 @@ bool dense_cholesky(double* D, int s) {
     }
   }
   return true;
+}
+
+// B := B L^-T for the s x s lower factor L and B of `rows` x s.
+template <int K>
+void solve_right_lower_transposed(const double* L, int s_, double* B, int rows_) {
+  const int s = K > 0 ? K : s_, rows = K > 0 ? K : rows_;
+  for (int j = 0; j < s; ++j) {
+    double* B_j = B + j * rows;
+    for (int m = 0; m < j; ++m) {
+      const double l = L[j + m * s];
+      const double* B_m = B + m * rows;
+      for (int r = 0; r < rows; ++r) B_j[r] -= B_m[r] * l;
+    }
+    const double inverse = 1 / L[j + j * s];
+    for (int r = 0; r < rows; ++r) B_j[r] *= inverse;
+  }
+}
+
+// C -= A B^T for C of sa x sb, A of sa x s and B of sb x s.
+template <int K>
+void subtract_product_transposed(double* C, const double* A, const double* B, int sa_, int sb_, int s_) {
+  const int sa = K > 0 ? K : sa_, sb = K > 0 ? K : sb_, s = K > 0 ? K : s_;
+  for (int c = 0; c < sb; ++c)
+    for (int m = 0; m < s; ++m) {
+      const double b = B[c + m * sb];
+      const double* A_m = A + m * sa;
+      double* C_c = C + c * sa;
+      for (int r = 0; r < sa; ++r) C_c[r] -= A_m[r] * b;
+    }
+}
+
+// y := L^-1 y (forward) or L^-T y (backward) for the s x s lower factor L.
+template <int K>
+void solve_lower(const double* L, int s_, double* y) {
+  const int s = K > 0 ? K : s_;
+  for (int k = 0; k < s; ++k) {
+    double v = y[k];
+    for (int m = 0; m < k; ++m) v -= L[k + m * s] * y[m];
+    y[k] = v / L[k + k * s];
+  }
+}
+template <int K>
+void solve_lower_transposed(const double* L, int s_, double* y) {
+  const int s = K > 0 ? K : s_;
+  for (int k = s; k-- > 0;) {
+    double v = y[k];
+    for (int m = k + 1; m < s; ++m) v -= L[m + k * s] * y[m];
+    y[k] = v / L[k + k * s];
+  }
 }
 
 }  // namespace
@@ -90,6 +141,9 @@ void BlockCholesky::analyze(std::span<const int> block_sizes, std::span<const st
   values_.assign(next_value, 0.0);
   factor_.assign(next_value, 0.0);
   work_.assign(n_, 0.0);
+  uniform_size_ = nb > 0 && std::all_of(block_sizes.begin(), block_sizes.end(), [&](int size) { return size == block_sizes[0]; })
+                      ? block_sizes[0]
+                      : 0;
 }
 
 int BlockCholesky::block_value(int I, int J) const {
@@ -106,59 +160,75 @@ int BlockCholesky::value_index(int i, int r, int j, int c) const {
   return at < 0 ? -1 : at + r + c * columns_[I].size;
 }
 
-bool BlockCholesky::factor() {
+bool BlockCholesky::factor() { return uniform_size_ == 6 ? factor_blocks<6>() : factor_blocks<0>(); }
+
+template <int K>
+bool BlockCholesky::factor_blocks() {
   factor_ = values_;
   double* L = factor_.data();
   // right-looking: factor a block column, then subtract its outer products from the later blocks
   for (const Column& col : columns_) {
     const int s = col.size;
-    if (!dense_cholesky(L + col.diagonal, s)) return false;
-    const ConstMapMat L_JJ(L + col.diagonal, s, s);
-    for (size_t k = 0; k < col.rows.size(); ++k) {
-      // L_IJ = H_IJ L_JJ^-T
-      MapMat B(L + col.row_values[k], columns_[col.rows[k]].size, s);
-      L_JJ.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(B);
-    }
+    if (!dense_cholesky<K>(L + col.diagonal, s)) return false;
+    // L_IJ = H_IJ L_JJ^-T
+    for (size_t k = 0; k < col.rows.size(); ++k)
+      solve_right_lower_transposed<K>(L + col.diagonal, s, L + col.row_values[k], columns_[col.rows[k]].size);
     const int* target = col.updates.data();
     for (size_t a = 0; a < col.rows.size(); ++a) {
       const int sa = columns_[col.rows[a]].size;
-      const ConstMapMat Ba(L + col.row_values[a], sa, s);
-      for (size_t b = 0; b <= a; ++b, ++target) {
-        const int sb = columns_[col.rows[b]].size;
-        MapMat(L + *target, sa, sb).noalias() -= Ba * ConstMapMat(L + col.row_values[b], sb, s).transpose();
-      }
+      for (size_t b = 0; b <= a; ++b, ++target)
+        subtract_product_transposed<K>(L + *target, L + col.row_values[a], L + col.row_values[b], sa,
+                                       columns_[col.rows[b]].size, s);
     }
   }
   return true;
 }
 
 void BlockCholesky::solve(const double* b, double* x) const {
+  if (uniform_size_ == 6) {
+    solve_blocks<6>(b, x);
+  } else {
+    solve_blocks<0>(b, x);
+  }
+}
+
+template <int K>
+void BlockCholesky::solve_blocks(const double* b, double* x) const {
   // y = P b, by blocks in elimination order
   double* y = work_.data();
   for (const Column& col : columns_) std::copy(b + col.offset, b + col.offset + col.size, y + col.start);
   const double* L = factor_.data();
-  // forward: L y = P b
-  for (size_t J = 0; J < columns_.size(); ++J) {
-    const Column& col = columns_[J];
-    Eigen::Map<Eigen::VectorXd> yJ(y + col.start, col.size);
-    ConstMapMat(L + col.diagonal, col.size, col.size).triangularView<Eigen::Lower>().solveInPlace(yJ);
+  // forward: L y = P b; y_I -= L_IJ y_J below each diagonal block
+  for (const Column& col : columns_) {
+    const int s = K > 0 ? K : col.size;
+    double* y_J = y + col.start;
+    solve_lower<K>(L + col.diagonal, s, y_J);
     for (size_t k = 0; k < col.rows.size(); ++k) {
-      const int I = col.rows[k];
-      Eigen::Map<Eigen::VectorXd>(y + columns_[I].start, columns_[I].size).noalias() -=
-          ConstMapMat(L + col.row_values[k], columns_[I].size, col.size) * yJ;
+      const Column& row = columns_[col.rows[k]];
+      const int sr = K > 0 ? K : row.size;
+      const double* L_IJ = L + col.row_values[k];
+      double* y_I = y + row.start;
+      for (int m = 0; m < s; ++m)
+        for (int r = 0; r < sr; ++r) y_I[r] -= L_IJ[r + m * sr] * y_J[m];
     }
   }
-  // backward: L^T z = y
+  // backward: L^T z = y; z_J -= L_IJ^T z_I, then the diagonal block
   for (size_t J = columns_.size(); J-- > 0;) {
     const Column& col = columns_[J];
-    Eigen::Map<Eigen::VectorXd> yJ(y + col.start, col.size);
+    const int s = K > 0 ? K : col.size;
+    double* y_J = y + col.start;
     for (size_t k = 0; k < col.rows.size(); ++k) {
-      const int I = col.rows[k];
-      yJ.noalias() -= ConstMapMat(L + col.row_values[k], columns_[I].size, col.size).transpose() *
-                      Eigen::Map<const Eigen::VectorXd>(y + columns_[I].start, columns_[I].size);
+      const Column& row = columns_[col.rows[k]];
+      const int sr = K > 0 ? K : row.size;
+      const double* L_IJ = L + col.row_values[k];
+      const double* y_I = y + row.start;
+      for (int m = 0; m < s; ++m) {
+        double v = 0;
+        for (int r = 0; r < sr; ++r) v += L_IJ[r + m * sr] * y_I[r];
+        y_J[m] -= v;
+      }
     }
-    const ConstMapMat L_JJ(L + col.diagonal, col.size, col.size);
-    L_JJ.triangularView<Eigen::Lower>().transpose().solveInPlace(yJ);
+    solve_lower_transposed<K>(L + col.diagonal, s, y_J);
   }
   // x = P^T z
   for (const Column& col : columns_) std::copy(y + col.start, y + col.start + col.size, x + col.offset);

@@ -46,8 +46,14 @@ class BlockCholesky {
     std::vector<int> updates;
   };
   int block_value(int i, int j) const;  // value offset of stored block (i, j), by elimination position
+  // factor() and solve() with every block K x K (K > 0), or of any sizes (K = 0)
+  template <int K>
+  bool factor_blocks();
+  template <int K>
+  void solve_blocks(const double* b, double* x) const;
 
   int n_ = 0;
+  int uniform_size_ = 0;        // the size of every block when they are all alike, else 0
   std::vector<int> position_;   // elimination position of each block
   std::vector<Column> columns_;
   std::vector<double> values_, factor_;

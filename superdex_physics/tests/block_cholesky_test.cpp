@@ -21,10 +21,12 @@ struct BlockProblem {
   std::vector<std::pair<int, int>> pairs;
 };
 
-// Block sizes in [1, 7] and about `degree` random partners per block (a chain keeps it connected).
-BlockProblem random_pattern(int blocks, int degree, std::mt19937& rng) {
+// Block sizes in [1, 7] (or all `fixed_size`) and about `degree` random partners per block (a
+// chain keeps it connected).
+BlockProblem random_pattern(int blocks, int degree, std::mt19937& rng, int fixed_size = 0) {
   BlockProblem p;
-  std::uniform_int_distribution<int> size(1, 7), other(0, blocks - 1);
+  std::uniform_int_distribution<int> size(fixed_size > 0 ? fixed_size : 1, fixed_size > 0 ? fixed_size : 7),
+      other(0, blocks - 1);
   int n = 0;
   for (int i = 0; i < blocks; ++i) p.sizes.push_back(size(rng)), p.offsets.push_back(n), n += p.sizes.back();
   for (int i = 1; i < blocks; ++i) p.pairs.emplace_back(i, i - 1);
@@ -77,8 +79,9 @@ void load(BlockCholesky& chol, const BlockProblem& p, const Eigen::MatrixXd& H) 
 
 TEST(BlockCholesky, SolvesLikeDenseCholesky) {
   std::mt19937 rng(7);
-  for (int trial = 0; trial < 6; ++trial) {
-    const BlockProblem p = random_pattern(5 + 7 * trial, 3, rng);
+  // mixed sizes, then every block 6 x 6 (free bodies: the kernels of fixed size)
+  for (int trial = 0; trial < 10; ++trial) {
+    const BlockProblem p = random_pattern(5 + 7 * (trial % 6), 3, rng, trial < 6 ? 0 : 6);
     BlockCholesky chol;
     chol.analyze(p.sizes, p.pairs);
     const int n = chol.dimension();
