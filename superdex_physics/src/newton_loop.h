@@ -113,22 +113,45 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     // the contact problem is piecewise quadratic and its line search nearly exact; with the
     // elastic energy each trial costs a gradient evaluation, and a strong-Wolfe-like reduction
     // of the slope keeps Newton's convergence
-    const real line_search_tolerance = smooth ? real(0.05) : real(1e-10);
+    // (without it, to the round-off of phi' in the working precision: a tighter tolerance only
+    // adds trials that bisect noise)
+    const real line_search_tolerance = smooth ? real(0.05) : kUsesDoublePrecision ? real(1e-10) : real(1e-6);
     real evaluated_alpha = -1;  // the step at which smooth_grad was last evaluated
-    auto dphi = [&](real alpha, real* ddphi) {
+    // a block whose impulse is zero at both ends of the segment is zero along it (its zero set
+    // is the minimizer set of its convex cost), so after the first trial (alpha = 1) only the
+    // blocks live at either end are evaluated
+    std::vector<int>& live = w.live;
+    // d_k^T G_k d_k of block k, for d_k its rows of dvc
+    auto block_curvature = [&](size_t k) {
+      const int r0 = rows.blocks[k].row;
+      if (rows.blocks[k].size() == 1) return G[k](0, 0) * dvc[r0] * dvc[r0];
+      const Eigen::Matrix<real, 3, 1> d_k = dvc.template segment<3>(r0);
+      return d_k.dot(G[k] * d_k);
+    };
+    auto dphi = [&](real alpha, real& ddphi, bool all_blocks) {
       real d = a0 + alpha * a1, dd = a1 + curvature;
-      if (m > 0) {
+      if (m > 0 && all_blocks) {
         vc_alpha.noalias() = vc + alpha * dvc;
         respond(vc_alpha, gamma_alpha);
         d -= dvc.dot(gamma_alpha);
+        live.clear();
         for (size_t k = 0; k < rows.blocks.size(); ++k) {
-          const int r0 = rows.blocks[k].row;
-          if (rows.blocks[k].size() == 3) {
-            const Eigen::Matrix<real, 3, 1> d = dvc.template segment<3>(r0);
-            dd += d.dot(G[k] * d);
-          } else {
-            dd += G[k](0, 0) * dvc[r0] * dvc[r0];
-          }
+          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+          bool is_live = false;
+          for (int i = 0; i < s; ++i) is_live = is_live || gamma_alpha[r0 + i] != 0 || out.gamma[r0 + i] != 0;
+          if (!is_live) continue;
+          live.push_back(static_cast<int>(k));
+          dd += block_curvature(k);
+        }
+      } else if (m > 0) {
+        for (int k : live) {
+          const ConstraintBlock& b = rows.blocks[k];
+          const int r0 = b.row, s = b.size();
+          real vc_k[3], gamma_k[3];
+          for (int i = 0; i < s; ++i) vc_k[i] = vc[r0 + i] + alpha * dvc[r0 + i];
+          block_response(b, vc_k, gamma_k, G[k].data());
+          for (int i = 0; i < s; ++i) d -= dvc[r0 + i] * gamma_k[i];
+          dd += block_curvature(k);
         }
       }
       if (smooth) {
@@ -138,16 +161,16 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
         d += dv.dot(smooth_grad);
         evaluated_alpha = alpha;
       }
-      if (ddphi) *ddphi = dd;
+      ddphi = dd;
       return d;
     };
-    real alpha = 1;
-    if (dphi(1, nullptr) > 0) {
-      // safeguarded Newton on phi' over [lo, hi]
+    real alpha = 1, dd = 0;
+    real d = dphi(1, dd, /*all_blocks=*/true);
+    if (d > 0) {
+      // safeguarded Newton on phi' over [lo, hi], from alpha = 1
       real lo = 0, hi = 1;
       for (int ls = 0; ls < params.max_line_search_iterations; ++ls) {
-        real dd;
-        const real d = dphi(alpha, &dd);
+        if (ls > 0) d = dphi(alpha, dd, false);
         if (std::abs(d) <= line_search_tolerance * (slope_ref + std::numeric_limits<real>::min())) break;
         (d > 0 ? hi : lo) = alpha;
         real next = dd > 0 ? alpha - d / dd : (lo + hi) / 2;
