@@ -88,6 +88,7 @@ bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
   if (next.cols != blocks_.cols || next.col_start != blocks_.col_start) return false;
   blocks_ = std::move(next);
   load_A_values(A);
+  loaded_ = false;
   return true;
 }
 
@@ -99,27 +100,37 @@ VecX SparseNewtonSystem::solve(const VecX& b) const {
 
 bool SparseNewtonSystem::factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
   std::vector<double>& values = H_.values();
-  std::copy(A_values_.begin(), A_values_.end(), values.begin());
-  // J_b^T G_b J_b of each block, entry by entry into the slots stored (a block has 1 or 3 rows)
-  Eigen::Matrix<real, 3, Eigen::Dynamic>& GJ = GJ_;
+  // the first factorization of a problem writes A + J^T G J; the next ones of the same problem
+  // (Newton iterations, friction passes) add J_b^T (G_b - G_b') J_b only for the blocks whose
+  // Hessian block changed since (most do not: sticking and separated contacts)
+  if (!loaded_ || G_loaded_.size() != G.size()) {
+    std::copy(A_values_.begin(), A_values_.end(), values.begin());
+    G_loaded_.assign(G.size(), Eigen::Matrix3d::Zero());
+    loaded_ = true;
+  }
+  // J_b^T dG J_b of each block, entry by entry into the slots stored (a block has 1 or 3 rows)
+  Eigen::Matrix<double, 3, Eigen::Dynamic>& GJ = GJ_;
   for (size_t k = 0; k < rows.blocks.size(); ++k) {
     const int s = rows.blocks[k].size();
-    const Eigen::Matrix<real, 3, 3>& Gk = G[k];
-    if (s == 3 ? Gk.isZero(0) : Gk(0, 0) == 0) continue;  // an inactive block adds nothing
+    const Eigen::Matrix3d G_k = G[k].template cast<double>();
+    // the difference of two floats is exact in double: the sum stays that of the blocks' own
+    const Eigen::Matrix3d dG = G_k - G_loaded_[k];
+    if (s == 3 ? dG.isZero(0) : dG(0, 0) == 0) continue;
+    G_loaded_[k] = G_k;
     const int nc = blocks_.col_start[k + 1] - blocks_.col_start[k];
     const real* Jb = blocks_.J_values.data() + blocks_.J_start[k];  // s x nc, row-major
     const int* slot = slots_.data() + slot_start_[k];
     if (s == 1) {
       for (int i = 0; i < nc; ++i)
         for (int j = 0; j < nc; ++j)
-          if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += Gk(0, 0) * Jb[i] * Jb[j];
+          if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += dG(0, 0) * Jb[i] * Jb[j];
       continue;
     }
-    // GJ = G_b J_b (3 x nc), then entry (i, j) = J_b(:, i) . GJ(:, j)
+    // GJ = dG J_b (3 x nc), then entry (i, j) = J_b(:, i) . GJ(:, j)
     GJ.resize(3, nc);
-    for (int j = 0; j < nc; ++j) GJ.col(j) = Gk * Eigen::Matrix<real, 3, 1>(Jb[j], Jb[nc + j], Jb[2 * nc + j]);
+    for (int j = 0; j < nc; ++j) GJ.col(j) = dG * Eigen::Vector3d(Jb[j], Jb[nc + j], Jb[2 * nc + j]);
     for (int i = 0; i < nc; ++i) {
-      const Eigen::Matrix<real, 3, 1> Ji(Jb[i], Jb[nc + i], Jb[2 * nc + i]);
+      const Eigen::Vector3d Ji(Jb[i], Jb[nc + i], Jb[2 * nc + i]);
       for (int j = 0; j < nc; ++j)
         if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += Ji.dot(GJ.col(j));
     }

@@ -22,7 +22,8 @@ class SparseNewtonSystem {
   // pattern and its analysis; false, changing nothing, when the structure differs.
   bool reuse(const SparseMat& A, const ConstraintRows& rows);
   // Factors A + J^T G J for the blocks' Hessian blocks G (rows as given to the constructor or
-  // reuse()); false when the matrix is not positive definite.
+  // reuse(), with the same J until the next reuse(): only G may change); false when the matrix
+  // is not positive definite.
   bool factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G);
   // H^-1 b with the last factorization.
   VecX solve(const VecX& b) const;
@@ -47,7 +48,11 @@ class SparseNewtonSystem {
   std::vector<int> slots_;
   std::vector<int> slot_start_;      // per block: first index into slots_
   BlockCholesky H_;                  // H's values, and its factor
-  Eigen::Matrix<real, 3, Eigen::Dynamic> GJ_;  // factor()'s G_b J_b of a 3-row block
+  // the Hessian blocks H's values were last written with; none when loaded_ is false (a new
+  // problem: H is written from A)
+  std::vector<Eigen::Matrix3d> G_loaded_;
+  bool loaded_ = false;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> GJ_;  // factor()'s dG_b J_b of a 3-row block
   mutable Eigen::VectorXd x_;        // solve()'s right-hand side and solution
 };
 
