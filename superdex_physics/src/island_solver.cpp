@@ -220,8 +220,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     for (int k = 0; k < nb; ++k) {
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
-      for (int i = 0; i < 3; ++i)
-        if (v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
+      // a DOF that moves the link enters all three rows, zero or not, so that J's pattern
+      // depends on the contact's bodies only (the sparse path then reuses it from step to step)
+      if (!J.col(k).isZero(0))
+        for (int i = 0; i < 3; ++i) J_entries.emplace_back(row + i, o + k, v[i]);
       Jct.row(k) = v.transpose();
     }
     vn_free += Jct.col(2).dot(v_start.segment(o, nb));

@@ -190,12 +190,13 @@ class DenseAlgebra {
 class SparseAlgebra {
  public:
   SparseAlgebra(const SparseMat& A, const SparseRowMat& J, std::shared_ptr<SparseNewtonSystem>& system)
-      : A_(A), J_(J), Jt_(J.transpose()), system_(system) {}
+      : A_(A), J_(J), system_(system) {}
   int n() const { return static_cast<int>(A_.rows()); }
   void diagonal(VecX& out) const { out = A_.diagonal(); }
   void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
   void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
-  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = Jt_ * y; }
+  // J^T y row by row of J (scattered into out): no transposed copy of J to build per solve
+  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
@@ -209,7 +210,6 @@ class SparseAlgebra {
  private:
   const SparseMat& A_;
   const SparseRowMat& J_;
-  SparseMat Jt_;
   std::shared_ptr<SparseNewtonSystem>& system_;
 };
 

@@ -12,7 +12,11 @@ void SparseNewtonSystem::BlockColumns::gather(const ConstraintRows& rows) {
   col_start.assign(1, 0);
   J_values.clear();
   J_start.assign(1, 0);
+  block_rows.clear();
+  value_of.assign(rows.J.nonZeros(), -1);
   for (const ConstraintBlock& b : rows.blocks) {
+    block_rows.push_back(b.row);
+    block_rows.push_back(b.size());
     const int first = static_cast<int>(cols.size());
     for (int i = 0; i < b.size(); ++i)
       for (SparseRowMat::InnerIterator it(rows.J, b.row + i); it; ++it) cols.push_back(static_cast<int>(it.col()));
@@ -21,15 +25,35 @@ void SparseNewtonSystem::BlockColumns::gather(const ConstraintRows& rows) {
     const int nc = static_cast<int>(cols.size()) - first;
     const int J_first = static_cast<int>(J_values.size());
     J_values.resize(J_first + b.size() * nc, real(0));
-    for (int i = 0; i < b.size(); ++i)
+    for (int i = 0; i < b.size(); ++i) {
+      const int row_first = rows.J.outerIndexPtr()[b.row + i];
       for (SparseRowMat::InnerIterator it(rows.J, b.row + i); it; ++it) {
         const int c = static_cast<int>(std::lower_bound(cols.begin() + first, cols.end(), static_cast<int>(it.col())) -
                                        (cols.begin() + first));
         J_values[J_first + i * nc + c] = it.value();
+        value_of[row_first + (&it.value() - &rows.J.valuePtr()[row_first])] = J_first + i * nc + c;
       }
+    }
     col_start.push_back(static_cast<int>(cols.size()));
     J_start.push_back(static_cast<int>(J_values.size()));
   }
+  J_outer.assign(rows.J.outerIndexPtr(), rows.J.outerIndexPtr() + rows.J.rows() + 1);
+  J_inner.assign(rows.J.innerIndexPtr(), rows.J.innerIndexPtr() + rows.J.nonZeros());
+}
+
+bool SparseNewtonSystem::BlockColumns::refill(const ConstraintRows& rows) {
+  const SparseRowMat& J = rows.J;
+  if (!J.isCompressed() || static_cast<size_t>(J.rows()) + 1 != J_outer.size() ||
+      static_cast<size_t>(J.nonZeros()) != J_inner.size() || 2 * rows.blocks.size() != block_rows.size() ||
+      !std::equal(J_outer.begin(), J_outer.end(), J.outerIndexPtr()) ||
+      !std::equal(J_inner.begin(), J_inner.end(), J.innerIndexPtr()))
+    return false;
+  for (size_t k = 0; k < rows.blocks.size(); ++k)
+    if (block_rows[2 * k] != rows.blocks[k].row || block_rows[2 * k + 1] != rows.blocks[k].size()) return false;
+  // every entry lands where it did (the entries J lacks stay zero)
+  for (size_t e = 0; e < value_of.size(); ++e)
+    if (value_of[e] >= 0) J_values[value_of[e]] = J.valuePtr()[e];
+  return true;
 }
 
 SparseNewtonSystem::SparseNewtonSystem(const SparseMat& A, const ConstraintRows& rows) {
@@ -83,6 +107,12 @@ bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
       static_cast<size_t>(A.nonZeros()) != A_inner_.size() ||
       !std::equal(A_inner_.begin(), A_inner_.end(), A.innerIndexPtr()))
     return false;
+  // the same J pattern and blocks: only J's values are new
+  if (blocks_.refill(rows)) {
+    load_A_values(A);
+    loaded_ = false;
+    return true;
+  }
   BlockColumns next;
   next.gather(rows);
   if (next.cols != blocks_.cols || next.col_start != blocks_.col_start) return false;

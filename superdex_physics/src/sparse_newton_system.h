@@ -35,7 +35,13 @@ class SparseNewtonSystem {
     std::vector<int> col_start;  // per block: first index into cols (size blocks + 1)
     std::vector<real> J_values;  // per block: its rows of J on those columns (size x nc, row-major)
     std::vector<int> J_start;    // per block: first index into J_values
+    // what they were gathered from: J's pattern, each block's first row and size, and the
+    // index into J_values of each of J's entries (-1: in no block)
+    std::vector<int> J_outer, J_inner, block_rows, value_of;
     void gather(const ConstraintRows& rows);
+    // Takes the values of `rows` when its J pattern and blocks are those gathered; false,
+    // changing nothing, otherwise.
+    bool refill(const ConstraintRows& rows);
   };
   void load_A_values(const SparseMat& A);
 
