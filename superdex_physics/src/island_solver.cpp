@@ -202,6 +202,8 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     rows.blocks.push_back(blk);
   }
 
+  // small islands: dense algebra; large ones: sparse, on one pattern for every pass
+  const bool sparse = island_is_sparse(s, island, params);
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
@@ -220,10 +222,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     for (int k = 0; k < nb; ++k) {
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
-      // a DOF that moves the link enters all three rows, zero or not, so that J's pattern
-      // depends on the contact's bodies only (the sparse path then reuses it from step to step)
-      if (!J.col(k).isZero(0))
-        for (int i = 0; i < 3; ++i) J_entries.emplace_back(row + i, o + k, v[i]);
+      // on the sparse path, a DOF that moves the link enters all three rows, zero or not, so
+      // that J's pattern depends on the contact's bodies only (and is reused from step to step)
+      const bool moves = !sparse || !J.col(k).isZero(0);
+      for (int i = 0; i < 3 && moves; ++i)
+        if (sparse || v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
       Jct.row(k) = v.transpose();
     }
     vn_free += Jct.col(2).dot(v_start.segment(o, nb));
@@ -341,7 +344,6 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   }
   SparseMat& A_sparse = w.A_sparse;
   std::shared_ptr<SparseNewtonSystem> system;
-  const bool sparse = island_is_sparse(s, island, params);
   if (sparse) {
     // A's structure is its bodies' diagonal blocks, whatever their values (so that it stays the
     // same from step to step)
