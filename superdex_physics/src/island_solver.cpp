@@ -223,10 +223,15 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
       // on the sparse path, a DOF that moves the link enters all three rows, zero or not, so
-      // that J's pattern depends on the contact's bodies only (and is reused from step to step)
-      const bool moves = !sparse || !J.col(k).isZero(0);
-      for (int i = 0; i < 3 && moves; ++i)
-        if (sparse || v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
+      // that J's pattern depends on the contact's bodies only (and is reused from step to step);
+      // the dense path leaves out exact zeros
+      if (sparse) {
+        if (!J.col(k).isZero(0))
+          for (int i = 0; i < 3; ++i) J_entries.emplace_back(row + i, o + k, v[i]);
+      } else {
+        for (int i = 0; i < 3; ++i)
+          if (v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
+      }
       Jct.row(k) = v.transpose();
     }
     vn_free += Jct.col(2).dot(v_start.segment(o, nb));

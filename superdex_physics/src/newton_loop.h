@@ -44,8 +44,8 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
 
   VecX &vc = w.vc, &grad = w.grad, &dv = w.dv, &dvc = w.dvc, &jc = w.jc, &smooth_grad = w.smooth_grad;
   VecX &Av_r = w.Av_r, &Adv = w.Adv;
-  VecX &vc_alpha = w.vc_alpha, &gamma_alpha = w.gamma_alpha, &v_alpha = w.v_alpha;  // line-search trial points
-  for (VecX* x : {&vc, &dvc, &vc_alpha, &gamma_alpha}) x->resize(m);
+  VecX& v_alpha = w.v_alpha;  // a line-search trial point
+  for (VecX* x : {&vc, &dvc}) x->resize(m);
   for (VecX* x : {&grad, &dv, &jc, &smooth_grad, &Av_r, &Adv}) x->resize(n);
   std::vector<Eigen::Matrix<real, 3, 3>>& G = w.G;
   G.resize(rows.blocks.size());
@@ -121,38 +121,34 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     // is the minimizer set of its convex cost), so after the first trial (alpha = 1) only the
     // blocks live at either end are evaluated
     std::vector<int>& live = w.live;
-    // d_k^T G_k d_k of block k, for d_k its rows of dvc
-    auto block_curvature = [&](size_t k) {
-      const int r0 = rows.blocks[k].row;
-      if (rows.blocks[k].size() == 1) return G[k](0, 0) * dvc[r0] * dvc[r0];
-      const Eigen::Matrix<real, 3, 1> d_k = dvc.template segment<3>(r0);
-      return d_k.dot(G[k] * d_k);
-    };
     auto dphi = [&](real alpha, real& ddphi, bool all_blocks) {
       real d = a0 + alpha * a1, dd = a1 + curvature;
+      // block k's terms at the trial point (its phi'' term d_k^T G_k d_k, for d_k its rows of
+      // dvc); whether its impulse is non-zero there
+      auto add_block = [&](size_t k) {
+        const ConstraintBlock& b = rows.blocks[k];
+        const int r0 = b.row, s = b.size();
+        real vc_k[3], gamma_k[3];
+        for (int i = 0; i < s; ++i) vc_k[i] = vc[r0 + i] + alpha * dvc[r0 + i];
+        block_response(b, vc_k, gamma_k, G[k].data());
+        bool acts = false;
+        for (int i = 0; i < s; ++i) d -= dvc[r0 + i] * gamma_k[i], acts = acts || gamma_k[i] != 0;
+        if (s == 1) {
+          dd += G[k](0, 0) * dvc[r0] * dvc[r0];
+        } else {
+          const Eigen::Matrix<real, 3, 1> d_k = dvc.template segment<3>(r0);
+          dd += d_k.dot(G[k] * d_k);
+        }
+        return acts;
+      };
       if (m > 0 && all_blocks) {
-        vc_alpha.noalias() = vc + alpha * dvc;
-        respond(vc_alpha, gamma_alpha);
-        d -= dvc.dot(gamma_alpha);
         live.clear();
         for (size_t k = 0; k < rows.blocks.size(); ++k) {
-          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
-          bool is_live = false;
-          for (int i = 0; i < s; ++i) is_live = is_live || gamma_alpha[r0 + i] != 0 || out.gamma[r0 + i] != 0;
-          if (!is_live) continue;
-          live.push_back(static_cast<int>(k));
-          dd += block_curvature(k);
+          const bool acts_at_v = !out.gamma.segment(rows.blocks[k].row, rows.blocks[k].size()).isZero(0);
+          if (add_block(k) || acts_at_v) live.push_back(static_cast<int>(k));
         }
       } else if (m > 0) {
-        for (int k : live) {
-          const ConstraintBlock& b = rows.blocks[k];
-          const int r0 = b.row, s = b.size();
-          real vc_k[3], gamma_k[3];
-          for (int i = 0; i < s; ++i) vc_k[i] = vc[r0 + i] + alpha * dvc[r0 + i];
-          block_response(b, vc_k, gamma_k, G[k].data());
-          for (int i = 0; i < s; ++i) d -= dvc[r0 + i] * gamma_k[i];
-          dd += block_curvature(k);
-        }
+        for (int k : live) add_block(k);
       }
       if (smooth) {
         v_alpha.noalias() = out.v + alpha * dv;

@@ -71,7 +71,7 @@ struct ConvexResult {
 // last one does not allocate. Every member is resized before use.
 struct NewtonScratch {
   ConvexResult result;  // the last solve's
-  VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, vc_alpha, gamma_alpha, v_alpha;
+  VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, v_alpha;
   std::vector<Eigen::Matrix<real, 3, 3>> G;
   std::vector<int> live;  // the line search's blocks whose impulse may be non-zero on its segment
   MatXR J, J_active, GJ;  // dense algebra: J as a dense matrix, its active rows, G J on them

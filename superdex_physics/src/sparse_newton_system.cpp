@@ -107,16 +107,14 @@ bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
       static_cast<size_t>(A.nonZeros()) != A_inner_.size() ||
       !std::equal(A_inner_.begin(), A_inner_.end(), A.innerIndexPtr()))
     return false;
-  // the same J pattern and blocks: only J's values are new
-  if (blocks_.refill(rows)) {
-    load_A_values(A);
-    loaded_ = false;
-    return true;
+  // the same J pattern and blocks take J's values in place; otherwise every block must touch
+  // the same columns as before
+  if (!blocks_.refill(rows)) {
+    BlockColumns next;
+    next.gather(rows);
+    if (next.cols != blocks_.cols || next.col_start != blocks_.col_start) return false;
+    blocks_ = std::move(next);
   }
-  BlockColumns next;
-  next.gather(rows);
-  if (next.cols != blocks_.cols || next.col_start != blocks_.col_start) return false;
-  blocks_ = std::move(next);
   load_A_values(A);
   loaded_ = false;
   return true;
