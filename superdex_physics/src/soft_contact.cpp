@@ -83,16 +83,6 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         const SpatialTransform X_WS = a.kin.X_WL[col.link] * col.X_LS;
         const real sweep = node_sweep + collider_sweep(a, col, dt);
         const real reach = margin + sweep;
-        const bool plane = std::holds_alternative<PlaneShape>(col.shape);
-        // a bounded collider's box grown by the reach: no point outside it can touch
-        Aabb box;
-        if (!plane) {
-          box = world_bounds(col.aabb_S, X_WS);
-          box.min.array() -= reach;
-          box.max.array() += reach;
-          if (!box.overlaps(bounds)) continue;
-        }
-        auto near = [&](const Vec3& p) { return plane || ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all()); };
         const ContactMaterial material = combine_materials(soft.model.contact, col.material);
         auto add = [&](const std::array<int, 3>& nodes, const std::array<real, 3>& weights, const Vec3& p_W, const Vec3& n_W,
                        real phi) {
@@ -101,6 +91,25 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           c.p_W = p_W, c.n_W = n_W, c.phi = phi, c.sweep = sweep, c.material = material;
           out.push_back(c);
         };
+        if (const PlaneShape* half_space = std::get_if<PlaneShape>(&col.shape)) {
+          // the surface nodes against a half-space, whose distance is affine in the world point:
+          // n_W . p - c; none when the body's bounds are out of its reach
+          const Vec3 n_W = X_WS.R * half_space->normal.normalized();
+          const real c = n_W.dot(X_WS.p) + half_space->distance;
+          const Vec3 lowest = (n_W.array() > 0).select(bounds.min, bounds.max);
+          if (n_W.dot(lowest) - c >= reach) continue;
+          for (int i : soft.model.surface_nodes) {
+            const real phi = n_W.dot(x.segment<3>(3 * i)) - c;
+            if (phi < reach && !soft.model.pinned[i]) add({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i), n_W, phi);
+          }
+          continue;
+        }
+        // a bounded collider's box grown by the reach: no point outside it can touch
+        Aabb box = world_bounds(col.aabb_S, X_WS);
+        box.min.array() -= reach;
+        box.max.array() += reach;
+        if (!box.overlaps(bounds)) continue;
+        auto near = [&](const Vec3& p) { return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all(); };
         // a point of the soft surface (weights over its nodes) against the collider's distance field
         auto against_field = [&](const std::array<int, 3>& nodes, const std::array<real, 3>& weights, const Vec3& p) {
           Vec3 g_S;
@@ -113,14 +122,13 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         // colliders: a body smaller than a few elements is then held by the faces it rests on,
         // not only by the nearest nodes, and its contact force does not jump from node to node
         // as it slides
-        if (!plane)
-          for (size_t f = 0; f < soft.model.surface_faces.size(); ++f) {
-            const auto& face = soft.model.surface_faces[f];
-            if (!face_boxes()[f].overlaps(box)) continue;
-            if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
-            const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
-            for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
-          }
+        for (size_t f = 0; f < soft.model.surface_faces.size(); ++f) {
+          const auto& face = soft.model.surface_faces[f];
+          if (!face_boxes()[f].overlaps(box)) continue;
+          if (soft.model.pinned[face[0]] && soft.model.pinned[face[1]] && soft.model.pinned[face[2]]) continue;
+          const Vec3 a0 = x.segment<3>(3 * face[0]), a1 = x.segment<3>(3 * face[1]), a2 = x.segment<3>(3 * face[2]);
+          for (const auto& w : kFacePoints) against_field(face, w, w[0] * a0 + w[1] * a1 + w[2] * a2);
+        }
         // the collider's samples against the deformed surface triangles
         if (col.samples_S.empty()) continue;
         // the faces within reach of the collider, or within the deepest penetration kept

@@ -179,6 +179,41 @@ def test_soft_cube_dropped_on_the_plane_rests_on_its_weight(scene, nu):
     assert volume(x) == pytest.approx(volume(nodes), rel=0.02)
 
 
+def test_soft_cube_sticks_on_a_tilted_offset_plane(scene):
+    """A soft cube placed on a plane that is tilted by 20 degrees and moved (its shape offset 5 cm
+    along its own normal, the actor turned and lifted) sticks there (friction 1 > tan 20 deg): it
+    rests on the plane's surface, neither in it nor floating above, and the contact force
+    carries its weight. The half-space is found in the world from the actor's pose and the
+    shape's normal and offset; an error in either puts the surface elsewhere."""
+    angle = np.radians(20.0)
+    R = np.array([[1, 0, 0], [0, np.cos(angle), -np.sin(angle)], [0, np.sin(angle), np.cos(angle)]])
+    t = np.array([0.1, -0.2, 0.3])
+    X_plane = sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([1, 0, 0], angle), translation=t)
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0.05), is_static=True, world_from_local=X_plane,
+                             contact={"friction": 1.0})
+    n_W = R[:, 2]
+    h = 0.1
+    nodes, tets = box_tet_mesh([h, h, h], [3, 3, 3])
+    # the cube's bottom face 2 mm above the plane, parallel to it
+    origin = t + R @ np.array([-h / 2, -h / 2, 0.05 + 0.002])
+    cube = scene.create_soft_actor("cube", sdp.create_tet_mesh_shape(nodes, tets),
+                                   material={"youngsModulus": 1e5, "poissonRatio": 0.3, "density": 500, "damping": 0.01},
+                                   world_from_local=sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([1, 0, 0], angle),
+                                                                    translation=origin))
+    cube.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
+    for _ in range(150):
+        scene.step(0.01)
+    # signed distance of each node to the plane {n_W . (p - t) = 0.05}
+    distance = (cube.get_node_positions_world() - t) @ n_W - 0.05
+    assert distance.min() > -1e-3, "it rests on the plane, not in it"
+    assert distance.min() < 1e-3, "it rests on the plane, not above it"
+    weight = cube.get_mass() * 9.81
+    np.testing.assert_allclose(cube.get_contact_force_world(), [0, 0, weight], rtol=0, atol=0.01 * weight)
+    centre = cube.get_node_positions_world().mean(axis=0)
+    start = origin + R @ np.full(3, h / 2)
+    assert np.linalg.norm(centre - start) < 3e-3, "it sticks where it was put"
+
+
 def test_per_element_materials_from_mochi_h5(scene, tmp_path):
     """A bar of two materials in series, their Young's moduli given per element in the .mochi.h5
     `material/` group (Linear, nu = 0), clamped at x = 0 and pulled at x = L by a uniform traction:
