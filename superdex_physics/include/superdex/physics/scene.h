@@ -71,8 +71,11 @@ struct SolverParams {
   /// friction bound fixed at mu times the previous normal impulse (removes the cone model's
   /// separation of sliding contacts); 0 keeps the pure cone model.
   int max_friction_passes = 4;
-  /// Islands with more DOFs than this are solved with sparse linear algebra.
-  int dense_island_max_dofs = 96;
+  /// Islands with more DOFs than this are solved with (block-)sparse linear algebra; up to it,
+  /// dense. Above two free bodies (12 DOFs) the sparse path costs less per Newton iteration: on
+  /// piles of 18 boxes (islands of 3 to 18 boxes) a step took 25 % less than with dense islands
+  /// up to 96 DOFs.
+  int dense_island_max_dofs = 12;
   /// Stop refining when the friction bounds change by less than this fraction.
   real friction_pass_tolerance = real(1e-3);
   /// Friction refinement runs only when a contact at its friction bound slips faster than this
