@@ -2,7 +2,8 @@
 /// Google Benchmark micro-benchmarks of the engine's hot kernels, on the double build:
 /// kinematics, mass matrix and bias forces of revolute chains (7 and 30 DOFs), collision (one
 /// box-box manifold; the whole narrow and broad phase of a settled 50-box pile), the convex
-/// contact solve (a dense island of boxes in contact), FEM assembly (energy, gradient and
+/// contact solve (a dense island of boxes in contact) and the block Cholesky factorization of a
+/// sparse one, FEM assembly (energy, gradient and
 /// projected Hessian of Neo-Hookean tetrahedra), the signed distance grid of a 1280-triangle
 /// sphere at 32^3 cells, and whole steps of the 50-box pile for scale.
 /// Built by `cmake --build <build dir> --target superdex_microbench`; run by benchmarks/run.py.
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "articulation_model.h"
+#include "block_cholesky.h"
 #include "collision_detection.h"
 #include "contact_block.h"
 #include "dynamics.h"
@@ -216,6 +218,40 @@ void BM_ContactSolveDense(benchmark::State& st) {
   st.counters["newton_iterations"] = iterations;
 }
 BENCHMARK(BM_ContactSolveDense)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
+
+// The block Cholesky factorization of a rigid island's Newton matrix: `bodies` free bodies
+// (6 x 6 blocks), each coupled by contacts to 3 others (a pile's pattern), SPD by diagonal
+// dominance; pattern analysed once, as the solver does, then factored per iteration.
+void BM_BlockCholeskyFactor(benchmark::State& st) {
+  const int bodies = static_cast<int>(st.range(0));
+  std::mt19937 rng(2);
+  std::uniform_int_distribution<int> other(0, bodies - 1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<std::pair<int, int>> pairs;
+  for (int b = 0; b < bodies; ++b)
+    for (int k = 0; k < 3; ++k) {
+      const int o = other(rng);
+      if (o != b) pairs.emplace_back(b, o);
+    }
+  const std::vector<int> sizes(bodies, 6);
+  sp::BlockCholesky chol;
+  chol.analyze(sizes, pairs);
+  std::vector<double>& values = chol.values();
+  for (const auto& [i, j] : pairs)
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) {
+        const int at = chol.value_index(i, r, j, c), at_t = chol.value_index(j, c, i, r);
+        values[at >= 0 ? at : at_t] = u(rng);
+      }
+  for (int b = 0; b < bodies; ++b)
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) values[chol.value_index(b, r, b, c)] = r == c ? 40.0 : 0.1;
+  for (auto _ : st) {
+    const bool ok = chol.factor();
+    benchmark::DoNotOptimize(ok);
+  }
+}
+BENCHMARK(BM_BlockCholeskyFactor)->Arg(18)->Arg(50)->Unit(benchmark::kMicrosecond);
 
 // FEM assembly: energy, gradient and SPD-projected Hessian of every tetrahedron of a deformed
 // block (6 tetrahedra per cell), per element.
