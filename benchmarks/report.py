@@ -316,7 +316,15 @@ this run's.
   15 %. The build for x86-64-v3 and the small-problem changes of scenes 2, 3 and 6 (below) took
   the run to about 0.099 s, just past 30x: the target is met with little margin. Tried and not
   kept: CHOLMOD's simplicial factor for the residual solves (the rest stiffness is factored once,
-  so only the solve matters): 0.44 to 0.42 ms for one node, 2.3 to 3.2 ms for eight.
+  so only the solve matters): 0.44 to 0.42 ms for one node, 2.3 to 3.2 ms for eight. Found next
+  (perf and a timer around the soft contact search, C++ pipeline at 0.14 ms per step): the search
+  was a fifth of the step, 27.6 us; each of the duck's 954 surface nodes met the ground plane
+  through the general signed-distance call (a shape visit, a transform and a normalization per
+  node). Fixed: a half-space's distance is affine in the world point, so it is found once per
+  step as a normal and an offset, and a body whose bounds are out of the plane's reach skips it
+  (a new test puts a soft cube on a tilted, moved plane): search 27.6 to 22.1 us, step 0.140 to
+  0.123 ms. What remains of the search: each bounded collider near the duck (the arm's links)
+  still tests every surface node and face against its box.
 - Scene 5 (soft block): the same per-iteration costs, and the same OpenMP fix. The fitted
   exponent varies between runs and machines (1.2 to 1.27 on the Xeon, 1.05 to 1.22 on the EPYC):
   it is set by the sparse factorization, whose cost grows faster than n for 3-D meshes, and by
@@ -392,7 +400,14 @@ this run's.
   per step (four friction passes of 5 to 13 damped iterations each), of which the block
   factorization is now a quarter and the line search a sixth; and a settled step of 0.54 ms
   against MuJoCo's 0.41, spread over contact assembly, the box-box narrow phase and one Newton
-  iteration.
+  iteration. Tried next and not kept: contacts that persist from the last step (matched by their
+  pair of links and nearest point) started with their last friction bound instead of the cone
+  model, and the passes stopped once Coulomb's law held for every contact: the first solve then
+  took 27 iterations instead of the cone's 19 and each pass still 9 to 14, the same run time;
+  the factor's diagonal blocks updated in their lower triangle only (the full unrolled 6 x 6
+  update vectorizes better: 136 against 140 us in the block Cholesky micro-benchmark). The
+  settled pile's islands (about 8 boxes each) now take the block-sparse path (scene 7 below);
+  this scene's time is the same either way (1.08 to 1.13 s, measured alternately).
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -467,7 +482,14 @@ this run's.
   measured in rounds and the ratios compare neighbouring runs. On this machine the ratios moved
   between runs of the same build by more than the targets' margin: scene 7 with worker threads
   1.62x and 1.82x; the seed task in scene 8 1.50x to 1.68x in four runs of one build, and 1.50x
-  and 2.24x in two consecutive runs of another.
+  and 2.24x in two consecutive runs of another. Found next (perf, scene 7 on one thread): a
+  third of the step was the dense path's matrix products (Eigen's packed GEMM for J^T G J and
+  the dense Cholesky) on islands of 3 to 16 boxes, all under the 96 DOFs from which islands took
+  the sparse path. Since the block Cholesky's 6 x 6 kernels and J's structural pattern, the
+  sparse path costs less per iteration from three free bodies on: SolverParams.
+  dense_island_max_dofs is now 12, and 250 steps of scene 7 on one thread went from 0.91 to
+  0.69 s (alternate runs). With the parallel part cheaper, the serial part of a step (broad
+  phase, islands, commit, contact records) weighs more in the 2-thread ratio.
 """
 
 
