@@ -15,6 +15,7 @@
 
 #include "articulation_model.h"
 #include "block_cholesky.h"
+#include "block_problems.h"
 #include "collision_detection.h"
 #include "contact_block.h"
 #include "dynamics.h"
@@ -220,32 +221,17 @@ void BM_ContactSolveDense(benchmark::State& st) {
 BENCHMARK(BM_ContactSolveDense)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 
 // The block Cholesky factorization of a rigid island's Newton matrix: `bodies` free bodies
-// (6 x 6 blocks), each coupled by contacts to 3 others (a pile's pattern), SPD by diagonal
-// dominance; pattern analysed once, as the solver does, then factored per iteration.
+// (6 x 6 blocks) coupled along a chain and random pairs (about 6 neighbours each), an SPD matrix
+// on that pattern; the pattern analysed once, as the solver does, then factored per iteration.
 void BM_BlockCholeskyFactor(benchmark::State& st) {
-  const int bodies = static_cast<int>(st.range(0));
   std::mt19937 rng(2);
-  std::uniform_int_distribution<int> other(0, bodies - 1);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<std::pair<int, int>> pairs;
-  for (int b = 0; b < bodies; ++b)
-    for (int k = 0; k < 3; ++k) {
-      const int o = other(rng);
-      if (o != b) pairs.emplace_back(b, o);
-    }
-  const std::vector<int> sizes(bodies, 6);
+  const sp::BlockProblem p = sp::random_pattern(static_cast<int>(st.range(0)), 4, rng, 6);
   sp::BlockCholesky chol;
-  chol.analyze(sizes, pairs);
-  std::vector<double>& values = chol.values();
-  for (const auto& [i, j] : pairs)
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) {
-        const int at = chol.value_index(i, r, j, c), at_t = chol.value_index(j, c, i, r);
-        values[at >= 0 ? at : at_t] = u(rng);
-      }
-  for (int b = 0; b < bodies; ++b)
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) values[chol.value_index(b, r, b, c)] = r == c ? 40.0 : 0.1;
+  chol.analyze(p.sizes, p.pairs);
+  if (!sp::load(chol, p, sp::random_matrix(p, 0.1, rng)) || !chol.factor()) {
+    st.SkipWithError("the random problem did not load or factor");
+    return;
+  }
   for (auto _ : st) {
     const bool ok = chol.factor();
     benchmark::DoNotOptimize(ok);
