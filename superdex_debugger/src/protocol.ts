@@ -52,7 +52,7 @@ export interface Shape {
   box?: { halfExtents: Vec3 };
   /** Capsule along the shape's z: cylinder of half length `halfLength` plus two caps (m). */
   capsule?: { radius: number; halfLength: number };
-  /** Infinite plane {x : normal . x = distance} in the shape frame. */
+  /** Infinite plane {x : normal . x = distance} in the shape frame (normal of any length). */
   plane?: { normal: Vec3; distance: number };
   /** Triangle mesh: vertices (m, shape frame) as [[x,y,z],...] or flat; triangles as [[i,j,k],...] or flat. */
   mesh?: { vertices: number[][] | number[]; triangles: number[][] | number[] };

@@ -17,7 +17,8 @@ export interface ShapeGeometry {
 
 /**
  * Geometry of a collision shape in the shape's own frame (m), or null for unknown shapes.
- * Capsules lie along z; planes are a finite PLANE_SIZE quad centred at normal * distance.
+ * Capsules lie along z; planes are a finite PLANE_SIZE quad centred at the plane point nearest
+ * the origin (distance / |normal| along the unit normal).
  */
 export function shapeGeometry(shape: Shape): ShapeGeometry | null {
   if (shape.sphere) {
@@ -41,11 +42,12 @@ export function shapeGeometry(shape: Shape): ShapeGeometry | null {
   if (shape.plane) {
     const n = new THREE.Vector3(...shape.plane.normal);
     if (n.lengthSq() === 0) n.set(0, 0, 1);
+    // {x : normal . x = distance} for a normal of any length: distance / |normal| along the unit normal
+    const d = (shape.plane.distance ?? 0) / n.length();
     n.normalize();
     const g = new THREE.PlaneGeometry(PLANE_SIZE, PLANE_SIZE);
-    // PlaneGeometry faces +z: turn it to the plane's normal, then move it to normal * distance.
+    // PlaneGeometry faces +z: turn it to the plane's normal, then move it along it by d.
     g.applyQuaternion(new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 0, 1), n));
-    const d = shape.plane.distance ?? 0;
     g.translate(n.x * d, n.y * d, n.z * d);
     return { geometry: g, isPlane: true };
   }

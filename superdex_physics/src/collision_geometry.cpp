@@ -44,12 +44,18 @@ real box_distance(const Vec3& h, const Vec3& p, Vec3* grad) {
 
 }  // namespace
 
+WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS) {
+  const Vec3 n = X_WS.R * s.normal.normalized();
+  return {n, s.distance / s.normal.norm() + n.dot(X_WS.p)};
+}
+
 real shape_signed_distance(const ShapeGeometry& shape, const Vec3& p, Vec3* grad) {
   return std::visit(
       Overloaded{[&](const PlaneShape& s) {
+                   // {x : normal . x <= distance} for a normal of any length
                    const Vec3 n = s.normal.normalized();
                    if (grad) *grad = n;
-                   return n.dot(p) - s.distance;
+                   return n.dot(p) - s.distance / s.normal.norm();
                  },
                  [&](const SphereShape& s) {
                    const Vec3 d = p - s.center;

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "spatial.h"
 #include "superdex/physics/shape.h"
 
 namespace superdex::physics {
@@ -18,6 +19,14 @@ struct Aabb {
 
 // Signed distance (m) from p_S to the surface, negative inside; *grad_S (unit, outward) when non-null.
 real shape_signed_distance(const ShapeGeometry& shape, const Vec3& p_S, Vec3* grad_S);
+
+// A plane shape {x_S : normal . x_S <= distance} (its normal of any length) posed by X_WS, as
+// the world half-space {x : n . x <= d} with n unit: the signed distance of x is n . x - d.
+struct WorldPlane {
+  Vec3 n;
+  real d;
+};
+WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS);
 
 // Points on the surface used as contact candidates against another shape's distance field.
 // Empty for planes (unbounded).

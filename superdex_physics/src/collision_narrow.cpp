@@ -12,16 +12,6 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// A world-frame plane n . x = d, from a plane shape posed by X_WS.
-struct WorldPlane {
-  Vec3 n;
-  real d;
-};
-WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS) {
-  const Vec3 n = X_WS.R * s.normal.normalized();
-  return {n, s.distance / s.normal.norm() + n.dot(X_WS.p)};
-}
-
 // A ball (centre c, radius r) against a point-queryable field; normal from the field towards the ball.
 void ball_vs_field(const Vec3& c_W, real r, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
                    std::vector<ContactPoint>& out) {

@@ -92,15 +92,14 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           out.push_back(c);
         };
         if (const PlaneShape* half_space = std::get_if<PlaneShape>(&col.shape)) {
-          // the surface nodes against a half-space, whose distance is affine in the world point:
-          // n_W . p - c; none when the body's bounds are out of its reach
-          const Vec3 n_W = X_WS.R * half_space->normal.normalized();
-          const real c = n_W.dot(X_WS.p) + half_space->distance;
-          const Vec3 lowest = (n_W.array() > 0).select(bounds.min, bounds.max);
-          if (n_W.dot(lowest) - c >= reach) continue;
+          // the surface nodes against a half-space, whose distance is affine in the world point;
+          // none when the body's bounds are out of its reach
+          const WorldPlane plane = world_plane(*half_space, X_WS);
+          const Vec3 lowest = (plane.n.array() > 0).select(bounds.min, bounds.max);
+          if (plane.n.dot(lowest) - plane.d >= reach) continue;
           for (int i : soft.model.surface_nodes) {
-            const real phi = n_W.dot(x.segment<3>(3 * i)) - c;
-            if (phi < reach && !soft.model.pinned[i]) add({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i), n_W, phi);
+            const real phi = plane.n.dot(x.segment<3>(3 * i)) - plane.d;
+            if (phi < reach && !soft.model.pinned[i]) add({i, -1, -1}, {1, 0, 0}, x.segment<3>(3 * i), plane.n, phi);
           }
           continue;
         }

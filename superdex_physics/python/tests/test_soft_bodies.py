@@ -179,17 +179,21 @@ def test_soft_cube_dropped_on_the_plane_rests_on_its_weight(scene, nu):
     assert volume(x) == pytest.approx(volume(nodes), rel=0.02)
 
 
-def test_soft_cube_sticks_on_a_tilted_offset_plane(scene):
+@pytest.mark.parametrize("normal_length", [1.0, 2.5])
+def test_soft_cube_sticks_on_a_tilted_offset_plane(scene, normal_length):
     """A soft cube placed on a plane that is tilted by 20 degrees and moved (its shape offset 5 cm
     along its own normal, the actor turned and lifted) sticks there (friction 1 > tan 20 deg): it
     rests on the plane's surface, neither in it nor floating above, and the contact force
     carries its weight. The half-space is found in the world from the actor's pose and the
-    shape's normal and offset; an error in either puts the surface elsewhere."""
+    shape's normal and offset; an error in either puts the surface elsewhere. The shape is
+    {x : normal . x <= distance} whatever the normal's length: a normal 2.5 times longer with a
+    distance 2.5 times larger is the same plane."""
     angle = np.radians(20.0)
     R = np.array([[1, 0, 0], [0, np.cos(angle), -np.sin(angle)], [0, np.sin(angle), np.cos(angle)]])
     t = np.array([0.1, -0.2, 0.3])
     X_plane = sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([1, 0, 0], angle), translation=t)
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0.05), is_static=True, world_from_local=X_plane,
+    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, normal_length], 0.05 * normal_length), is_static=True,
+                             world_from_local=X_plane,
                              contact={"friction": 1.0})
     n_W = R[:, 2]
     h = 0.1
