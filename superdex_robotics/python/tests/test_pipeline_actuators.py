@@ -13,7 +13,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from pipeline_helpers import load_bot, rotor_bot_json, step, tolerance
+from pipeline_helpers import create_bot_from_json, rotor_bot_json, step, tolerance
 from robotics_helpers import EXAMPLE_BOT, scene  # noqa: F401
 from superdex.physics.paths import resolve_asset
 
@@ -23,10 +23,9 @@ INERTIA = 0.1  # kg m^2: Izz 0.02 + armature 0.08
 def make_rotor(scene, tmp_path, actuator_type: str, params: dict, **rotor):
     doc = rotor_bot_json(**rotor)
     doc["links"][1]["actuators"] = [{"type": actuator_type, "name": "drive", "params": json.dumps(params)}]
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, doc), ctx)
+    ctx, bot, arm = create_bot_from_json(scene, tmp_path, doc)
     command = bot.create_controller("JOINT_COMMAND", "command")
-    return ctx, bot, bot.get_articulated_actor(), command
+    return ctx, bot, arm, command
 
 
 def velocity(arm) -> float:
@@ -152,9 +151,8 @@ def test_ideal_pd_reaches_the_commanded_position(scene, tmp_path):
 
 
 def test_actuators_need_a_one_dof_joint(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, rotor_bot_json()), ctx)
-    base, wheel = bot.get_articulated_actor().get_nested_link_actors()
+    ctx, _, rotor = create_bot_from_json(scene, tmp_path, rotor_bot_json())
+    base, wheel = rotor.get_nested_link_actors()
     with pytest.raises(sdp.Error, match=r"link 'base' has joint 'weld' \(Hard, 0 DOFs\)"):
         ctx.create_actuator("IDEAL_PD", scene.get_actor(base), "bad")
     with pytest.raises(sdp.Error, match=r"params.inner.type: required"):

@@ -15,7 +15,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from pipeline_helpers import IDENTITY, PANDA_READY, load_bot, panda_bot_json, rotor_bot_json, step, tolerance
+from pipeline_helpers import IDENTITY, PANDA_READY, create_bot_from_json, load_bot, panda_bot_json, rotor_bot_json, step, tolerance
 from robotics_helpers import scene  # noqa: F401
 
 G = 9.81
@@ -55,8 +55,7 @@ def test_contact_force_of_links_resting_on_a_table_is_their_weight(scene, tmp_pa
         "defaultPose": [],
         "worldFromRoot": {"rotation": ROT_X_90, "translation": [0, 0, 0.0505]},
     }
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, doc), ctx)
+    ctx, bot, _ = create_bot_from_json(scene, tmp_path, doc)
     assert bot.is_pipeline_active()
     np.testing.assert_array_equal(signal(ctx, bot, "a_world"), 0.0)  # zeros before the first update
     step(scene, 0.002, 250)
@@ -67,9 +66,7 @@ def test_contact_force_of_links_resting_on_a_table_is_their_weight(scene, tmp_pa
 
 
 def test_joint_state_equals_the_engine_state(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, panda_bot_json()), ctx)
-    arm = bot.get_articulated_actor()
+    ctx, bot, arm = create_bot_from_json(scene, tmp_path, panda_bot_json())
     # a context-level sensor on the articulation joins its bot's pipeline; a bot sensor on a link
     # reads that link's joint
     whole = ctx.create_sensor("JOINT_STATE", arm, "all")
@@ -87,9 +84,8 @@ def test_joint_state_equals_the_engine_state(scene, tmp_path):
 
 
 def test_joint_state_noise_statistics_quantisation_and_seed(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, rotor_bot_json()), ctx)
-    wheel = scene.get_actor(bot.get_articulated_actor().get_nested_link_actors()[1])
+    ctx, bot, rotor = create_bot_from_json(scene, tmp_path, rotor_bot_json())
+    wheel = scene.get_actor(rotor.get_nested_link_actors()[1])
     noisy = {"position_noise_std": 0.01, "velocity_noise_std": 0.02, "seed": 7}
     a = bot.create_sensor("JOINT_STATE", wheel, "a", noisy)
     b = bot.create_sensor("JOINT_STATE", wheel, "b", noisy)
@@ -161,8 +157,7 @@ def hanging_bot() -> dict:
 
 
 def test_force_torque_of_hanging_links_is_their_weight(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, hanging_bot()), ctx)
+    ctx, bot, _ = create_bot_from_json(scene, tmp_path, hanging_bot())
     step(scene, 0.002, 50)
     tol = tolerance(1e-8, 2e-3)
     # the joint holds up everything below it: arm and tip, 2 kg, straight below (no moment)
@@ -173,8 +168,7 @@ def test_force_torque_of_hanging_links_is_their_weight(scene, tmp_path):
 
 
 def test_force_torque_about_a_driven_joint_axis_is_the_joint_torque(scene, tmp_path):
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, hanging_bot()), ctx)
+    ctx, bot, _ = create_bot_from_json(scene, tmp_path, hanging_bot())
     # 3 N m on the pivot (no actuator: the commanded effort is applied directly); the arm swings up
     bot.create_controller("JOINT_COMMAND", "drive", {"effort": [3.0]})
     readings = []
@@ -203,9 +197,8 @@ def test_sensors_measure_at_their_parent_from_sensor_frame(scene, tmp_path):
         "joints": [{"name": "weld", "type": "Hard"}, {"name": "spin", "type": "Revolute", "axis": [0, 0, 1]}],
         "defaultPose": [0.0],
     }
-    ctx = sdr.create_context()
-    bot = sdr.create_bot(scene, load_bot(tmp_path, doc), ctx)
-    bot.get_articulated_actor().set_articulated_joint_velocities([w])
+    ctx, bot, spinner = create_bot_from_json(scene, tmp_path, doc)
+    spinner.set_articulated_joint_velocities([w])
     step(scene, 0.001, 200)
     f = signal(ctx, bot, "imu")
     np.testing.assert_allclose(f[:3], [-w * w * r, 0, 0], atol=0.01 * w * w * r)
