@@ -3,9 +3,9 @@
 /// kinematics, mass matrix and bias forces of revolute chains (7 and 30 DOFs), collision (one
 /// box-box manifold; the whole narrow and broad phase of a settled 50-box pile), the convex
 /// contact solve (a dense island of boxes in contact) and the block Cholesky factorization of a
-/// sparse one, FEM assembly (energy, gradient and
-/// projected Hessian of Neo-Hookean tetrahedra), the signed distance grid of a 1280-triangle
-/// sphere at 32^3 cells, and whole steps of the 50-box pile for scale.
+/// sparse one, FEM assembly (energy, gradient and projected Hessian of Neo-Hookean tetrahedra),
+/// the signed distance grid of a 1280-triangle sphere at 32^3 cells, and whole steps of the
+/// 50-box pile for scale.
 /// Built by `cmake --build <build dir> --target superdex_microbench`; run by benchmarks/run.py.
 
 #include <benchmark/benchmark.h>
