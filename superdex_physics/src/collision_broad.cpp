@@ -20,12 +20,12 @@ ContactMaterial combine_materials(const ContactMaterial& a, const ContactMateria
 }
 
 Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
+  // the posed centre, and the half extents through the rotation's absolute values
+  const Vec3 centre = X.R * (real(0.5) * (local.min + local.max)) + X.p;
+  const Vec3 half = X.R.cwiseAbs() * (real(0.5) * (local.max - local.min));
   Aabb out;
-  for (int i = 0; i < 8; ++i) {
-    const Vec3 c(i & 1 ? local.max.x() : local.min.x(), i & 2 ? local.max.y() : local.min.y(),
-                 i & 4 ? local.max.z() : local.min.z());
-    out.extend(X.R * c + X.p);
-  }
+  out.min = centre - half;
+  out.max = centre + half;
   return out;
 }
 
@@ -37,13 +37,10 @@ bool actor_pair_disabled(const SceneData& s, ActorHandle x, ActorHandle y) {
 real collider_sweep(const Articulation& a, const LinkCollider& col, real dt) {
   const Vec6& V = a.kin.V_L[col.link];
   if (std::holds_alternative<PlaneShape>(col.shape)) return dt * V.norm() * (a.model.nv > 0);
-  // speed bound of the surface: origin speed plus angular speed times the farthest extent
-  real reach = 0;
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 corner(k & 1 ? col.aabb_S.max.x() : col.aabb_S.min.x(), k & 2 ? col.aabb_S.max.y() : col.aabb_S.min.y(),
-                      k & 4 ? col.aabb_S.max.z() : col.aabb_S.min.z());
-    reach = std::max(reach, (col.X_LS.R * corner + col.X_LS.p).norm());
-  }
+  // speed bound of the surface: origin speed plus angular speed times the farthest extent, the
+  // bounds' corner farthest from the link origin (at o_S in the shape frame), axis by axis
+  const Vec3 o_S = -(col.X_LS.R.transpose() * col.X_LS.p);
+  const real reach = (col.aabb_S.min - o_S).cwiseAbs().cwiseMax((col.aabb_S.max - o_S).cwiseAbs()).norm();
   return dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
 }
 
