@@ -2,6 +2,7 @@
 // turns overlapping pairs into contacts.
 
 #include <algorithm>
+#include <array>
 
 #include "collision_detection.h"
 #include "superdex/physics/engine.h"
@@ -94,7 +95,7 @@ void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& 
     const Articulation& a = *s.articulations[b];
     for (size_t c = 0; c < a.model.colliders.size(); ++c) {
       const LinkCollider& col = a.model.colliders[c];
-      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), a.kin.X_WL[col.link] * col.X_LS, {}, collider_sweep(a, col, dt)};
+      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), col.link, a.kin.X_WL[col.link] * col.X_LS, {}, collider_sweep(a, col, dt)};
       if (std::holds_alternative<PlaneShape>(col.shape)) {
         out.planes.push_back(pc);
         continue;
@@ -118,9 +119,19 @@ void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& 
     for (size_t l = k + 1; l < order.size() && posed[order[l]].box.min.x() <= p.box.max.x(); ++l)
       if (p.box.overlaps(posed[order[l]].box)) out.pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
   }
-  std::sort(out.pairs.begin(), out.pairs.end());
   for (size_t pl = 0; pl < out.planes.size(); ++pl)
     for (size_t i = 0; i < posed.size(); ++i) out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+  // in the order of the contacts' links, so that the contact list comes out in that order; sorted
+  // as keys that hold the links, which spares the comparisons the lookups
+  std::vector<std::array<int, 6>>& keys = out.keys;
+  keys.resize(out.pairs.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const auto [i, j] = out.pairs[k];
+    const PosedCollider &a = posed[i], &b = j >= 0 ? posed[j] : out.planes[-1 - j];
+    keys[k] = {a.body, a.link, b.body, b.link, i, j};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t k = 0; k < keys.size(); ++k) out.pairs[k] = {keys[k][4], keys[k][5]};
 }
 
 void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out) {

@@ -3,6 +3,7 @@
 // phase, contact filters, and the narrow phase producing contact candidates (points with a
 // normal and a signed distance) for the implicit solve.
 
+#include <array>
 #include <vector>
 
 #include "scene_data.h"
@@ -24,19 +25,22 @@ struct Contact {
 // its sweep (planes have no bounds).
 struct PosedCollider {
   int body = 0, collider = 0;  // SceneData::articulations index; index in its model's colliders
+  int link = 0;                // the collider's link
   SpatialTransform X_WS;
   Aabb box;
   real sweep = 0;  // how far its surface can move within the step (m)
 };
 
 // The broad phase's result: the posed colliders and the candidate pairs (indices into `posed`;
-// a negative second index -1 - k names planes[k]), in a deterministic order. The narrow phase
-// runs on consecutive chunks of the pairs, which the worker threads can share.
+// a negative second index -1 - k names planes[k]), ordered by the links of their contacts
+// (body_a, link_a, body_b, link_b), then by their indices. The narrow phase runs on consecutive
+// chunks of the pairs, which the worker threads can share; its contact list keeps that order.
 struct ContactPairs {
   static constexpr size_t kPairsPerChunk = 16;
   std::vector<PosedCollider> posed, planes;
   std::vector<std::pair<int, int>> pairs;
   std::vector<int> order;  // the sweep's order of `posed` (working storage)
+  std::vector<std::array<int, 6>> keys;  // the pairs' order (working storage)
   real margin = 0;  // contact margin (m)
   size_t num_chunks() const { return (pairs.size() + kPairsPerChunk - 1) / kPairsPerChunk; }
 };

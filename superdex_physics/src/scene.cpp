@@ -316,6 +316,42 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
   for (const auto& fn : *put_back.running.order) (*fn)(scene, dt);
 }
 
+// The step's contact results (s.contacts), ordered by their links (body_a, link_a, body_b,
+// link_b): first the soft contacts (side a is the soft body, body index -1 - soft index), then the
+// rigid ones in the contact list's order, which the broad phase made that order.
+void contact_records(SceneData& s, const std::vector<Island>& islands, const std::vector<Contact>& contacts,
+                     const std::vector<SoftContact>& soft_contacts, const std::vector<IslandSolution>& solutions,
+                     StepWorkspace& ws) {
+  std::vector<SoftContactRecordKey>& soft_keys = ws.soft_record_keys;
+  std::vector<std::pair<int, int>>& place = ws.record_places;
+  soft_keys.clear();
+  place.assign(contacts.size(), {-1, -1});
+  for (size_t k = 0; k < islands.size(); ++k) {
+    for (size_t j = 0; j < islands[k].contacts.size(); ++j) place[islands[k].contacts[j]] = {static_cast<int>(k), static_cast<int>(j)};
+    for (size_t j = 0; j < islands[k].soft_contacts.size(); ++j) {
+      const SoftContact& c = soft_contacts[islands[k].soft_contacts[j]];
+      soft_keys.push_back({{-1 - c.soft, c.nodes[0], c.body, c.link}, static_cast<int>(k), static_cast<int>(j)});
+    }
+  }
+  std::sort(soft_keys.begin(), soft_keys.end(), [](const SoftContactRecordKey& x, const SoftContactRecordKey& y) {
+    return std::tie(x.links, x.island, x.index) < std::tie(y.links, y.island, y.index);
+  });
+  s.contacts.clear();
+  s.contacts.reserve(soft_keys.size() + contacts.size());
+  for (const SoftContactRecordKey& key : soft_keys) {
+    const SoftContact& c = soft_contacts[islands[key.island].soft_contacts[key.index]];
+    s.contacts.push_back({s.soft_bodies[c.soft]->handle, s.articulations[c.body]->link_handles[c.link], -1 - c.soft, c.body, c.nodes[0],
+                          c.link, c.p_W, c.n_W, c.phi, solutions[key.island].soft_contact_force[key.index]});
+  }
+  for (size_t i = 0; i < contacts.size(); ++i) {
+    const auto [k, j] = place[i];
+    if (k < 0) continue;
+    const Contact& c = contacts[i];
+    s.contacts.push_back({s.articulations[c.body_a]->link_handles[c.link_a], s.articulations[c.body_b]->link_handles[c.link_b], c.body_a,
+                          c.body_b, c.link_a, c.link_b, c.p_W, c.n_W, c.phi, solutions[k].contact_force[j]});
+  }
+}
+
 }  // namespace
 
 void Scene::step(real dt) {
@@ -482,24 +518,7 @@ void Scene::step_dynamics(real dt) {
   }
 
   // 5. contact results for queries
-  s.contacts.clear();
-  for (size_t k = 0; k < islands.size(); ++k)
-    for (size_t j = 0; j < islands[k].contacts.size(); ++j) {
-      const Contact& c = contacts[islands[k].contacts[j]];
-      s.contacts.push_back({s.articulations[c.body_a]->link_handles[c.link_a], s.articulations[c.body_b]->link_handles[c.link_b],
-                            c.body_a, c.body_b, c.link_a, c.link_b, c.p_W, c.n_W, c.phi, solutions[k].contact_force[j]});
-    }
-  // soft contacts: side a is the soft body (body index -1 - soft index)
-  for (size_t k = 0; k < islands.size(); ++k)
-    for (size_t j = 0; j < islands[k].soft_contacts.size(); ++j) {
-      const SoftContact& c = soft_contacts[islands[k].soft_contacts[j]];
-      s.contacts.push_back({s.soft_bodies[c.soft]->handle, s.articulations[c.body]->link_handles[c.link], -1 - c.soft, c.body,
-                            c.nodes[0], c.link, c.p_W, c.n_W, c.phi, solutions[k].soft_contact_force[j]});
-    }
-  std::sort(s.contacts.begin(), s.contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
-    return std::tie(x.body_a, x.link_a, x.body_b, x.link_b) < std::tie(y.body_a, y.link_a, y.body_b, y.link_b);
-  });
-
+  contact_records(s, islands, contacts, soft_contacts, solutions, ws);
   SolverStats stats;
   stats.num_islands = static_cast<int>(islands.size());
   stats.num_contacts = static_cast<int>(contacts.size());

@@ -3,7 +3,9 @@
 // steps: every list is cleared or resized before use and keeps its capacity, so that a step
 // like the last one (the same bodies, islands and contact counts) allocates almost nothing.
 
+#include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "articulation_step.h"
@@ -16,6 +18,13 @@
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+
+// A soft contact result's place in the order of the results: its links (body_a, link_a, body_b,
+// link_b), then its island and its index among the island's soft contacts.
+struct SoftContactRecordKey {
+  std::array<int, 4> links;
+  int island = 0, index = 0;
+};
 
 struct StepWorkspace {
   ContactPairs pairs;                                  // broad phase
@@ -31,6 +40,8 @@ struct StepWorkspace {
   std::vector<double> island_size;                     // per island: its cost estimate
   std::vector<IslandSolution> solutions;               // per island
   std::vector<VecX> q_next, v_next, efforts_next;      // per articulation: the next state
+  std::vector<SoftContactRecordKey> soft_record_keys;      // the soft contact results' order
+  std::vector<std::pair<int, int>> record_places;      // per contact: its island and index there
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

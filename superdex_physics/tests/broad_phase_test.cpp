@@ -1,14 +1,17 @@
 /// @file broad_phase_test.cpp
-/// The broad phase: a collider's world bounds enclose exactly its posed corners, and its sweep
-/// bound uses the bounds' corner farthest from the link origin.
+/// The broad phase: a collider's world bounds enclose exactly its posed corners; its sweep bound
+/// uses the bounds' corner farthest from the link origin; and the contact list, like the step's
+/// contact results, comes out in the order of the contacts' links (body_a, link_a, body_b,
+/// link_b), with plane contacts in their place among the others.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
+#include <tuple>
 
 #include "collision_detection.h"
-#include "scene_data.h"
+#include "test_helpers.h"
 
 namespace superdex::physics::test {
 namespace {
@@ -65,6 +68,61 @@ TEST(BroadPhase, SweepBoundIsSpeedPlusAngularSpeedTimesTheFarthestCorner) {
     const double expected = dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
     EXPECT_NEAR(collider_sweep(a, col, dt), expected, 1e-12) << "trial " << trial;
   }
+}
+
+class ContactOrderTest : public EngineTest {};
+
+// (body_a, link_a, body_b, link_b) of a contact result or candidate
+template <class C>
+auto links_of(const C& c) {
+  return std::make_tuple(c.body_a, c.link_a, c.body_b, c.link_b);
+}
+
+TEST_F(ContactOrderTest, ContactsComeInTheOrderOfTheirLinksPlaneContactsIncluded) {
+  Scene scene = create_scene("order");
+  // the ground first (body 0): a box's ground contact (box, 0, 0, 0) then sorts before its
+  // contacts with the bodies above it, which the sweep finds before the plane's pairs
+  scene.create_rigid_actor("ground", create_shape(PlaneShape{}), true, Transform::identity(), std::nullopt, std::nullopt);
+  const ShapeHandle box = create_shape(BoxShape{Vec3::Constant(real(0.1))});
+  const ShapeHandle ball = create_shape(SphereShape{Vec3::Zero(), real(0.08)});
+  for (int column = 0; column < 3; ++column)
+    for (int level = 0; level < 3; ++level) {
+      Transform X;
+      X.translation = Vec3(0.35 * column, 0.01 * level, 0.1 + 0.2 * level);
+      scene.create_rigid_actor("box", level == 1 && column == 1 ? ball : box, false, X, std::nullopt, real(1));
+    }
+  // a two-link chain lying on the ground, across the columns: contacts on both of its links
+  ArticulationDesc chain;
+  chain.name = "chain";
+  chain.links = {make_link("a", -1, 1, Vec3::Zero(), Vec3::Constant(real(0.01))), make_link("b", 0, 1, Vec3::Zero(), Vec3::Constant(real(0.01)))};
+  chain.links[0].shape = BoxShape{Vec3(0.3, 0.05, 0.05)};
+  chain.links[1].shape = BoxShape{Vec3(0.3, 0.05, 0.05)};
+  Transform X_PJ;
+  X_PJ.translation = Vec3(0.6, 0, 0);
+  chain.joints = {make_joint("free", JointType::Free), make_joint("hinge", JointType::Revolute, Vec3::UnitY(), X_PJ)};
+  const ActorHandle chain_actor = scene.create_articulated_actor(chain, "chain");
+  Transform X_chain;
+  X_chain.translation = Vec3(0.1, 0.4, 0.05);
+  scene.set_root_transform(chain_actor, X_chain);
+
+  const SceneData& s = scene_data(scene.handle());
+  for (int step = 0; step < 40; ++step) {
+    scene.step(real(0.004));
+    const std::vector<Contact> candidates = detect_contacts(s, s.params.contact_margin, real(0.004));
+    ASSERT_TRUE(std::is_sorted(candidates.begin(), candidates.end(), [](const Contact& x, const Contact& y) { return links_of(x) < links_of(y); }))
+        << "step " << step;
+    ASSERT_TRUE(std::is_sorted(s.contacts.begin(), s.contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
+      return links_of(x) < links_of(y);
+    })) << "step " << step;
+  }
+  // the order was put to the test: a body touched the ground and a body above it, and the
+  // chain's second link touched something
+  bool ground_then_above = false, second_link = false;
+  for (size_t i = 0; i + 1 < s.contacts.size(); ++i)
+    ground_then_above |= s.contacts[i].body_b == 0 && s.contacts[i + 1].body_a == s.contacts[i].body_a && s.contacts[i + 1].body_b > 0;
+  for (const ContactRecord& c : s.contacts) second_link |= c.link_a == 1 || c.link_b == 1;
+  EXPECT_TRUE(ground_then_above);
+  EXPECT_TRUE(second_link);
 }
 
 }  // namespace
