@@ -21,6 +21,11 @@ SpatialTransform joint_transform(const JointModel& j, const real* q) {
 }
 
 void update_kinematics(const ArticulationModel& model, const ArticulationState& state, ArticulationKinematics& kin) {
+  update_kinematics(model, state.q, state.v, state.X_W_base, kin);
+}
+
+void update_kinematics(const ArticulationModel& model, const VecX& q, const VecX& v, const SpatialTransform& X_W_base,
+                       ArticulationKinematics& kin) {
   const int n = model.num_links;
   kin.X_PL.resize(n);
   kin.X_WL.resize(n);
@@ -29,16 +34,16 @@ void update_kinematics(const ArticulationModel& model, const ArticulationState& 
   for (int i : model.order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
-    const SpatialTransform X_J = joint_transform(j, state.q.data() + j.q_offset);
+    const SpatialTransform X_J = joint_transform(j, q.data() + j.q_offset);
     kin.X_PL[i] = j.X_PJ * X_J;
     kin.S[i] = j.S;
     // a Free joint's linear velocity is in the joint (parent) frame: rotate it into the link frame
     if (j.type == JointType::Free) kin.S[i].topLeftCorner<3, 3>() = X_J.R.transpose();
     // joint velocity, column by column (a fixed-size loop: nv is at most 6)
     Vec6 vJ = Vec6::Zero();
-    for (int c = 0; c < j.nv; ++c) vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
+    for (int c = 0; c < j.nv; ++c) vJ += kin.S[i].col(c) * v[j.v_offset + c];
     if (p < 0) {
-      kin.X_PL[i] = state.X_W_base * kin.X_PL[i];
+      kin.X_PL[i] = X_W_base * kin.X_PL[i];
       kin.X_WL[i] = kin.X_PL[i];
       kin.V_L[i] = vJ;
     } else {

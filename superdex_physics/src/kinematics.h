@@ -11,6 +11,9 @@ SpatialTransform joint_transform(const JointModel& j, const real* q_j);
 
 // Link poses and spatial velocities from the state.
 void update_kinematics(const ArticulationModel& model, const ArticulationState& state, ArticulationKinematics& kin);
+// The same from positions q, velocities v and the pose of the root joint's parent frame X_W_base.
+void update_kinematics(const ArticulationModel& model, const VecX& q, const VecX& v, const SpatialTransform& X_W_base,
+                       ArticulationKinematics& kin);
 
 // J_WL (6 x nv, linear rows first): maps generalized velocities to the velocity of the link
 // origin and the link angular velocity, both in world axes. `kin` must be current.

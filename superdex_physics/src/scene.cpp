@@ -448,10 +448,17 @@ void Scene::step_dynamics(real dt) {
   std::vector<IslandSolution>& solutions = ws.solutions;
   solutions.resize(islands.size());
   std::vector<VecX>&q_next = ws.q_next, &v_next = ws.v_next, &efforts_next = ws.efforts_next;
+  std::vector<ArticulationKinematics>& kin_next = ws.kin_next;
   q_next.resize(n);
   v_next.resize(n);
   efforts_next.resize(n);
-  // the next states of island k's bodies (committed below, once every island is checked)
+  kin_next.resize(n);
+  const auto next_kinematics = [&](size_t b) {
+    const Articulation& a = *s.articulations[b];
+    update_kinematics(a.model, q_next[b], v_next[b], a.state.X_W_base, kin_next[b]);
+  };
+  // the next states of island k's bodies and their kinematics (committed below, once every
+  // island is checked)
   auto next_states = [&](size_t k) {
     for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
       const int b = islands[k].bodies[j];
@@ -459,6 +466,7 @@ void Scene::step_dynamics(real dt) {
       efforts_next[b] = solutions[k].drive_efforts[j];
       q_next[b] = s.articulations[b]->state.q;
       integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
+      next_kinematics(b);
     }
   };
   const auto solve = [&](size_t k) {
@@ -474,7 +482,7 @@ void Scene::step_dynamics(real dt) {
   for (size_t k = 0; k < islands.size(); ++k)
     if (guard.check_island(islands[k], solutions[k])) next_states(k);  // clamped
   for (size_t b = 0; b < n; ++b)
-    if (num_dofs[b] > 0) guard.check_articulation(static_cast<int>(b), q_next[b], v_next[b]);
+    if (num_dofs[b] > 0 && guard.check_articulation(static_cast<int>(b), q_next[b], v_next[b])) next_kinematics(b);  // clamped
   // soft bodies: next positions and node contact forces
   std::vector<SoftState> soft_next(s.soft_bodies.size());
   std::vector<VecX> node_forces(s.soft_bodies.size());
@@ -509,7 +517,7 @@ void Scene::step_dynamics(real dt) {
     a.drive_efforts.swap(efforts_next[b]);
     a.state.q.swap(q_next[b]);
     a.state.v.swap(v_next[b]);
-    refresh_kinematics(a);
+    std::swap(a.kin, kin_next[b]);
   }
 
   for (size_t k = 0; k < s.soft_bodies.size(); ++k) {

@@ -77,17 +77,18 @@ bool StepGuard::check_island(const Island& island, IslandSolution& sol) {
   return true;
 }
 
-void StepGuard::check_articulation(int b, VecX& q, VecX& v) {
-  if (q.allFinite() && v.allFinite()) return;
+bool StepGuard::check_articulation(int b, VecX& q, VecX& v) {
+  if (q.allFinite() && v.allFinite()) return false;
   Articulation& a = *s_.articulations[b];
   const char* quantity = v.allFinite() ? "positions" : "velocities";
   add(a.handle, a.model.name, quantity,
       std::string(quantity) + " became non-finite (NaN or infinity)" +
           (clamp() ? "; it keeps its last good positions with zero velocity" : "; the scene keeps its last good state") +
           "; check forces, masses, stiffnesses and dt");
-  if (!clamp()) return;
+  if (!clamp()) return false;
   q = a.state.q;
   v.setZero(a.model.nv);
+  return true;
 }
 
 void StepGuard::check_soft(int k, SoftState& next) {

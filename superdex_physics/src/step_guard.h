@@ -24,8 +24,9 @@ class StepGuard {
   /// WarnAndClamp the non-finite parts are replaced (zero velocities and forces); returns whether
   /// the solution was changed.
   bool check_island(const Island& island, IslandSolution& solution);
-  /// Articulation b's next positions q and velocities v (after integration).
-  void check_articulation(int b, VecX& q, VecX& v);
+  /// Articulation b's next positions q and velocities v (after integration). Under WarnAndClamp
+  /// non-finite ones are replaced (its last positions, zero velocities); returns whether they were.
+  bool check_articulation(int b, VecX& q, VecX& v);
   /// Soft body k's next state.
   void check_soft(int k, SoftState& next);
   /// Throws superdex::Error listing the faults under Raise; records them under WarnAndClamp.

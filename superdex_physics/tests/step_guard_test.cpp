@@ -1,7 +1,8 @@
 /// @file step_guard_test.cpp
 /// Numerical faults in Scene::step (step_guard.h): under Raise a non-finite result throws naming
 /// the actor and quantity and leaves the scene's state bitwise as it was; under WarnAndClamp the
-/// faulty body stops where it was, the others step, and the fault is reported as data.
+/// faulty body stops where it was (its pose and velocity as queried too, also when only its
+/// positions overflow), the others step, and the fault is reported as data.
 
 #include <gmock/gmock.h>
 
@@ -73,6 +74,25 @@ TEST_F(StepGuardTest, WarnAndClampStopsTheFaultyBodyAndStepsTheOthers) {
   b.scene.clear_external_forces(b.wild);
   b.scene.step(real(0.01));
   EXPECT_TRUE(b.scene.last_numerical_faults().empty());
+}
+
+TEST_F(StepGuardTest, WarnAndClampOfOverflowingPositionsLeavesPoseAndVelocityAtTheLastGoodState) {
+  // a free ball near the largest finite coordinate, moving on: its velocity stays finite, its
+  // next position overflows (only the articulation's own check sees it, not its island's)
+  TwoBalls b = two_balls();
+  b.scene.set_numerical_fault_policy(NumericalFaultPolicy::WarnAndClamp);
+  b.scene.clear_external_forces(b.wild);
+  Transform X;
+  X.translation = Vec3(real(0.9) * std::numeric_limits<real>::max(), 0, 2);
+  b.scene.set_root_transform(b.wild, X);
+  b.scene.set_velocity(b.wild, Vec3(real(0.5) * std::numeric_limits<real>::max(), 0, 0), Vec3::Zero());
+  b.scene.step(real(1));
+  ASSERT_EQ(b.scene.last_numerical_faults().size(), 1u);
+  EXPECT_EQ(b.scene.last_numerical_faults()[0].quantity, "positions");
+  // the queries read the clamped state: its last position, at rest
+  EXPECT_EQ(b.scene.root_transform(b.wild).translation, X.translation);
+  EXPECT_EQ(b.scene.velocity(b.wild), Vec6::Zero());
+  EXPECT_LT(b.scene.root_transform(b.calm).translation.z(), 2);
 }
 
 }  // namespace
