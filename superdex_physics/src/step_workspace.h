@@ -41,7 +41,7 @@ struct StepWorkspace {
   std::vector<IslandSolution> solutions;               // per island
   std::vector<VecX> q_next, v_next, efforts_next;      // per articulation: the next state
   std::vector<ArticulationKinematics> kin_next;        // per articulation: the next state's kinematics
-  std::vector<SoftContactRecordKey> soft_record_keys;      // the soft contact results' order
+  std::vector<SoftContactRecordKey> soft_record_keys;  // the soft contact results' order
   std::vector<std::pair<int, int>> record_places;      // per contact: its island and index there
 };
 
