@@ -108,10 +108,8 @@ void export_scene(nb::module_& m) {
       .def_rw("near_rigid_beta", &SolverParams::near_rigid_beta)
       .def_rw("friction_sigma", &SolverParams::friction_sigma)
       .def_rw("contact_margin", &SolverParams::contact_margin)
-      .def_rw("max_friction_passes", &SolverParams::max_friction_passes)
+      .def_rw("drift_correction_iterations", &SolverParams::drift_correction_iterations)
       .def_rw("defer_inactive_joint_limits", &SolverParams::defer_inactive_joint_limits)
-      .def_rw("friction_pass_tolerance", &SolverParams::friction_pass_tolerance)
-      .def_rw("friction_pass_min_slip", &SolverParams::friction_pass_min_slip)
       .def_rw("soft_hessian_reuse_strain", &SolverParams::soft_hessian_reuse_strain)
       .def_rw("dense_island_max_dofs", &SolverParams::dense_island_max_dofs);
 
@@ -125,7 +123,6 @@ void export_scene(nb::module_& m) {
       .def_ro("num_contacts", &SolverStats::num_contacts)
       .def_ro("soft_element_hessians", &SolverStats::soft_element_hessians)
       .def_ro("soft_factorizations", &SolverStats::soft_factorizations)
-      .def_ro("friction_passes", &SolverStats::friction_passes)
       .def_ro("time_kinematics", &SolverStats::time_kinematics)
       .def_ro("time_collision", &SolverStats::time_collision)
       .def_ro("time_solve", &SolverStats::time_solve)

@@ -202,7 +202,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     rows.blocks.push_back(blk);
   }
 
-  // small islands: dense algebra; large ones: sparse, on one pattern for every pass
+  // small islands: dense algebra; large ones: sparse, on a pattern kept from step to step
   const bool sparse = island_is_sparse(s, island, params);
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
@@ -238,14 +238,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     W_diag += compliance_diagonal(terms[body].A_llt, Jct);
   };
   std::vector<Mat3>& frames = w.frames;
-  std::vector<real>& contact_mu = w.contact_mu;
   frames.clear();
-  contact_mu.clear();
   // the frictional block of a contact with Delassus diagonal W_diag and free-motion normal velocity
   auto push_contact_block = [&](const ContactMaterial& material, real phi, const Vec3& W_diag, real vn_free) {
     ConstraintBlock blk = frictional_contact_block(material, phi, W_diag.sum() / 3, W_diag[2], vn_free, dt, params);
     blk.row = row;
-    contact_mu.push_back(material.friction);
     rows.blocks.push_back(blk);
     row += 3;
   };
@@ -364,59 +361,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     if (sparse_cache && *sparse_cache && (*sparse_cache)->reuse(A_sparse, rows)) system = *sparse_cache;
   }
   // every path leaves its result in w.newton.result
-  auto solve = [&](const SolverParams& p) -> ConvexResult& {
-    if (!soft.empty()) return solve_convex_with_soft(A, r, rows, soft, v_start, p, w.newton);
-    return sparse ? solve_convex(A_sparse, r, rows, p, v_start, system, w.newton)
-                  : solve_convex(A, r, rows, p, v_start, w.newton);
-  };
-  ConvexResult& sol = solve(params);
-  // the cone model lets sliding contacts drift apart at mu |v_t|; refine with the normal row
-  // apart and friction bounded by mu gamma_n of the previous solve, to a fixed point
-  const int first_contact = static_cast<int>(rows.blocks.size()) - num_contacts;
-  // when no contact slides (every impulse strictly inside its cone) the refined problem has the
-  // same solution, so the passes are skipped; so they are when the contacts at their bound slip
-  // too slowly for the cone model's separation (mu times the slip speed) to matter
-  auto row_velocity = [&](int r) {
-    real sum = 0;
-    for (SparseRowMat::InnerIterator it(rows.J, r); it; ++it) sum += it.value() * sol.v[it.index()];
-    return sum;
-  };
-  bool sliding = false;
-  for (size_t k = first_contact; k < rows.blocks.size() && !sliding; ++k) {
-    const int r0 = rows.blocks[k].row;
-    const real* g = sol.gamma.data() + r0;
-    sliding = g[2] > 0 && std::hypot(g[0], g[1]) >= real(0.999) * rows.blocks[k].bound * g[2] &&
-              std::hypot(row_velocity(r0), row_velocity(r0 + 1)) > params.friction_pass_min_slip;
-  }
-  int passes = 0;
-  // passes before the last only move the bounds towards their fixed point: they are solved to
-  // a looser tolerance (100 times: 1e-3 of the scale in float), and the last pass (on settled
-  // bounds, or at the pass limit) to the full one
-  SolverParams loose = params;
-  loose.relative_tolerance *= 100;
-  for (int pass = 0; pass < params.max_friction_passes && sliding; ++pass) {
-    real change = 0, scale = 0;
-    for (size_t k = first_contact; k < rows.blocks.size(); ++k) {
-      ConstraintBlock& blk = rows.blocks[k];
-      const real mu = blk.kind == BlockKind::FrictionalContact ? blk.bound : contact_mu[k - first_contact];
-      const real bound = mu * sol.gamma[blk.row + 2];
-      change = std::max(change, std::abs(bound - (blk.kind == BlockKind::ContactFixedFriction ? blk.bound : real(-1))));
-      scale = std::max(scale, bound);
-      blk.kind = BlockKind::ContactFixedFriction;
-      blk.bound = bound;
-    }
-    const bool settled = pass > 0 && change <= params.friction_pass_tolerance * scale;
-    const bool final = settled || pass + 1 == params.max_friction_passes;
-    const int previous = sol.iterations;
-    v_start = sol.v;  // each pass starts from the last solution (a nearby problem)
-    solve(final ? params : loose);  // into sol
-    sol.iterations += previous;
-    ++passes;
-    if (settled) break;
-  }
+  ConvexResult& sol = !soft.empty() ? solve_convex_with_soft(A, r, rows, soft, v_start, params, w.newton)
+                      : sparse      ? solve_convex(A_sparse, r, rows, params, v_start, system, w.newton)
+                                    : solve_convex(A, r, rows, params, v_start, w.newton);
   if (sparse_cache) *sparse_cache = system;
   out.iterations = sol.iterations;
-  out.friction_passes = passes;
   out.residual = sol.residual;
   out.converged = sol.converged;
   out.active_rows = 0;
@@ -514,10 +463,9 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
     if (!rows && closing == 0) break;
     all_rows = all_rows || rows;
     if (round == kLastRound) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
-    const int iterations = out.iterations, passes = out.friction_passes;
+    const int iterations = out.iterations;
     solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, all_rows, admitted, w, sparse_cache, out);
     out.iterations += iterations;
-    out.friction_passes += passes;
     if (round == kLastRound) break;
   }
   out.ticks = ticks_now() - t0;

@@ -19,7 +19,6 @@ struct IslandSolution {
   std::vector<SoftState> soft_reduced;  // next states of reduced soft bodies, per island soft body (empty for full ones)
   std::vector<Vec3> soft_contact_force;  // per island soft contact: force on the node (N), world
   int iterations = 0;
-  int friction_passes = 0;          // friction refinement re-solves
   real residual = 0;
   bool converged = true;
   int active_rows = 0;              // joint rows with a non-zero impulse
@@ -60,7 +59,6 @@ struct IslandWorkspace {
   MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
   MatX Jct;  // an articulation's side of a contact, transposed (DOFs x 3; L^-1 Jc^T after compliance_diagonal)
   std::vector<Mat3> frames;
-  std::vector<real> contact_mu;
   NewtonScratch newton;
 };
 

@@ -24,6 +24,16 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 // The loop's vectors are w's (newton_solver.h), and so is its result, w.result.
+//
+// Sliding drift: in the cone model a contact slipping at |v_t| beyond its regularisation
+// (R_t |gamma_t|) separates at mu times that speed. While params.drift_correction_iterations
+// last, each iteration after the first lowers every frictional contact's normal target by
+// mu (|v_t| - R_t mu gamma_n) at the current iterate (gamma_n of the last one; the first has
+// none, and a warm start is often converged already), so that at the solution a sliding
+// contact keeps its normal target, with its friction on the cone (mu gamma_n): Coulomb's law
+// without the drift. Sticking contacts (|v_t| = R_t |gamma_t| <= R_t mu gamma_n) get none. The
+// corrections stop once the residual is within 100 times the tolerance (a fixed point to that
+// accuracy) or when the iterations run out; the problem is then convex and Newton converges.
 template <class Algebra>
 ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, const VecX& v_start,
                      NewtonScratch& w) {
@@ -50,10 +60,26 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
   std::vector<Eigen::Matrix<real, 3, 3>>& G = w.G;
   G.resize(rows.blocks.size());
 
+  // the blocks as this solve sees them: contacts' normal targets with their drift corrections
+  std::vector<ConstraintBlock>& blocks = w.blocks;
+  blocks = rows.blocks;
+  bool correcting = params.drift_correction_iterations > 0 &&
+                    std::any_of(blocks.begin(), blocks.end(), [](const ConstraintBlock& b) { return b.kind == BlockKind::FrictionalContact; });
   // impulses and Hessian blocks at the current constraint velocities
   auto respond = [&](const VecX& velocities, VecX& gamma) {
-    for (size_t k = 0; k < rows.blocks.size(); ++k)
-      block_response(rows.blocks[k], velocities.data() + rows.blocks[k].row, gamma.data() + rows.blocks[k].row, G[k].data());
+    for (size_t k = 0; k < blocks.size(); ++k)
+      block_response(blocks[k], velocities.data() + blocks[k].row, gamma.data() + blocks[k].row, G[k].data());
+  };
+  // lowers each contact's normal target by its drift at constraint velocities vc (impulses of
+  // the last iterate in out.gamma)
+  auto correct_drift = [&]() {
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      ConstraintBlock& b = blocks[k];
+      if (b.kind != BlockKind::FrictionalContact) continue;
+      const int r0 = b.row;
+      const real slip = std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2];
+      b.vhat = rows.blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
+    }
   };
 
   real best = std::numeric_limits<real>::infinity();
@@ -64,6 +90,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
       alg.J_mul(out.v, vc);
+      if (correcting && it > 0) correct_drift();
       respond(vc, out.gamma);
       alg.Jt_mul(out.gamma, jc);
     } else {
@@ -83,7 +110,10 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     }
     out.residual = (D.asDiagonal() * grad).norm();
     out.iterations = it;
-    if (out.residual <= params.absolute_tolerance + params.relative_tolerance * scale) {
+    // the corrections stop near their fixed point, or when their iterations run out
+    const real tolerance = params.absolute_tolerance + params.relative_tolerance * scale;
+    if (correcting && (it + 1 >= params.drift_correction_iterations || out.residual <= 100 * tolerance)) correcting = false;
+    if (out.residual <= tolerance) {
       out.converged = true;
       break;
     }
@@ -126,7 +156,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
       // block k's terms at the trial point (its phi'' term d_k^T G_k d_k, for d_k its rows of
       // dvc); whether its impulse is non-zero there
       auto add_block = [&](size_t k) {
-        const ConstraintBlock& b = rows.blocks[k];
+        const ConstraintBlock& b = blocks[k];
         const int r0 = b.row, s = b.size();
         real vc_k[3], gamma_k[3];
         for (int i = 0; i < s; ++i) vc_k[i] = vc[r0 + i] + alpha * dvc[r0 + i];
@@ -143,8 +173,8 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
       };
       if (m > 0 && all_blocks) {
         live.clear();
-        for (size_t k = 0; k < rows.blocks.size(); ++k) {
-          const bool acts_at_v = !out.gamma.segment(rows.blocks[k].row, rows.blocks[k].size()).isZero(0);
+        for (size_t k = 0; k < blocks.size(); ++k) {
+          const bool acts_at_v = !out.gamma.segment(blocks[k].row, blocks[k].size()).isZero(0);
           if (add_block(k) || acts_at_v) live.push_back(static_cast<int>(k));
         }
       } else if (m > 0) {

@@ -28,25 +28,6 @@ void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real*
       G[0] = std::abs(y) < b.bound ? 1 / b.R : 0;
       return;
     }
-    case BlockKind::ContactFixedFriction: {
-      Eigen::Map<Eigen::Matrix<real, 3, 3>> Gm(G);
-      Gm.setZero();
-      const real yn = (b.vhat - vc[2]) / b.Rn;
-      gamma[2] = yn > 0 ? yn : 0;
-      Gm(2, 2) = yn > 0 ? 1 / b.Rn : 0;
-      const real yt0 = -vc[0] / b.R, yt1 = -vc[1] / b.R;
-      const real yr = std::sqrt(yt0 * yt0 + yt1 * yt1);
-      if (yr <= b.bound) {
-        gamma[0] = yt0, gamma[1] = yt1;
-        Gm(0, 0) = Gm(1, 1) = 1 / b.R;
-      } else {
-        // projection onto the disk of radius `bound` and its derivative (b / |y|)(I - t t^T)
-        const Eigen::Matrix<real, 2, 1> t(yt0 / yr, yt1 / yr);
-        gamma[0] = b.bound * t[0], gamma[1] = b.bound * t[1];
-        Gm.topLeftCorner<2, 2>() = (b.bound / yr / b.R) * (Eigen::Matrix<real, 2, 2>::Identity() - t * t.transpose());
-      }
-      return;
-    }
     case BlockKind::FrictionalContact: {
       const real Rt = b.R, Rn = b.Rn, mu = b.bound;
       const real yt0 = -vc[0] / Rt, yt1 = -vc[1] / Rt, yn = (b.vhat - vc[2]) / Rn;

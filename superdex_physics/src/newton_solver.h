@@ -9,7 +9,9 @@
 // negative gradient is the impulse gamma_b the block applies (Castro et al. 2022, SAP).
 // Stationarity is the momentum balance A v = r + J^T gamma. Newton's method with an exact
 // line search converges in a few iterations, and the reported impulses are exactly those
-// applied.
+// applied. With SolverParams::drift_correction_iterations, the first iterations also correct
+// contacts' normal targets for the cone model's drift (newton_loop.h): the solution is that of
+// the problem with the corrected targets.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Sparse>
@@ -31,10 +33,6 @@ enum class BlockKind : unsigned char {
   // 3 rows (t1, t2, n): gamma = projection of y = -R^-1 (vc - vhat) onto the friction cone
   // |gamma_t| <= mu gamma_n in the R-norm, R = diag(Rt, Rt, Rn), vhat = (0, 0, vhat_n)
   FrictionalContact,
-  // 3 rows (t1, t2, n): a unilateral normal row, and friction on the disk |gamma_t| <= bound with
-  // a fixed impulse bound (mu gamma_n of a previous solve); no normal-tangential coupling, so a
-  // sliding contact does not drift apart as in the cone model
-  ContactFixedFriction,
 };
 
 struct ConstraintBlock {
@@ -43,9 +41,9 @@ struct ConstraintBlock {
   real R = 0;       // regularisation (velocity per impulse); tangential for contacts
   real Rn = 0;      // normal regularisation of contacts
   real vhat = 0;    // target velocity: unilateral and bounded rows, contact normals
-  real bound = 0;   // impulse bound of bounded rows and fixed-friction contacts; mu of cone contacts
+  real bound = 0;   // impulse bound of bounded rows; mu of contacts
 
-  int size() const { return kind == BlockKind::FrictionalContact || kind == BlockKind::ContactFixedFriction ? 3 : 1; }
+  int size() const { return kind == BlockKind::FrictionalContact ? 3 : 1; }
 };
 
 using SparseMat = Eigen::SparseMatrix<real>;                     // column-major
@@ -74,6 +72,7 @@ struct NewtonScratch {
   VecX D, vc, grad, dv, dvc, jc, smooth_grad, Av_r, Adv, v_alpha;
   std::vector<Eigen::Matrix<real, 3, 3>> G;
   std::vector<int> live;  // the line search's blocks whose impulse may be non-zero on its segment
+  std::vector<ConstraintBlock> blocks;  // the solve's blocks, with contacts' drift corrections (newton_loop.h)
   MatXR J, J_active, GJ;  // dense algebra: J as a dense matrix, its active rows, G J on them
   MatX H;                 // and the Hessian
   Eigen::LLT<MatX> llt;

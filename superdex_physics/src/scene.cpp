@@ -42,9 +42,7 @@ void Scene::set_solver_params(const SolverParams& p) {
   if (!(p.near_rigid_beta > 0)) throw Error("set_solver_params: near_rigid_beta must be > 0");
   if (!(p.friction_sigma > 0)) throw Error("set_solver_params: friction_sigma must be > 0");
   if (!(p.contact_margin >= 0) || !std::isfinite(p.contact_margin)) throw Error("set_solver_params: contact_margin must be >= 0");
-  if (p.max_friction_passes < 0) throw Error("set_solver_params: max_friction_passes must be >= 0");
-  if (!(p.friction_pass_tolerance >= 0)) throw Error("set_solver_params: friction_pass_tolerance must be >= 0");
-  if (!(p.friction_pass_min_slip >= 0)) throw Error("set_solver_params: friction_pass_min_slip must be >= 0");
+  if (p.drift_correction_iterations < 0) throw Error("set_solver_params: drift_correction_iterations must be >= 0");
   if (!(p.soft_hessian_reuse_strain >= 0) || !std::isfinite(p.soft_hessian_reuse_strain))
     throw Error("set_solver_params: soft_hessian_reuse_strain must be finite and >= 0");
   if (p.dense_island_max_dofs < 0) throw Error("set_solver_params: dense_island_max_dofs must be >= 0");
@@ -540,7 +538,6 @@ void Scene::step_dynamics(real dt) {
   for (const IslandSolution& sol : solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;
-    stats.friction_passes += sol.friction_passes;
     stats.residual = std::max(stats.residual, sol.residual);
     stats.converged = stats.converged && sol.converged;
     stats.num_constraints += sol.active_rows;

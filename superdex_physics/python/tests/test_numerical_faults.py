@@ -92,7 +92,6 @@ def test_unconverged_solve_raises_or_warns(scene):
     box.set_velocity([1.0, 0.0, -0.5], [0.0, 0.0, 2.0])
     params = scene.get_solver_params()
     params.max_newton_iterations = 1
-    params.max_friction_passes = 0
     scene.set_solver_params(params)
     before = scene.capture_state_to_bytes()
     with pytest.raises(sdp.Error, match=r"actor 'box' .*the solver did not converge \(scaled residual .* after 1 Newton iterations\)"):

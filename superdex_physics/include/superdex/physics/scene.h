@@ -67,21 +67,19 @@ struct SolverParams {
   real friction_sigma = real(1e-3);
   /// Pairs of shapes closer than this (m) produce contact candidates (speculative contact).
   real contact_margin = real(0.01);
-  /// Friction refinement: after the convex cone solve, up to this many re-solves with the
-  /// friction bound fixed at mu times the previous normal impulse (removes the cone model's
-  /// separation of sliding contacts); 0 keeps the pure cone model.
-  int max_friction_passes = 4;
+  /// Coulomb friction without the cone model's drift: in the convex cone model a contact that
+  /// slides at speed s (m/s, beyond its friction regularisation) moves apart at mu s. During up
+  /// to this many Newton iterations of a solve, each contact's normal target velocity is lowered
+  /// by mu s at the current iterate, to a fixed point (within 100 times the solve's tolerance),
+  /// so that a sliding contact keeps its normal target while its friction stays mu times its
+  /// normal impulse; the remaining iterations converge on the corrected problem. 0 keeps the
+  /// pure cone model.
+  int drift_correction_iterations = 20;
   /// Islands with more DOFs than this are solved with (block-)sparse linear algebra; up to it,
   /// dense. Above two free bodies (12 DOFs) the sparse path costs less per Newton iteration: on
   /// piles of 18 boxes (islands of 3 to 18 boxes) a step took 25 % less than with dense islands
   /// up to 96 DOFs.
   int dense_island_max_dofs = 12;
-  /// Stop refining when the friction bounds change by less than this fraction.
-  real friction_pass_tolerance = real(1e-3);
-  /// Friction refinement runs only when a contact at its friction bound slips faster than this
-  /// (m/s): the cone model separates a slipping contact at mu times its slip speed, which below
-  /// it stays under a micrometre per step (a resting pile's creep).
-  real friction_pass_min_slip = real(1e-4);
   /// Leave out of the solve the joint-limit rows that the free motion keeps well inside their
   /// limits, and check them on its result: when one would act, the island is solved again with
   /// them. The result is the same (a left-out row contributes nothing where it is inactive);
@@ -109,8 +107,6 @@ struct SolverStats {
   /// of a solve is solved by conjugate gradients preconditioned by the last factorization, and
   /// factors its matrix only when they do not converge in a few iterations.
   int soft_factorizations = 0;
-  /// Friction refinement re-solves (see SolverParams::max_friction_passes), summed over islands.
-  int friction_passes = 0;
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
   double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves
