@@ -407,7 +407,25 @@ this run's.
   the factor's diagonal blocks updated in their lower triangle only (the full unrolled 6 x 6
   update vectorizes better: 136 against 140 us for 50 blocks, each coupled to 3 random others). The
   settled pile's islands (about 8 boxes each) now take the block-sparse path (scene 7 below);
-  this scene's time is the same either way (1.08 to 1.13 s, measured alternately).
+  this scene's time is the same either way (1.08 to 1.13 s, measured alternately). Found next
+  (a trace of each Newton iteration in landing step 60: step length, contacts changing between
+  sticking, sliding and apart): the first solve took 23 iterations and the four passes 10, 7, 3
+  and 2, each pass starting with about 30 contacts changing state, because a sliding contact
+  whose normal impulse the cone model had kept while it drifted apart loses it in the fixed-bound
+  problem. Reusing the last factorization for each pass's first direction saved 2 % of the
+  iterations, and passes that corrected the cone model's normal targets instead of fixing the
+  bounds still took 12 iterations each; not kept. Fixed: the drift correction moved into the
+  Newton iterations themselves (SolverParams.drift_correction_iterations): from the second
+  iteration on, each contact's normal target is lowered by mu times its slip beyond the friction
+  regularization at the current iterate, until the residual is within 100 times the tolerance;
+  the passes are gone. A sliding contact then keeps its own normal law with friction mu gamma_n
+  within the one solve (a pushed box and two boxes sliding on each other keep contact exactly, in
+  the tests). The timed run 1.09-1.12 s to 0.74-0.80 s (the landing's 100 steps 0.61-0.65 to
+  0.31-0.35 s), with the same pile heights. What remains: the landing's first solve (about 20
+  damped Newton iterations, a quarter of it the block factorization and a sixth the contacts'
+  responses; the friction regularization, 1e-3 of w, makes any change of a contact's slip above
+  about 2e-5 m/s cross a kink) and the settled step (about 0.47 ms against MuJoCo's 0.41), of
+  which the contacts' Jacobian rows, their Delassus diagonals and J's assembly are a third.
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
