@@ -52,10 +52,10 @@ WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS) {
 real shape_signed_distance(const ShapeGeometry& shape, const Vec3& p, Vec3* grad) {
   return std::visit(
       Overloaded{[&](const PlaneShape& s) {
-                   // {x : normal . x <= distance} for a normal of any length
-                   const Vec3 n = s.normal.normalized();
-                   if (grad) *grad = n;
-                   return n.dot(p) - s.distance / s.normal.norm();
+                   // the half-space in its own frame
+                   const WorldPlane plane = world_plane(s, SpatialTransform{});
+                   if (grad) *grad = plane.n;
+                   return plane.n.dot(p) - plane.d;
                  },
                  [&](const SphereShape& s) {
                    const Vec3 d = p - s.center;
