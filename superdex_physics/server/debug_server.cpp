@@ -6,9 +6,9 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <atomic>
 #include <chrono>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -130,57 +130,59 @@ void ServerCore::update_backlog() {
 }  // namespace debug
 
 struct DebugServer::Impl {
-  std::unique_ptr<ServerCore> core;
+  // The running server, or none. Calls from the stepping thread hold their own reference for
+  // as long as they use it, so stop() never frees a core that a step is still inside.
+  std::shared_ptr<ServerCore> core;
+  mutable std::mutex core_mutex;  // guards `core` itself (not what it points to)
+  std::atomic<bool> live{false};  // whether `core` is set: a step with no server takes no lock
+  std::mutex lifecycle_mutex;     // start and stop, one at a time
+  // the server thread's objects (touched by start/stop and the server thread only)
   std::unique_ptr<tcp::acceptor> acceptor;
   std::unique_ptr<asio::steady_timer> status_timer;
   std::thread thread;
-  std::string ui_dir = SUPERDEX_DEBUGGER_UI_DIR;
-  CoordinateAxes axes = CoordinateAxes::FLU;
-  // stepping thread's side
-  Clock::time_point last_frame{};
-  double frame_cost = 0;  // running mean of the seconds one frame costs the stepping thread
-  // the generation (ServerCore::generation) the stepping thread's descriptions were sent for
-  std::atomic<std::uint64_t> described_generation{0};
-  struct Anchor {
-    Clock::time_point wall;
-    double sim = 0;
-    std::uint64_t epoch = 0;
-  };
-  std::map<std::uint64_t, Anchor> anchors;
   int quiet_ticks = 0;  // status ticks without progress (server thread)
+  std::string ui_dir = SUPERDEX_DEBUGGER_UI_DIR;
+  std::atomic<CoordinateAxes> axes{CoordinateAxes::FLU};
 
-  void accept() {
-    acceptor->async_accept([this](boost::system::error_code ec, tcp::socket socket) {
+  std::shared_ptr<ServerCore> current() const {
+    if (!live.load(std::memory_order_acquire)) return nullptr;
+    std::lock_guard lock(core_mutex);
+    return core;
+  }
+
+  void accept(ServerCore& c) {
+    acceptor->async_accept([this, &c](boost::system::error_code ec, tcp::socket socket) {
       if (ec) return;  // closed by stop()
-      std::make_shared<debug::HttpSession>(std::move(socket), *core)->run();
-      accept();
+      std::make_shared<debug::HttpSession>(std::move(socket), c)->run();
+      accept(c);
     });
   }
 
   // status at least once a second (and when time moved), on the server thread
-  void tick_status(double last_t) {
+  void tick_status(ServerCore& c, double last_t) {
     status_timer->expires_after(std::chrono::milliseconds(250));
-    status_timer->async_wait([this, last_t](boost::system::error_code ec) {
+    status_timer->async_wait([this, &c, last_t](boost::system::error_code ec) {
       if (ec) return;
-      const double t = core->latest_time.load();
-      if (core->connections > 0 && !core->replay && (t != last_t || ++quiet_ticks >= 4)) {
+      const double t = c.latest_time.load();
+      if (c.connections > 0 && !c.replay && (t != last_t || ++quiet_ticks >= 4)) {
         quiet_ticks = 0;
-        core->send_all(std::make_shared<const std::string>(core->status_message()));
+        c.send_all(std::make_shared<const std::string>(c.status_message()));
       }
-      tick_status(t);
+      tick_status(c, t);
     });
   }
 
-  int launch(int port, std::unique_ptr<ServerCore> new_core) {
-    if (core) throw Error("debug server: already started on port " + std::to_string(core->port));
+  int launch(int port, std::shared_ptr<ServerCore> c) {
+    std::lock_guard life(lifecycle_mutex);
+    if (const auto running = current()) throw Error("debug server: already started on port " + std::to_string(running->port));
     if (port < 0 || port > 65535) throw Error("debug server: port must be in 0..65535, got " + std::to_string(port));
     if (!is_existing_file(std::filesystem::path(ui_dir) / "index.html"))
       throw Error("debug server: the debugger UI is not built (no index.html in '" + ui_dir +
                   "'); build it with `npm run build` in superdex_debugger/ or set the UI directory");
-    new_core->ui_dir = ui_dir;
-    new_core->axes = axes;
-    new_core->token = debug::random_token();
-    auto new_acceptor = std::make_unique<tcp::acceptor>(new_core->io);
+    c->ui_dir = ui_dir;
+    c->axes = axes.load();
+    c->token = debug::random_token();
+    auto new_acceptor = std::make_unique<tcp::acceptor>(c->io);
     boost::system::error_code ec;
     const tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port));
     new_acceptor->open(endpoint.protocol(), ec);
@@ -188,44 +190,55 @@ struct DebugServer::Impl {
     if (!ec) new_acceptor->bind(endpoint, ec);
     if (!ec) new_acceptor->listen(asio::socket_base::max_listen_connections, ec);
     if (ec) throw Error("debug server: cannot listen on 127.0.0.1:" + std::to_string(port) + ": " + ec.message());
-    new_core->port = new_acceptor->local_endpoint().port();
-    new_core->running = true;
-    core = std::move(new_core);
+    c->port = new_acceptor->local_endpoint().port();
+    c->running = true;
     acceptor = std::move(new_acceptor);
-    status_timer = std::make_unique<asio::steady_timer>(core->io);
-    anchors.clear();
-    described_generation = 0;
-    accept();
-    tick_status(-1);
-    thread = std::thread([this] { core->io.run(); });
-    return core->port;
+    status_timer = std::make_unique<asio::steady_timer>(c->io);
+    accept(*c);
+    tick_status(*c, -1);
+    thread = std::thread([&io = c->io] { io.run(); });
+    const int bound = c->port;
+    {
+      std::lock_guard lock(core_mutex);
+      core = std::move(c);
+    }
+    live.store(true, std::memory_order_release);
+    return bound;
   }
 
   void shutdown() {
-    if (!core) return;
+    std::lock_guard life(lifecycle_mutex);
+    // from here on the stepping thread sees no server; a step inside a call keeps its reference
+    std::shared_ptr<ServerCore> c;
     {
-      std::lock_guard lock(core->control_mutex);
-      core->running = false;
-      core->play = DebugPlayState{};
+      std::lock_guard lock(core_mutex);
+      c = std::move(core);
+      live.store(false, std::memory_order_release);
     }
-    core->control_changed.notify_all();
-    asio::post(core->io, [this] {
+    if (!c) return;
+    {
+      std::lock_guard lock(c->control_mutex);
+      c->running = false;
+      c->play = DebugPlayState{};
+    }
+    c->control_changed.notify_all();
+    asio::post(c->io, [this, c = c.get()] {
       boost::system::error_code ignored;
       acceptor->close(ignored);
       status_timer->cancel();
-      for (auto s : std::set(core->sessions)) s->close();
+      for (auto s : std::set(c->sessions)) s->close();
     });
-    // pages get a moment to receive the close; then the loop is stopped
-    auto guard = std::thread([this] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      core->io.stop();
+    // pages get up to 200 ms to complete the close; then the loop is stopped
+    auto guard = std::thread([&c = *c] {
+      const auto deadline = Clock::now() + std::chrono::milliseconds(200);
+      while (c.connections > 0 && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      c.io.stop();
     });
     thread.join();
     guard.join();
-    core->sessions.clear();
+    c->sessions.clear();
     status_timer.reset();
     acceptor.reset();
-    core.reset();
   }
 };
 
@@ -233,35 +246,41 @@ DebugServer::DebugServer() : impl_(std::make_unique<Impl>()) {}
 
 DebugServer::~DebugServer() { impl_->shutdown(); }
 
-int DebugServer::start(int port) { return impl_->launch(port, std::make_unique<ServerCore>()); }
+int DebugServer::start(int port) { return impl_->launch(port, std::make_shared<ServerCore>()); }
 
 int DebugServer::start_replay(const std::string& path, int port) {
   debug::RecordingLines recording = debug::read_recording(path);
-  auto lines = std::make_shared<std::vector<std::string>>(std::move(recording.lines));
-  const std::size_t frames = recording.frames;
-  auto core = std::make_unique<ServerCore>();
+  auto core = std::make_shared<ServerCore>();
   core->replay = true;
   core->replay_source = std::filesystem::path(path).filename().string();
-  core->replay_lines = std::move(lines);
-  core->replay_frames = frames;
+  core->replay_lines = std::make_shared<std::vector<std::string>>(std::move(recording.lines));
+  core->replay_frames = recording.frames;
   return impl_->launch(port, std::move(core));
 }
 
 void DebugServer::stop() { impl_->shutdown(); }
 
-bool DebugServer::has_started() const { return impl_->core != nullptr; }
+bool DebugServer::has_started() const { return impl_->current() != nullptr; }
 
-bool DebugServer::has_connection() const { return impl_->core && impl_->core->connections > 0; }
+bool DebugServer::has_connection() const {
+  const auto core = impl_->current();
+  return core && core->connections > 0;
+}
 
-int DebugServer::port() const { return impl_->core ? impl_->core->port : 0; }
+int DebugServer::port() const {
+  const auto core = impl_->current();
+  return core ? core->port : 0;
+}
 
 std::string DebugServer::url() const {
-  if (!impl_->core) return {};
-  return "http://127.0.0.1:" + std::to_string(impl_->core->port) + "/" + impl_->core->token + "/";
+  const auto core = impl_->current();
+  if (!core) return {};
+  return "http://127.0.0.1:" + std::to_string(core->port) + "/" + core->token + "/";
 }
 
 void DebugServer::set_ui_directory(const std::string& path) {
-  if (impl_->core) throw Error("debug server: set the UI directory before start()");
+  std::lock_guard life(impl_->lifecycle_mutex);
+  if (impl_->current()) throw Error("debug server: set the UI directory before start()");
   impl_->ui_dir = path;
 }
 
@@ -269,28 +288,29 @@ std::string DebugServer::ui_directory() const { return impl_->ui_dir; }
 
 void DebugServer::set_coordinate_axes(CoordinateAxes axes) {
   impl_->axes = axes;
-  if (impl_->core) impl_->core->axes = axes;
+  if (const auto core = impl_->current()) core->axes = axes;
 }
 
 CoordinateAxes DebugServer::coordinate_axes() const { return impl_->axes; }
 
 DebugPlayState DebugServer::play_state() const {
-  if (!impl_->core) return {};
-  std::lock_guard lock(impl_->core->control_mutex);
-  return impl_->core->play;
+  const auto core = impl_->current();
+  if (!core) return {};
+  std::lock_guard lock(core->control_mutex);
+  return core->play;
 }
 
 bool DebugServer::wait_for_connection(double timeout_seconds) const {
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_seconds));
-  while (impl_->core && !(impl_->core->connections > 0)) {
-    if (Clock::now() >= deadline) return false;
+  while (!has_connection()) {
+    if (!has_started() || Clock::now() >= deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return has_connection();
+  return true;
 }
 
 void DebugServer::gate_step(std::uint64_t& restores_seen, const std::function<void()>& restore) {
-  ServerCore* core = impl_->core.get();
+  const auto core = impl_->current();
   if (!core || core->replay) return;
   std::unique_lock lock(core->control_mutex);
   for (;;) {
@@ -311,11 +331,11 @@ void DebugServer::gate_step(std::uint64_t& restores_seen, const std::function<vo
 }
 
 void DebugServer::pace(std::uint64_t scene_key, double t) {
-  ServerCore* core = impl_->core.get();
+  const auto core = impl_->current();
   if (!core || core->replay || core->connections == 0) return;
   std::unique_lock lock(core->control_mutex);
   if (core->play.paused || !core->play.real_time) return;
-  auto& anchor = impl_->anchors[scene_key];
+  auto& anchor = core->anchors[scene_key];
   const auto now = Clock::now();
   const auto due = anchor.wall + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(t - anchor.sim));
   // a new play state, or a simulation slower than the wall clock: start pacing from here
@@ -328,40 +348,42 @@ void DebugServer::pace(std::uint64_t scene_key, double t) {
 }
 
 bool DebugServer::wants_frame() const {
-  ServerCore* core = impl_->core.get();
+  const auto core = impl_->current();
   if (!core || core->replay || core->connections == 0) return false;
-  if (core->generation != impl_->described_generation) return true;
-  const auto since = std::chrono::duration<double>(Clock::now() - impl_->last_frame).count();
+  if (core->generation != core->described_generation) return true;
+  const auto since = std::chrono::duration<double>(Clock::now() - core->last_frame).count();
   // at most 60 frames per second, and frames may cost the simulation at most 3 % of its time
-  const double spacing = std::max(1.0 / 60, impl_->frame_cost / 0.03);
+  const double spacing = std::max(1.0 / 60, core->frame_cost / 0.03);
   // a page that stopped acknowledging still gets a frame now and then
   return since >= spacing && (core->max_backlog < 2 || since >= std::max(0.5, spacing));
 }
 
 bool DebugServer::take_resync() {
-  ServerCore* core = impl_->core.get();
+  const auto core = impl_->current();
   if (!core) return false;
   const std::uint64_t generation = core->generation;
-  return impl_->described_generation.exchange(generation) != generation;
+  return core->described_generation.exchange(generation) != generation;
 }
 
 void DebugServer::broadcast(std::string lines, double build_seconds) {
-  ServerCore* core = impl_->core.get();
+  const auto core = impl_->current();
   if (!core || core->connections == 0) return;
-  impl_->last_frame = Clock::now();
-  impl_->frame_cost = impl_->frame_cost == 0 ? build_seconds : 0.8 * impl_->frame_cost + 0.2 * build_seconds;
+  core->last_frame = Clock::now();
+  core->frame_cost = core->frame_cost == 0 ? build_seconds : 0.8 * core->frame_cost + 0.2 * build_seconds;
   // counted now so that wants_frame() sees the backlog before the server thread does
   ++core->max_backlog;
   auto message = std::make_shared<const std::string>(std::move(lines));
-  asio::post(core->io, [core, message, generation = impl_->described_generation.load()] {
-    core->send_frame_all(message, generation);
+  // run by the server thread, which stop() joins before it lets go of the core
+  asio::post(core->io, [c = core.get(), message, generation = core->described_generation.load()] {
+    c->send_frame_all(message, generation);
   });
 }
 
 void DebugServer::report_progress(double t, std::int64_t step) {
-  if (!impl_->core) return;
-  impl_->core->latest_time = t;
-  impl_->core->latest_step = step;
+  const auto core = impl_->current();
+  if (!core) return;
+  core->latest_time = t;
+  core->latest_step = step;
 }
 
 DebugServer& get_debug_server() {

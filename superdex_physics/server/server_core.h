@@ -3,8 +3,10 @@
 
 #include <atomic>
 #include <boost/asio/io_context.hpp>
+#include <chrono>
 #include <condition_variable>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -22,7 +24,7 @@ struct ServerCore {
   std::string token;
   int port = 0;
   std::filesystem::path ui_dir;
-  CoordinateAxes axes = CoordinateAxes::FLU;
+  std::atomic<CoordinateAxes> axes{CoordinateAxes::FLU};  // set from the user's thread
   // replay mode: the recording's lines, sent to every connection
   bool replay = false;
   std::string replay_source;
@@ -50,6 +52,19 @@ struct ServerCore {
   // progress reported by the stepping thread, shown by the page
   std::atomic<double> latest_time{0};
   std::atomic<std::int64_t> latest_step{0};
+
+  // the stepping thread's side of this server run (debug_server.cpp)
+  std::chrono::steady_clock::time_point last_frame{};
+  double frame_cost = 0;  // running mean of the seconds one frame costs the stepping thread
+  // the generation the stepping thread's descriptions were sent for
+  std::atomic<std::uint64_t> described_generation{0};
+  // where real-time pacing of each scene started: wall clock, simulated time (s), play epoch
+  struct PaceAnchor {
+    std::chrono::steady_clock::time_point wall;
+    double sim = 0;
+    std::uint64_t epoch = 0;
+  };
+  std::map<std::uint64_t, PaceAnchor> anchors;  // by scene key, under control_mutex
 
   /// The `session` message for a new connection.
   std::string session_message() const;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <mutex>
 
 #include "scene_messages.h"
@@ -24,7 +25,8 @@ struct SceneLink {
 struct LinkState {
   std::mutex mutex;
   std::string session_url;  // identifies the server run the states belong to
-  std::map<SceneHandle, SceneLink> scenes;
+  // shared: a step holds its scene's link while another thread may start a new server run
+  std::map<SceneHandle, std::shared_ptr<SceneLink>> scenes;
   StreamState stream;  // what the pages have been told
 };
 
@@ -48,7 +50,7 @@ void debug_before_step(Scene& scene) {
   DebugServer& server = get_debug_server();
   if (!server.has_started()) return;
   LinkState& state = link_state();
-  SceneLink* link;
+  std::shared_ptr<SceneLink> link;
   {
     std::lock_guard lock(state.mutex);
     // a new server run starts from the scenes' states at that time
@@ -57,12 +59,12 @@ void debug_before_step(Scene& scene) {
       state.scenes.clear();
       state.stream = StreamState{};
     }
-    auto [it, added] = state.scenes.try_emplace(scene.handle());
-    link = &it->second;
-    if (added) {
-      link->initial_state = scene.capture_state();
-      link->restores_seen = 0;
+    auto& entry = state.scenes[scene.handle()];
+    if (!entry) {
+      entry = std::make_shared<SceneLink>();
+      entry->initial_state = scene.capture_state();
     }
+    link = entry;
   }
   server.gate_step(link->restores_seen, [&] {
     try {

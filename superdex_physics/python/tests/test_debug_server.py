@@ -8,7 +8,9 @@ WebSocket, against a scene stepping on another thread:
   in real time (simulated time keeps pace with the wall clock), restore returns to the first state;
 - random bytes, malformed and oversized messages leave the simulation stepping and the server
   serving; closing the page ends `has_connection()` and releases a paused simulation;
-- replay sends every line of a recording, then `end` with the number of frames.
+- replay sends every line of a recording, then `end` with the number of frames;
+- stopping the server while a step is inside it (pacing, building or sending a frame, gated)
+  leaves that step to finish safely.
 """
 
 import contextlib
@@ -74,6 +76,16 @@ def token_of(srv):
     return srv.get_url().rstrip("/").rsplit("/", 1)[1]
 
 
+def wait_for(predicate, timeout=10.0):
+    """Polls `predicate` until it holds (True) or `timeout` seconds passed (False)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if predicate():
+            return True
+        time.sleep(0.02)
+    return False
+
+
 class Page:
     """A WebSocket client reading the server's lines on a thread, as the page does."""
 
@@ -102,13 +114,7 @@ class Page:
         with self.lock:
             return [l for l in self.lines if l.get("type") == kind]
 
-    def wait_for(self, predicate, timeout=10.0):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return True
-            time.sleep(0.02)
-        return False
+    wait_for = staticmethod(wait_for)
 
     def control(self, action):
         self.ws.send(json.dumps({"type": "control", "action": action}))
@@ -406,3 +412,30 @@ def test_a_flood_of_connections_leaves_the_server_answering(server, stepping):
     for s in idle:
         s.close()
     assert stepping.error is None
+
+
+def test_stopping_the_server_while_a_step_is_inside_it_is_safe(ui_dir):
+    """The server is started and stopped again and again while a scene steps as fast as it can
+    with a page attached: each stop falls while the step is pacing, building a frame, sending
+    it or waiting at the gate. The step keeps what it uses alive until it leaves (a step that
+    used the server's state after stop freed it crashed the process)."""
+    scene = SteppingScene(dt=0.001)
+    server = sdp.get_debug_server()
+    server.set_ui_directory(str(ui_dir))
+    try:
+        for cycle in range(40):
+            server.start()
+            page = Page(server)
+            assert page.wait_for(lambda: page.of_type("frame"))
+            # in turn: real-time play (pacing), as fast as possible (frames), paused (the gate)
+            page.control(["play", "fast", "pause"][cycle % 3])
+            time.sleep(0.002 * (cycle % 7))
+            server.stop()
+            page.close()
+            assert scene.error is None
+        steps = scene.steps
+        assert wait_for(lambda: scene.steps > steps + 10)
+    finally:
+        server.stop()
+        scene.stop()
+    assert scene.error is None
