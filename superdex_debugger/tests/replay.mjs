@@ -6,8 +6,9 @@
 // of the first scene with the file's `frame` lines of that scene: the count, and links[H] of the
 // frames at indices 0, middle and last (max abs difference). Prints one JSON object as the last
 // line of stdout; exits 0 unless the browser could not run. `renderModelCount` is the page's count
-// of links drawn with their glTF render model (waits up to 5 s for `renderModelsDeclared`, the
-// links of the first scene's actors that have a `renderModel` in the file).
+// of links drawn with their glTF render model (waits for `renderModelsDeclared`, the
+// links of the first scene's actors that have a `renderModel` in the file; as long as the
+// timeout allows: a loaded machine decodes the models slowly).
 import fs from 'node:fs';
 import { settledCanvasStats, isNonBlank, launchBrowser, parseArgs, report, waitFor } from './lib.mjs';
 
@@ -95,12 +96,12 @@ try {
   // Seeking shows the chosen frame.
   const mid = idx[Math.floor(idx.length / 2)] ?? 0;
   await page.evaluate((k) => window.superdex.seek(k), mid);
-  out.seekWorks = Boolean(await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, mid, 3000));
+  out.seekWorks = Boolean(await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, mid, 10000));
 
   out.actorNames = await page.evaluate(() => window.superdex.actorNames());
   // Render models load asynchronously; a model that cannot be loaded is not counted.
   const modelCount = () => (typeof window.superdex.renderModelCount === 'function' ? window.superdex.renderModelCount() : null);
-  if (out.renderModelsDeclared > 0) await waitFor(page, (n) => window.superdex.renderModelCount?.() >= n, out.renderModelsDeclared, 5000);
+  if (out.renderModelsDeclared > 0) await waitFor(page, (n) => window.superdex.renderModelCount?.() >= n, out.renderModelsDeclared, timeoutMs);
   out.renderModelCount = await page.evaluate(modelCount);
   out.canvas = await settledCanvasStats(page);
   out.canvasNonBlank = isNonBlank(out.canvas);
