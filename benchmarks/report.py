@@ -426,6 +426,18 @@ this run's.
   responses; the friction regularization, 1e-3 of w, makes any change of a contact's slip above
   about 2e-5 m/s cross a kink) and the settled step (about 0.47 ms against MuJoCo's 0.41), of
   which the contacts' Jacobian rows, their Delassus diagonals and J's assembly are a third.
+  Measured next (Newton iterations per step, one thread): the costly part of the landing is not
+  the impacts but steps 20 to 90, when the pile is one island of about 425 contacts that still
+  slides and tips, at 20 to 36 iterations per step (2712 iterations in the first 100 steps, 200
+  per 100 settled steps). Without the drift correction those 100 steps take 1696 iterations (a
+  traced step: 23 iterations against 30, the residual falling by about a fifth per damped
+  iteration either way), so the problem itself, not the correction, needs most of them. Tried
+  and not kept: the correction applied from the first iteration at the start velocities (2382
+  landing iterations, but settled steps 200 to 356: contacts at the edge of their cones then
+  start off their fixed point); a slip below which no correction is made (1e-5 to 1e-3 m/s:
+  more iterations in both phases, the threshold being a discontinuity); a start extrapolated
+  from the last two steps' velocities (2699 landing iterations, no gain); the free body's 6 x 6
+  triangular solves in the Delassus diagonals at compile-time size (no change in the timed run).
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
