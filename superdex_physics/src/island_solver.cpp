@@ -332,10 +332,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // same-row entries of a contact with both bodies on one articulation add up
   assemble_row_major(rows.J, m, n, J_entries, w.J_by_row, w.J_row_start);
 
-  // the solve (dense, sparse, or with soft bodies block elimination): the first one starts from
-  // the free motion A^-1 r, or, when bodies touch, from their current velocities: resting and
-  // pressing contacts change little from one step to the next, and the problem is convex, so
-  // any start converges.
+  // the solve (dense, sparse, or with soft bodies block elimination) starts from the free
+  // motion A^-1 r, or, when bodies touch, from their current velocities: resting and pressing
+  // contacts change little from one step to the next, and the problem is convex, so any start
+  // converges.
   if (num_contacts > 0) {
     for (int b : island.bodies) v_start.segment(offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
     // a reduced body: its modes' velocities, and contact nodes that keep their residual
