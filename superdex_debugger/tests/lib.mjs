@@ -49,12 +49,16 @@ export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 /**
  * Statistics of the pixels of the 3D view's own canvas (not the page background behind it):
  * the fraction of drawn (non-transparent) pixels, the standard deviation of their luminance and
- * the number of distinct colours (4 bits per channel). Reads the WebGL canvas through a 2D copy.
+ * the number of distinct colours (4 bits per channel), and whether its WebGL context is lost.
+ * Reads the WebGL canvas through a 2D copy.
  */
 export async function canvasStats(page, selector = '#view canvas') {
   return page.evaluate((sel) => {
     const src = document.querySelector(sel);
     if (!src || !src.width || !src.height) return { width: 0, height: 0, drawnFraction: 0, lumaStd: 0, distinctColors: 0 };
+    // whether the WebGL context is lost at this reading (its canvas then reads as empty)
+    const gl = src.getContext('webgl2') ?? src.getContext('webgl');
+    const contextLost = gl ? gl.isContextLost() : null;
     const c = document.createElement('canvas');
     c.width = src.width;
     c.height = src.height;
@@ -80,6 +84,7 @@ export async function canvasStats(page, selector = '#view canvas') {
       drawnFraction: n / (c.width * c.height),
       lumaStd: n ? Math.sqrt(Math.max(sum2 / n - mean * mean, 0)) : 0,
       distinctColors: colors.size,
+      contextLost,
     };
   }, selector);
 }
