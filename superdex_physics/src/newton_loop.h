@@ -27,13 +27,15 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 //
 // Sliding drift: in the cone model a contact slipping at |v_t| beyond its regularisation
 // (R_t |gamma_t|) separates at mu times that speed. While params.drift_correction_iterations
-// last, each iteration after the first lowers every frictional contact's normal target by
-// mu (|v_t| - R_t mu gamma_n) at the current iterate (gamma_n of the last one; the first has
-// none, and a warm start is often converged already), so that at the solution a sliding
-// contact keeps its normal target, with its friction on the cone (mu gamma_n): Coulomb's law
-// without the drift. Sticking contacts (|v_t| = R_t |gamma_t| <= R_t mu gamma_n) get none. The
-// corrections stop once the residual is within 100 times the tolerance (a fixed point to that
-// accuracy) or when the iterations run out; the problem is then convex and Newton converges.
+// last, each iteration lowers every frictional contact's normal target by
+// mu (|v_t| - R_t mu gamma_n) at the current iterate, so that at the solution a sliding contact
+// keeps its normal target, with its friction on the cone (mu gamma_n): Coulomb's law without the
+// drift. Sticking contacts (|v_t| = R_t |gamma_t| <= R_t mu gamma_n) get none. gamma_n is the
+// last iterate's; the first iteration takes it at the start itself, uncorrected: with a warm
+// start (the bodies' last velocities) a contact that slid in the last step starts from about
+// the correction it ended with, so that the later iterations only refine it. The corrections
+// stop once the residual is within 100 times the tolerance (a fixed point to that accuracy) or
+// when the iterations run out; the problem is then convex and Newton converges.
 template <class Algebra>
 ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, const VecX& v_start,
                      NewtonScratch& w) {
@@ -71,15 +73,18 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
       block_response(blocks[k], velocities.data() + blocks[k].row, gamma.data() + blocks[k].row, G[k].data());
   };
   // lowers each contact's normal target by its drift at constraint velocities vc (impulses of
-  // the last iterate in out.gamma)
+  // the last iterate in out.gamma); whether any target differs from its uncorrected one
   auto correct_drift = [&]() {
+    bool corrected = false;
     for (size_t k = 0; k < blocks.size(); ++k) {
       ConstraintBlock& b = blocks[k];
       if (b.kind != BlockKind::FrictionalContact) continue;
       const int r0 = b.row;
       const real slip = std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2];
       b.vhat = rows.blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
+      corrected = corrected || slip > 0;
     }
+    return corrected;
   };
 
   real best = std::numeric_limits<real>::infinity();
@@ -92,6 +97,8 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
       alg.J_mul(out.v, vc);
       if (correcting && it > 0) correct_drift();
       respond(vc, out.gamma);
+      // the first correction, at the start's own impulses
+      if (correcting && it == 0 && correct_drift()) respond(vc, out.gamma);
       alg.Jt_mul(out.gamma, jc);
     } else {
       jc.setZero(n);

@@ -72,8 +72,9 @@ struct SolverParams {
   /// to this many Newton iterations of a solve, each contact's normal target velocity is lowered
   /// by mu s at the current iterate, to a fixed point (within 100 times the solve's tolerance),
   /// so that a sliding contact keeps its normal target while its friction stays mu times its
-  /// normal impulse; the remaining iterations converge on the corrected problem. 0 keeps the
-  /// pure cone model.
+  /// normal impulse; the remaining iterations converge on the corrected problem. The first
+  /// correction is made at the solve's start (the bodies' last velocities, so the last step's
+  /// slip), which leaves the others little to change. 0 keeps the pure cone model.
   int drift_correction_iterations = 20;
   /// Islands with more DOFs than this are solved with (block-)sparse linear algebra; up to it,
   /// dense. Above two free bodies (12 DOFs) the sparse path costs less per Newton iteration: on
