@@ -72,16 +72,30 @@ bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
 
 // The world Jacobian J_WL (6 x nv) of a link of an island's body, computed once per solve of the
 // island (w.link_jacobians_used is reset at its start) and kept in `w`.
-const MatXR& cached_link_jacobian(const SceneData& s, int body, int link, IslandWorkspace& w) {
+IslandWorkspace::LinkJacobian& cached_link_jacobian(const SceneData& s, int body, int link, IslandWorkspace& w) {
   for (size_t k = 0; k < w.link_jacobians_used; ++k)
-    if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) return w.link_jacobians[k].J_WL;
+    if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) return w.link_jacobians[k];
   if (w.link_jacobians_used == w.link_jacobians.size()) w.link_jacobians.emplace_back();
   IslandWorkspace::LinkJacobian& added = w.link_jacobians[w.link_jacobians_used++];
   added.body = body;
   added.link = link;
+  added.has_W_L = false;
   const Articulation& a = *s.articulations[body];
   link_jacobian_world(a.model, a.kin, link, added.J_WL);
-  return added.J_WL;
+  return added;
+}
+
+// The same with its compliance W_L = J_WL A^-1 J_WL^T, for the body's factored A.
+const IslandWorkspace::LinkJacobian& link_compliance(const SceneData& s, int body, int link, const Eigen::LLT<MatX>& A_llt,
+                                                     IslandWorkspace& w) {
+  IslandWorkspace::LinkJacobian& lj = cached_link_jacobian(s, body, link, w);
+  if (!lj.has_W_L) {
+    w.L_inv_Jt = lj.J_WL.transpose();
+    solve_lower_in_place(A_llt, w.L_inv_Jt);
+    lj.W_L.noalias() = w.L_inv_Jt.transpose() * w.L_inv_Jt;
+    lj.has_W_L = true;
+  }
+  return lj;
 }
 
 // One solve of the island, with or without the deferred joint-limit rows, and with the deferred
@@ -150,14 +164,17 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   const int num_contacts = static_cast<int>(island.contacts.size() + solved_soft.size());
   m += 3 * num_contacts;
 
+  // small islands: dense algebra; large ones: sparse, on a pattern kept from step to step
+  const bool sparse = island_is_sparse(s, island, params);
+  // A as a dense matrix (the sparse path builds its own from the bodies' blocks)
   MatX& A = w.A;
   VecX &r = w.r, &v_start = w.v_start;
-  A.setZero(n_rigid, n_rigid);
+  if (!sparse) A.setZero(n_rigid, n_rigid);
   r.resize(n);
   v_start.resize(n);
   for (int b : island.bodies) {
     const int o = offset[b], nb = s.articulations[b]->model.nv;
-    A.block(o, o, nb, nb) = terms[b].A;
+    if (!sparse) A.block(o, o, nb, nb) = terms[b].A;
     r.segment(o, nb) = terms[b].r;
     // velocities of the free (unconstrained) motion: the start of the Newton iteration, and the
     // reference of the near-rigid target compensation
@@ -202,8 +219,6 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     rows.blocks.push_back(blk);
   }
 
-  // small islands: dense algebra; large ones: sparse, on a pattern kept from step to step
-  const bool sparse = island_is_sparse(s, island, params);
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
@@ -212,13 +227,11 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   auto add_link_side = [&](int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Vec3& W_diag, real& vn_free) {
     const int nb = s.articulations[body]->model.nv;
     if (nb == 0) return;
-    const MatXR& J = cached_link_jacobian(s, body, link, w);
+    const IslandWorkspace::LinkJacobian& lj = link_compliance(s, body, link, terms[body].A_llt, w);
+    const MatXR& J = lj.J_WL;
     const Vec3 r = p_W - s.articulations[body]->kin.X_WL[link].p;
     const Mat3 R = sign * R_C.transpose();
     const int o = offset[body];
-    // the side's rows, transposed (nb x 3; the workspace keeps the largest size it has had)
-    if (w.Jct.rows() < nb) w.Jct.resize(nb, 3);
-    auto Jct = w.Jct.topRows(nb);
     for (int k = 0; k < nb; ++k) {
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
@@ -232,10 +245,15 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
         for (int i = 0; i < 3; ++i)
           if (v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
       }
-      Jct.row(k) = v.transpose();
+      vn_free += v[2] * v_start[o + k];
     }
-    vn_free += Jct.col(2).dot(v_start.segment(o, nb));
-    W_diag += compliance_diagonal(terms[body].A_llt, Jct);
+    // the point's compliance in the contact frame, R S W_L S^T R^T with S = [I, -[r]x] (the
+    // point's velocity from the link origin's and the angular one): per contact, a 3 x 6 product
+    // whatever the body's DOFs
+    Eigen::Matrix<real, 3, 6> RS;
+    RS.leftCols<3>() = R;
+    RS.rightCols<3>().noalias() = -R * skew(r);
+    W_diag += (RS * lj.W_L).cwiseProduct(RS).rowwise().sum();
   };
   std::vector<Mat3>& frames = w.frames;
   frames.clear();
@@ -349,11 +367,12 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   if (sparse) {
     // A's structure is its bodies' diagonal blocks, whatever their values (so that it stays the
     // same from step to step)
-    std::vector<Eigen::Triplet<real>> A_entries;
+    std::vector<Eigen::Triplet<real>>& A_entries = w.A_entries;
+    A_entries.clear();
     for (int b : island.bodies) {
       const int o = offset[b], nb = s.articulations[b]->model.nv;
       for (int j = 0; j < nb; ++j)
-        for (int i = 0; i < nb; ++i) A_entries.emplace_back(o + i, o + j, A(o + i, o + j));
+        for (int i = 0; i < nb; ++i) A_entries.emplace_back(o + i, o + j, terms[b].A(i, j));
     }
     A_sparse.resize(n, n);
     A_sparse.setFromTriplets(A_entries.begin(), A_entries.end());
@@ -425,7 +444,7 @@ int admit_closing_soft_contacts(const SceneData& s, const Island& island, const 
     const Articulation& a = *s.articulations[body];
     if (a.model.nv == 0) return Vec3::Zero();
     const int j = static_cast<int>(std::find(island.bodies.begin(), island.bodies.end(), body) - island.bodies.begin());
-    const Vec6 V = cached_link_jacobian(s, body, link, w) * out.v[j];
+    const Vec6 V = cached_link_jacobian(s, body, link, w).J_WL * out.v[j];
     return V.head<3>() + V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
   };
   for (size_t j = 0; j < island.soft_contacts.size(); ++j) {

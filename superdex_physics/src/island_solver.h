@@ -44,7 +44,8 @@ struct IslandWorkspace {
   std::vector<int> solved_soft_contacts;       // the soft contacts that take part (positions in the island's list)
   std::vector<char> admitted_soft_contacts;    // per island soft contact: a deferred one that takes part
   MatX A;
-  SparseMat A_sparse;  // A on the sparse path
+  SparseMat A_sparse;  // A on the sparse path (A itself is then left unused)
+  std::vector<Eigen::Triplet<real>> A_entries;  // A_sparse's triplets
   VecX r, v_start;
   ConstraintRows rows;
   std::vector<Eigen::Triplet<real>> J_entries, J_by_row;  // J's triplets as made, and ordered by row
@@ -53,11 +54,16 @@ struct IslandWorkspace {
   struct LinkJacobian {
     int body, link;
     MatXR J_WL;
+    // J_WL A^-1 J_WL^T (6 x 6; rows and columns: the link origin's linear velocity (m/s), then
+    // the link's angular velocity (rad/s), world frame; per unit of impulse): the link's
+    // compliance as the body's DOFs and inertia allow it; valid when has_W_L
+    Mat6 W_L;
+    bool has_W_L = false;
   };
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
   MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
-  MatX Jct;  // an articulation's side of a contact, transposed (DOFs x 3; L^-1 Jc^T after compliance_diagonal)
+  MatX L_inv_Jt;  // L^-1 J_WL^T of a link (DOFs x 6), for its W_L
   std::vector<Mat3> frames;
   NewtonScratch newton;
 };
