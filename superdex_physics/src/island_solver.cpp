@@ -7,54 +7,12 @@
 
 #include "contact_block.h"
 #include "kinematics.h"
+#include "row_block_assembler.h"
 #include "soft_island_solver.h"
 #include "sparse_newton_system.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
-
-// A counting sort by row (stable), then by column within each row by insertion (rows hold a few
-// entries).
-void assemble_row_major(SparseRowMat& J, int m, int n, const std::vector<Eigen::Triplet<real>>& entries,
-                        std::vector<Eigen::Triplet<real>>& by_row, std::vector<int>& row_start) {
-  row_start.assign(m + 1, 0);
-  for (const auto& e : entries) ++row_start[e.row() + 1];
-  for (int i = 0; i < m; ++i) row_start[i + 1] += row_start[i];
-  by_row.resize(entries.size());
-  {
-    std::vector<int>& next = row_start;  // advanced while filling, restored below
-    for (const auto& e : entries) by_row[next[e.row()]++] = e;
-    for (int i = m; i > 0; --i) next[i] = next[i - 1];
-    next[0] = 0;
-  }
-  if (J.rows() != m || J.cols() != n || !J.isCompressed()) J.resize(m, n);
-  J.data().clear();
-  J.resizeNonZeros(static_cast<Eigen::Index>(entries.size()));
-  int* outer = J.outerIndexPtr();
-  int* inner = J.innerIndexPtr();
-  real* value = J.valuePtr();
-  int nnz = 0;
-  for (int i = 0; i < m; ++i) {
-    outer[i] = nnz;
-    const int first = nnz;
-    for (int k = row_start[i]; k < row_start[i + 1]; ++k) {
-      const int col = by_row[k].col();
-      // insert col into this row's sorted columns, or add to its entry
-      int at = nnz;
-      while (at > first && inner[at - 1] > col) --at;
-      if (at > first && inner[at - 1] == col) {
-        value[at - 1] += by_row[k].value();
-        continue;
-      }
-      for (int j = nnz; j > at; --j) inner[j] = inner[j - 1], value[j] = value[j - 1];
-      inner[at] = col;
-      value[at] = by_row[k].value();
-      ++nnz;
-    }
-  }
-  outer[m] = nnz;
-  J.resizeNonZeros(nnz);
-}
 
 bool island_is_sparse(const SceneData& s, const Island& island, const SolverParams& params) {
   if (!island.soft_bodies.empty()) return false;
@@ -73,9 +31,11 @@ bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
 // The world Jacobian J_WL (6 x nv) of a link of an island's body, computed once per solve of the
 // island (w.link_jacobians_used is reset at its start) and kept in `w`.
 IslandWorkspace::LinkJacobian& cached_link_jacobian(const SceneData& s, int body, int link, IslandWorkspace& w) {
-  for (size_t k = 0; k < w.link_jacobians_used; ++k)
-    if (w.link_jacobians[k].body == body && w.link_jacobians[k].link == link) return w.link_jacobians[k];
+  // the link's slot, when its body is in the island (w.link_base)
+  int* slot = w.link_base[body] >= 0 ? &w.link_slot[w.link_base[body] + link] : nullptr;
+  if (slot && *slot >= 0) return w.link_jacobians[*slot];
   if (w.link_jacobians_used == w.link_jacobians.size()) w.link_jacobians.emplace_back();
+  if (slot) *slot = static_cast<int>(w.link_jacobians_used);
   IslandWorkspace::LinkJacobian& added = w.link_jacobians[w.link_jacobians_used++];
   added.body = body;
   added.link = link;
@@ -110,8 +70,12 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   std::vector<int>& soft_offset = w.soft_offset;
   offset.assign(s.articulations.size(), -1);
   soft_offset.assign(soft_steps.size(), -1);
-  int n = 0;
-  for (int b : island.bodies) offset[b] = n, n += s.articulations[b]->model.nv;
+  w.link_base.assign(s.articulations.size(), -1);
+  int n = 0, links = 0;
+  for (int b : island.bodies) {
+    offset[b] = n, n += s.articulations[b]->model.nv;
+    w.link_base[b] = links, links += s.articulations[b]->model.num_links;
+  }
   // the soft contacts that take part (positions in island.soft_contacts)
   std::vector<int>& solved_soft = w.solved_soft_contacts;
   solved_soft.clear();
@@ -160,9 +124,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       if (!body_rows[i].deferred || include_deferred) solved_rows.push_back({static_cast<int>(j), static_cast<int>(i)});
   }
   const int joint_rows = static_cast<int>(solved_rows.size());
-  int m = joint_rows;
   const int num_contacts = static_cast<int>(island.contacts.size() + solved_soft.size());
-  m += 3 * num_contacts;
 
   // small islands: dense algebra; large ones: sparse, on a pattern kept from step to step
   const bool sparse = island_is_sparse(s, island, params);
@@ -199,20 +161,21 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     v_start.segment(soft_offset[k], st.size()) = st.v0;
   }
   ConstraintRows& rows = w.rows;
-  std::vector<Eigen::Triplet<real>>& J_entries = w.J_entries;
+  RowBlockAssembler& J_rows = w.J_rows;
   rows.blocks.clear();
-  J_entries.clear();
+  J_rows.clear();
   rows.blocks.reserve(joint_rows + num_contacts);
   int row = 0;
   for (const auto [j, i] : solved_rows) {
     const int b = island.bodies[j];
     const JointRow& jr = terms[b].joint_rows[i];
+    J_rows.begin_block(1);
     if (jr.J.size() > 0) {
-      for (Eigen::Index c = 0; c < jr.J.size(); ++c)
-        if (jr.J[c] != 0) J_entries.emplace_back(row, offset[b] + static_cast<int>(c), jr.J[c]);
+      for (Eigen::Index c = 0; c < jr.J.size(); ++c) J_rows.add(offset[b] + static_cast<int>(c), &jr.J[c], false);
     } else {
-      J_entries.emplace_back(row, offset[b] + jr.dof, jr.sign);
+      J_rows.add(offset[b] + jr.dof, &jr.sign, true);
     }
+    J_rows.end_block();
     ConstraintBlock blk = jr.block;
     if (jr.deferred) blk.R = deferred_compliance(terms[b], jr, params);
     blk.row = row++;
@@ -221,6 +184,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
 
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
+  w.link_slot.assign(links, -1);
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
   // diagonal of its Delassus block (the only part the contact block reads) and free-motion
   // normal velocity
@@ -238,13 +202,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       // on the sparse path, a DOF that moves the link enters all three rows, zero or not, so
       // that J's pattern depends on the contact's bodies only (and is reused from step to step);
       // the dense path leaves out exact zeros
-      if (sparse) {
-        if (!J.col(k).isZero(0))
-          for (int i = 0; i < 3; ++i) J_entries.emplace_back(row + i, o + k, v[i]);
-      } else {
-        for (int i = 0; i < 3; ++i)
-          if (v[i] != 0) J_entries.emplace_back(row + i, o + k, v[i]);
-      }
+      if (sparse ? !J.col(k).isZero(0) : !v.isZero(0)) J_rows.add(o + k, v.data(), sparse);
       vn_free += v[2] * v_start[o + k];
     }
     // the point's compliance in the contact frame, R S W_L S^T R^T with S = [I, -[r]x] (the
@@ -262,6 +220,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     ConstraintBlock blk = frictional_contact_block(material, phi, W_diag.sum() / 3, W_diag[2], vn_free, dt, params);
     blk.row = row;
     rows.blocks.push_back(blk);
+    J_rows.end_block();
     row += 3;
   };
   for (int ci : island.contacts) {
@@ -270,6 +229,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
+    J_rows.begin_block(3);
     add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W_diag, vn_free);
     add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W_diag, vn_free);
     push_contact_block(c.material, c.phi, W_diag, vn_free);
@@ -290,9 +250,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     Jq.setZero(3, nq);
     for (int j = 0; j < 3; ++j)
       if (node[j]) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < nq; ++k)
-        if (Jq(i, k) != 0) J_entries.emplace_back(row + i, o + k, Jq(i, k));
+    for (int k = 0; k < nq; ++k) J_rows.add(o + k, Jq.col(k).data(), false);
     W_diag += (Jq.array().square().rowwise() / rv.A_q.transpose().array()).rowwise().sum().matrix();
     // the contact's regularization takes the full body's Delassus estimate too (its lumped node
     // masses), so that a reduced body and its full twin press alike
@@ -304,9 +262,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     for (int j = 0; j < 3; ++j) {
       const int cj = col[j];
       if (cj < 0) continue;
-      for (int a = 0; a < 3; ++a)
-        for (int i = 0; i < 3; ++i)
-          if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + cj + a, c.weights[j] * R_C(a, i));
+      for (int a = 0; a < 3; ++a) {
+        const Vec3 v = c.weights[j] * R_C.row(a).transpose();
+        J_rows.add(o + cj + a, v.data(), false);
+      }
       vn_free -= c.weights[j] * (dt / rv.h) * R_C.col(2).dot(rv.u_old.segment<3>(cj - nq));
       for (int l = 0; l < 3; ++l) {
         const int cl = col[l];
@@ -324,6 +283,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
+    J_rows.begin_block(3);
     if (reduced_of[c.soft] >= 0) {
       add_reduced_side(reduced[reduced_of[c.soft]], c, R_C, W_diag, vn_free);
       add_link_side(c.body, c.link, c.p_W, R_C, -1, W_diag, vn_free);
@@ -337,8 +297,8 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       const real w = c.weights[j];
       for (int a = 0; a < 3; ++a) {
         const int f = st.pattern.free_of_dof[3 * c.nodes[j] + a];
-        for (int i = 0; i < 3; ++i)
-          if (R_C(a, i) != 0) J_entries.emplace_back(row + i, o + f, w * R_C(a, i));
+        const Vec3 v = w * R_C.row(a).transpose();
+        J_rows.add(o + f, v.data(), false);
         vn_free += w * R_C(a, 2) * (st.r[f] / st.mass[f]);
       }
       W_diag.array() += w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]];
@@ -347,8 +307,8 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     push_contact_block(c.material, c.phi, W_diag, vn_free);
   }
 
-  // same-row entries of a contact with both bodies on one articulation add up
-  assemble_row_major(rows.J, m, n, J_entries, w.J_by_row, w.J_row_start);
+  // (same-row entries of a contact with both bodies on one articulation have added up)
+  J_rows.finish(n, rows.J);
 
   // the solve (dense, sparse, or with soft bodies block elimination) starts from the free
   // motion A^-1 r, or, when bodies touch, from their current velocities: resting and pressing
@@ -365,17 +325,26 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   SparseMat& A_sparse = w.A_sparse;
   std::shared_ptr<SparseNewtonSystem> system;
   if (sparse) {
-    // A's structure is its bodies' diagonal blocks, whatever their values (so that it stays the
-    // same from step to step)
-    std::vector<Eigen::Triplet<real>>& A_entries = w.A_entries;
-    A_entries.clear();
+    // A's structure is its bodies' dense diagonal blocks, whatever their values (so that it
+    // stays the same from step to step), written column by column (the bodies' offsets
+    // increase in island order)
+    int nnz = 0;
+    for (int b : island.bodies) nnz += s.articulations[b]->model.nv * s.articulations[b]->model.nv;
+    if (A_sparse.rows() != n || A_sparse.cols() != n || !A_sparse.isCompressed()) A_sparse.resize(n, n);
+    A_sparse.data().clear();
+    A_sparse.resizeNonZeros(nnz);
+    int* outer = A_sparse.outerIndexPtr();
+    int* inner = A_sparse.innerIndexPtr();
+    real* value = A_sparse.valuePtr();
+    int k = 0;
     for (int b : island.bodies) {
       const int o = offset[b], nb = s.articulations[b]->model.nv;
-      for (int j = 0; j < nb; ++j)
-        for (int i = 0; i < nb; ++i) A_entries.emplace_back(o + i, o + j, terms[b].A(i, j));
+      for (int j = 0; j < nb; ++j) {
+        outer[o + j] = k;
+        for (int i = 0; i < nb; ++i) inner[k] = o + i, value[k++] = terms[b].A(i, j);
+      }
     }
-    A_sparse.resize(n, n);
-    A_sparse.setFromTriplets(A_entries.begin(), A_entries.end());
+    outer[n] = k;
     // the last step's pattern and analysis, when this island has kept its structure
     if (sparse_cache && *sparse_cache && (*sparse_cache)->reuse(A_sparse, rows)) system = *sparse_cache;
   }

@@ -6,6 +6,7 @@
 #include "articulation_step.h"
 #include "islands.h"
 #include "reduced_soft.h"
+#include "row_block_assembler.h"
 #include "soft_body.h"
 
 namespace superdex::physics {
@@ -45,11 +46,9 @@ struct IslandWorkspace {
   std::vector<char> admitted_soft_contacts;    // per island soft contact: a deferred one that takes part
   MatX A;
   SparseMat A_sparse;  // A on the sparse path (A itself is then left unused)
-  std::vector<Eigen::Triplet<real>> A_entries;  // A_sparse's triplets
   VecX r, v_start;
   ConstraintRows rows;
-  std::vector<Eigen::Triplet<real>> J_entries, J_by_row;  // J's triplets as made, and ordered by row
-  std::vector<int> J_row_start;
+  RowBlockAssembler J_rows;  // rows.J as its blocks are made
   // world Jacobians of the links touched by contacts, computed once per link
   struct LinkJacobian {
     int body, link;
@@ -62,17 +61,14 @@ struct IslandWorkspace {
   };
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
+  // where a link's entry in link_jacobians is: link_slot[link_base[body] + link] (-1: none
+  // yet); link_base by articulation index, -1 for the bodies not in the island
+  std::vector<int> link_base, link_slot;
   MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
   MatX L_inv_Jt;  // L^-1 J_WL^T of a link (DOFs x 6), for its W_L
   std::vector<Mat3> frames;
   NewtonScratch newton;
 };
-
-// J (m x n, row-major, compressed) from triplets, as SparseMatrix::setFromTriplets builds it
-// (columns sorted within a row, duplicates summed in the order given), in J's own storage and
-// the given scratch vectors: no allocation once they have grown to the problem's size.
-void assemble_row_major(SparseRowMat& J, int m, int n, const std::vector<Eigen::Triplet<real>>& entries,
-                        std::vector<Eigen::Triplet<real>>& by_row, std::vector<int>& row_start);
 
 // Whether the island is solved on the sparse path: rigid only, with more than
 // params.dense_island_max_dofs DOFs. Such islands keep their Newton pattern across steps.
