@@ -25,6 +25,12 @@ class BlockCholesky {
   // or a pair given to analyze(); -1 for an entry of the strict upper triangle of the stored
   // form (its transpose is stored: write one of the two). Every diagonal block is stored whole.
   int value_index(int i, int r, int j, int c) const;
+  // Value offset of the stored block of block i's rows and block j's columns (block_sizes[i] x
+  // block_sizes[j], column-major), for i == j or a pair given to analyze() with i eliminated
+  // after j; -1 otherwise (for such a pair, the block (j, i) is the one stored).
+  int block_offset(int i, int j) const;
+  // Whether block i is eliminated after block j (then block (i, j) is stored, not (j, i)).
+  bool eliminated_after(int i, int j) const { return position_[i] > position_[j]; }
   // The matrix's entries (size set by analyze); write them, then factor().
   std::vector<double>& values() { return values_; }
 

@@ -64,17 +64,20 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
                        const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                        const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
                        bool include_deferred, const std::vector<char>& admitted, IslandWorkspace& w,
-                       std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
+                       SparseNewtonSystem* system, IslandSolution& out) {
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
   std::vector<int>& offset = w.body_offset;
   std::vector<int>& soft_offset = w.soft_offset;
   offset.assign(s.articulations.size(), -1);
   soft_offset.assign(soft_steps.size(), -1);
   w.link_base.assign(s.articulations.size(), -1);
+  w.island_position.assign(s.articulations.size(), -1);
   int n = 0, links = 0;
-  for (int b : island.bodies) {
+  for (size_t j = 0; j < island.bodies.size(); ++j) {
+    const int b = island.bodies[j];
     offset[b] = n, n += s.articulations[b]->model.nv;
     w.link_base[b] = links, links += s.articulations[b]->model.num_links;
+    w.island_position[b] = static_cast<int>(j);
   }
   // the soft contacts that take part (positions in island.soft_contacts)
   std::vector<int>& solved_soft = w.solved_soft_contacts;
@@ -160,22 +163,40 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     r.segment(soft_offset[k], st.size()) = st.r;
     v_start.segment(soft_offset[k], st.size()) = st.v0;
   }
+  // J: on the sparse path by bodies, else block by block into rows.J
   ConstraintRows& rows = w.rows;
   RowBlockAssembler& J_rows = w.J_rows;
+  BodyJacobian& J_bodies = w.J_bodies;
   rows.blocks.clear();
-  J_rows.clear();
   rows.blocks.reserve(joint_rows + num_contacts);
+  if (sparse) {
+    std::vector<int>& dofs = w.body_dofs;
+    dofs.clear();
+    for (int b : island.bodies) dofs.push_back(s.articulations[b]->model.nv);
+    J_bodies.reset(dofs);
+  } else {
+    J_rows.clear();
+  }
+  auto begin_block = [&](int size) { sparse ? J_bodies.begin_block(size) : J_rows.begin_block(size); };
+  auto end_block = [&]() { sparse ? J_bodies.end_block() : J_rows.end_block(); };
   int row = 0;
   for (const auto [j, i] : solved_rows) {
     const int b = island.bodies[j];
     const JointRow& jr = terms[b].joint_rows[i];
-    J_rows.begin_block(1);
-    if (jr.J.size() > 0) {
-      for (Eigen::Index c = 0; c < jr.J.size(); ++c) J_rows.add(offset[b] + static_cast<int>(c), &jr.J[c], false);
+    begin_block(1);
+    if (sparse) {
+      real* P = J_bodies.piece(j);
+      if (jr.J.size() > 0) {
+        std::copy(jr.J.data(), jr.J.data() + jr.J.size(), P);
+      } else {
+        P[jr.dof] = jr.sign;
+      }
+    } else if (jr.J.size() > 0) {
+      for (Eigen::Index c = 0; c < jr.J.size(); ++c) J_rows.add(offset[b] + static_cast<int>(c), &jr.J[c]);
     } else {
-      J_rows.add(offset[b] + jr.dof, &jr.sign, true);
+      J_rows.add(offset[b] + jr.dof, &jr.sign);
     }
-    J_rows.end_block();
+    end_block();
     ConstraintBlock blk = jr.block;
     if (jr.deferred) blk.R = deferred_compliance(terms[b], jr, params);
     blk.row = row++;
@@ -196,13 +217,17 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const Vec3 r = p_W - s.articulations[body]->kin.X_WL[link].p;
     const Mat3 R = sign * R_C.transpose();
     const int o = offset[body];
+    // on the sparse path the side's rows on all its body's DOFs (zeros included: the structure
+    // is the contact's bodies), adding to the other side's when both are on one body
+    real* P = sparse ? J_bodies.piece(w.island_position[body]) : nullptr;
     for (int k = 0; k < nb; ++k) {
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
-      // on the sparse path, a DOF that moves the link enters all three rows, zero or not, so
-      // that J's pattern depends on the contact's bodies only (and is reused from step to step);
-      // the dense path leaves out exact zeros
-      if (sparse ? !J.col(k).isZero(0) : !v.isZero(0)) J_rows.add(o + k, v.data(), sparse);
+      if (P) {
+        for (int i = 0; i < 3; ++i) P[3 * k + i] += v[i];
+      } else {
+        J_rows.add(o + k, v.data());
+      }
       vn_free += v[2] * v_start[o + k];
     }
     // the point's compliance in the contact frame, R S W_L S^T R^T with S = [I, -[r]x] (the
@@ -220,7 +245,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     ConstraintBlock blk = frictional_contact_block(material, phi, W_diag.sum() / 3, W_diag[2], vn_free, dt, params);
     blk.row = row;
     rows.blocks.push_back(blk);
-    J_rows.end_block();
+    end_block();
     row += 3;
   };
   for (int ci : island.contacts) {
@@ -229,7 +254,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
-    J_rows.begin_block(3);
+    begin_block(3);
     add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W_diag, vn_free);
     add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W_diag, vn_free);
     push_contact_block(c.material, c.phi, W_diag, vn_free);
@@ -250,7 +275,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     Jq.setZero(3, nq);
     for (int j = 0; j < 3; ++j)
       if (node[j]) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
-    for (int k = 0; k < nq; ++k) J_rows.add(o + k, Jq.col(k).data(), false);
+    for (int k = 0; k < nq; ++k) J_rows.add(o + k, Jq.col(k).data());
     W_diag += (Jq.array().square().rowwise() / rv.A_q.transpose().array()).rowwise().sum().matrix();
     // the contact's regularization takes the full body's Delassus estimate too (its lumped node
     // masses), so that a reduced body and its full twin press alike
@@ -264,7 +289,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       if (cj < 0) continue;
       for (int a = 0; a < 3; ++a) {
         const Vec3 v = c.weights[j] * R_C.row(a).transpose();
-        J_rows.add(o + cj + a, v.data(), false);
+        J_rows.add(o + cj + a, v.data());
       }
       vn_free -= c.weights[j] * (dt / rv.h) * R_C.col(2).dot(rv.u_old.segment<3>(cj - nq));
       for (int l = 0; l < 3; ++l) {
@@ -298,7 +323,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       for (int a = 0; a < 3; ++a) {
         const int f = st.pattern.free_of_dof[3 * c.nodes[j] + a];
         const Vec3 v = w * R_C.row(a).transpose();
-        J_rows.add(o + f, v.data(), false);
+        J_rows.add(o + f, v.data());
         vn_free += w * R_C(a, 2) * (st.r[f] / st.mass[f]);
       }
       W_diag.array() += w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]];
@@ -308,7 +333,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   }
 
   // (same-row entries of a contact with both bodies on one articulation have added up)
-  J_rows.finish(n, rows.J);
+  if (!sparse) J_rows.finish(n, rows.J);
 
   // the solve (dense, sparse, or with soft bodies block elimination) starts from the free
   // motion A^-1 r, or, when bodies touch, from their current velocities: resting and pressing
@@ -322,37 +347,14 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       v_start.segment(rv.offset + rv.A_q.size(), rv.size() - rv.A_q.size()).setZero();
     }
   }
-  SparseMat& A_sparse = w.A_sparse;
-  std::shared_ptr<SparseNewtonSystem> system;
   if (sparse) {
-    // A's structure is its bodies' dense diagonal blocks, whatever their values (so that it
-    // stays the same from step to step), written column by column (the bodies' offsets
-    // increase in island order)
-    int nnz = 0;
-    for (int b : island.bodies) nnz += s.articulations[b]->model.nv * s.articulations[b]->model.nv;
-    if (A_sparse.rows() != n || A_sparse.cols() != n || !A_sparse.isCompressed()) A_sparse.resize(n, n);
-    A_sparse.data().clear();
-    A_sparse.resizeNonZeros(nnz);
-    int* outer = A_sparse.outerIndexPtr();
-    int* inner = A_sparse.innerIndexPtr();
-    real* value = A_sparse.valuePtr();
-    int k = 0;
-    for (int b : island.bodies) {
-      const int o = offset[b], nb = s.articulations[b]->model.nv;
-      for (int j = 0; j < nb; ++j) {
-        outer[o + j] = k;
-        for (int i = 0; i < nb; ++i) inner[k] = o + i, value[k++] = terms[b].A(i, j);
-      }
-    }
-    outer[n] = k;
-    // the last step's pattern and analysis, when this island has kept its structure
-    if (sparse_cache && *sparse_cache && (*sparse_cache)->reuse(A_sparse, rows)) system = *sparse_cache;
+    w.A_blocks.clear();
+    for (int b : island.bodies) w.A_blocks.push_back(&terms[b].A);
   }
   // every path leaves its result in w.newton.result
   ConvexResult& sol = !soft.empty() ? solve_convex_with_soft(A, r, rows, soft, v_start, params, w.newton)
-                      : sparse      ? solve_convex(A_sparse, r, rows, params, v_start, system, w.newton)
+                      : sparse      ? solve_convex(w.A_blocks, r, J_bodies, rows.blocks, params, v_start, *system, w.newton)
                                     : solve_convex(A, r, rows, params, v_start, w.newton);
-  if (sparse_cache) *sparse_cache = system;
   out.iterations = sol.iterations;
   out.residual = sol.residual;
   out.converged = sol.converged;
@@ -435,11 +437,11 @@ int admit_closing_soft_contacts(const SceneData& s, const Island& island, const 
 void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                   const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out) {
+                  IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out) {
   const Ticks t0 = ticks_now();
   std::vector<char>& admitted = w.admitted_soft_contacts;
   admitted.assign(island.soft_contacts.size(), 0);
-  solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, admitted, w, sparse_cache, out);
+  solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, false, admitted, w, system, out);
   // a deferred limit row or soft contact is inactive at the solution unless it says otherwise:
   // then the same problem with every limit row and the soft contacts the solution would close,
   // until no other would (rare: the free motion kept them far from acting)
@@ -452,7 +454,7 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
     all_rows = all_rows || rows;
     if (round == kLastRound) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
     const int iterations = out.iterations;
-    solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, all_rows, admitted, w, sparse_cache, out);
+    solve_island_once(s, island, terms, contacts, soft_contacts, soft_steps, dt, params, all_rows, admitted, w, system, out);
     out.iterations += iterations;
     if (round == kLastRound) break;
   }

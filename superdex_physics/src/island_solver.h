@@ -4,6 +4,7 @@
 // effective compliance), adds its soft bodies (soft_body.h), and solves the convex problem.
 
 #include "articulation_step.h"
+#include "body_jacobian.h"
 #include "islands.h"
 #include "reduced_soft.h"
 #include "row_block_assembler.h"
@@ -44,11 +45,14 @@ struct IslandWorkspace {
   std::vector<JointRowRef> solved_joint_rows;  // in the order of their constraint rows
   std::vector<int> solved_soft_contacts;       // the soft contacts that take part (positions in the island's list)
   std::vector<char> admitted_soft_contacts;    // per island soft contact: a deferred one that takes part
-  MatX A;
-  SparseMat A_sparse;  // A on the sparse path (A itself is then left unused)
+  MatX A;                          // A on the dense paths
+  std::vector<const MatX*> A_blocks;  // A on the sparse path: its bodies' blocks, in island order
   VecX r, v_start;
-  ConstraintRows rows;
+  ConstraintRows rows;  // the blocks; J itself on the dense paths
   RowBlockAssembler J_rows;  // rows.J as its blocks are made
+  BodyJacobian J_bodies;     // J on the sparse path
+  std::vector<int> body_dofs;  // the island's bodies' DOFs, in island order
+  std::vector<int> island_position;  // by articulation index: its position in the island's bodies, or -1
   // world Jacobians of the links touched by contacts, computed once per link
   struct LinkJacobian {
     int body, link;
@@ -77,12 +81,13 @@ bool island_is_sparse(const SceneData& scene, const Island& island, const Solver
 // Solves one island into `out`, whose vectors keep their storage across calls.
 // `soft_steps` holds one problem per scene soft body (null for those without free DOFs); `w` is
 // this island's working storage.
-// `sparse_cache` (may be null) holds the sparse Newton pattern of this island's bodies from the
-// last step: reused when the structure is unchanged, replaced otherwise.
+// `system` holds the Newton matrices of a sparse island (island_is_sparse), kept from step to
+// step for the island's bodies (it keeps its analysis while their structure allows); null for
+// the other islands.
 void solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
                   const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
-                  IslandWorkspace& w, std::shared_ptr<SparseNewtonSystem>* sparse_cache, IslandSolution& out);
+                  IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

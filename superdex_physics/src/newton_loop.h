@@ -2,14 +2,15 @@
 // Newton's method with exact line search for the convex implicit step (newton_solver.h), on any
 // linear-algebra backend. An Algebra provides:
 //
-//   int n(); diagonal(out);                   size, and the diagonal of A (for scaling)
+//   int n(), m(); diagonal(out);              variables and constraint rows, and the diagonal of A
+//                                             (for scaling)
 //   A_mul(x, out), J_mul(x, out), Jt_mul(y, out)
 //                                             products with A and the constraint Jacobian, into
 //                                             `out` (resized as needed; its storage is reused)
 //   bool smooth();                            whether the objective has a smooth non-quadratic
 //                                             part e(v) (soft bodies' elastic energy)
 //   void add_smooth_gradient(v, g);           g += grad e(v)
-//   void factor(rows, G, v);                  factors H = A + J^T G J + hess e(v)
+//   void factor(blocks, G, v);                factors H = A + J^T G J + hess e(v)
 //   real smooth_curvature(dv);                dv^T hess e(v) dv at the last factored v
 //   solve(b, x);                              x = H^-1 b
 
@@ -37,10 +38,10 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 // stop once the residual is within 100 times the tolerance (a fixed point to that accuracy) or
 // when the iterations run out; the problem is then convex and Newton converges.
 template <class Algebra>
-ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, const SolverParams& params, const VecX& v_start,
-                     NewtonScratch& w) {
+ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBlock>& given_blocks, const SolverParams& params,
+                     const VecX& v_start, NewtonScratch& w) {
   const int n = alg.n();
-  const int m = rows.size();
+  const int m = alg.m();
   const bool smooth = alg.smooth();
   ConvexResult& out = w.result;
   out.v = v_start;
@@ -60,11 +61,11 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
   for (VecX* x : {&vc, &dvc}) x->resize(m);
   for (VecX* x : {&grad, &dv, &jc, &smooth_grad, &Av_r, &Adv}) x->resize(n);
   std::vector<Eigen::Matrix<real, 3, 3>>& G = w.G;
-  G.resize(rows.blocks.size());
+  G.resize(given_blocks.size());
 
   // the blocks as this solve sees them: contacts' normal targets with their drift corrections
   std::vector<ConstraintBlock>& blocks = w.blocks;
-  blocks = rows.blocks;
+  blocks = given_blocks;
   bool correcting = params.drift_correction_iterations > 0 &&
                     std::any_of(blocks.begin(), blocks.end(), [](const ConstraintBlock& b) { return b.kind == BlockKind::FrictionalContact; });
   // impulses and Hessian blocks at the current constraint velocities
@@ -81,7 +82,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
       if (b.kind != BlockKind::FrictionalContact) continue;
       const int r0 = b.row;
       const real slip = std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2];
-      b.vhat = rows.blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
+      b.vhat = given_blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
       corrected = corrected || slip > 0;
     }
     return corrected;
@@ -137,7 +138,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const ConstraintRows& rows, co
     }
     if (it == params.max_newton_iterations) break;
     // Newton direction from the Hessian A + J^T G J (+ the smooth term's)
-    alg.factor(rows, G, out.v);
+    alg.factor(given_blocks, G, out.v);
     alg.solve(grad, dv);
     dv = -dv;
     if (m > 0) alg.J_mul(dv, dvc);

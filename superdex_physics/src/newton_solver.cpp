@@ -3,7 +3,7 @@
 #include "newton_solver.h"
 
 #include "newton_loop.h"
-#include "sparse_cholesky.h"
+#include "body_jacobian.h"
 #include "sparse_newton_system.h"
 
 #include <Eigen/Cholesky>
@@ -67,12 +67,12 @@ void block_response(const ConstraintBlock& b, const real* vc, real* gamma, real*
   }
 }
 
-SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
+SparseMat constraint_hessian(const std::vector<ConstraintBlock>& blocks, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
                              const SparseRowMat& J, const SparseMat& Jt) {
   // G as a sparse block-diagonal matrix
   std::vector<Eigen::Triplet<real>> entries;
-  for (size_t k = 0; k < rows.blocks.size(); ++k) {
-    const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const int r0 = blocks[k].row, s = blocks[k].size();
     for (int i = 0; i < s; ++i)
       for (int j = 0; j < s; ++j)
         if (G[k](i, j) != 0) entries.emplace_back(r0 + i, r0 + j, G[k](i, j));
@@ -95,20 +95,21 @@ class DenseAlgebra {
     J_ = J;
   }
   int n() const { return static_cast<int>(A_.rows()); }
+  int m() const { return static_cast<int>(J_.rows()); }
   void diagonal(VecX& out) const { out = A_.diagonal(); }
   void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
   void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
   void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
-  // factors H = A + J^T G J (G block diagonal, blocks of `rows`)
+  // factors H = A + J^T G J (G block diagonal, of the given blocks)
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
-  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
+  void factor(const std::vector<ConstraintBlock>& blocks, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
     H_ = A_;
     // only the blocks with a non-zero G (the active ones: speculative contacts that stay apart
     // are often most rows) add to H
     auto active = [&](size_t k) {
-      const int s = rows.blocks[k].size();
+      const int s = blocks[k].size();
       return !(G[k].topLeftCorner(s, s).array() == 0).all();
     };
     const int n = this->n();
@@ -116,9 +117,9 @@ class DenseAlgebra {
       // small problems: each active block's J_b^T (G_b J_b) straight into H's lower triangle
       // (a blocked matrix product costs more in packing than it saves at these sizes)
       GJ_.resize(3, n);
-      for (size_t k = 0; k < rows.blocks.size(); ++k) {
+      for (size_t k = 0; k < blocks.size(); ++k) {
         if (!active(k)) continue;
-        const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+        const int r0 = blocks[k].row, s = blocks[k].size();
         GJ_.topRows(s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
         // H(r, c) += sum_i J(r0 + i, r) (G J)(i, c) for r >= c; J's rows are contiguous
         for (int i = 0; i < s; ++i) {
@@ -135,15 +136,15 @@ class DenseAlgebra {
     } else {
       // larger ones: the active blocks' rows packed together, one matrix product
       int m_active = 0;
-      for (size_t k = 0; k < rows.blocks.size(); ++k)
-        if (active(k)) m_active += rows.blocks[k].size();
+      for (size_t k = 0; k < blocks.size(); ++k)
+        if (active(k)) m_active += blocks[k].size();
       if (m_active > 0) {
         J_active_.resize(m_active, n);
         GJ_.resize(m_active, n);
         int row = 0;
-        for (size_t k = 0; k < rows.blocks.size(); ++k) {
+        for (size_t k = 0; k < blocks.size(); ++k) {
           if (!active(k)) continue;
-          const int r0 = rows.blocks[k].row, s = rows.blocks[k].size();
+          const int r0 = blocks[k].row, s = blocks[k].size();
           J_active_.middleRows(row, s) = J_.middleRows(r0, s);
           GJ_.middleRows(row, s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
           row += s;
@@ -167,31 +168,51 @@ class DenseAlgebra {
   Eigen::LLT<MatX>& llt_;
 };
 
-// Sparse linear algebra for the Newton loop: sparse A and J, H on a pattern analysed once.
-class SparseAlgebra {
+// Large rigid islands by bodies: A's blocks, J by bodies, H by blocks (sparse_newton_system.h).
+class BodyBlockAlgebra {
  public:
-  SparseAlgebra(const SparseMat& A, const SparseRowMat& J, std::shared_ptr<SparseNewtonSystem>& system)
-      : A_(A), J_(J), system_(system) {}
-  int n() const { return static_cast<int>(A_.rows()); }
-  void diagonal(VecX& out) const { out = A_.diagonal(); }
-  void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
-  void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
-  // J^T y row by row of J (scattered into out): no transposed copy of J to build per solve
-  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
+  BodyBlockAlgebra(std::span<const MatX* const> A_blocks, const BodyJacobian& J, SparseNewtonSystem& system)
+      : A_(A_blocks), J_(J), system_(system) {}
+  int n() const { return J_.cols(); }
+  int m() const { return J_.rows(); }
+  void diagonal(VecX& out) const {
+    out.resize(n());
+    for (size_t b = 0; b < A_.size(); ++b) out.segment(J_.body_start(b), A_[b]->rows()) = A_[b]->diagonal();
+  }
+  void A_mul(const VecX& x, VecX& out) const {
+    out.resize(n());
+    for (size_t b = 0; b < A_.size(); ++b) {
+      const int o = J_.body_start(b), nb = static_cast<int>(A_[b]->rows());
+      // a free body's block at its fixed size
+      if (nb == 6) {
+        out.segment<6>(o).noalias() = Eigen::Map<const Mat6>(A_[b]->data()) * x.segment<6>(o);
+      } else {
+        out.segment(o, nb).noalias() = *A_[b] * x.segment(o, nb);
+      }
+    }
+  }
+  void J_mul(const VecX& x, VecX& out) const { J_.multiply(x, out); }
+  void Jt_mul(const VecX& y, VecX& out) const { J_.multiply_transposed(y, out); }
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
   real smooth_curvature(const VecX&) const { return 0; }
-  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
-    // the pattern is built when first needed: a solve that starts converged needs none
-    if (!system_) system_ = std::make_shared<SparseNewtonSystem>(A_, rows);
-    system_->factor(rows, G);
+  void factor(const std::vector<ConstraintBlock>&, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX&) {
+    // the problem is given to the system when first needed: a solve that starts converged needs
+    // no Newton matrix
+    if (!prepared_) {
+      system_.prepare(J_);
+      for (size_t b = 0; b < A_.size(); ++b) system_.load_A(static_cast<int>(b), *A_[b]);
+      prepared_ = true;
+    }
+    system_.factor(J_, G);
   }
-  void solve(const VecX& b, VecX& x) const { x = system_->solve(b); }
+  void solve(const VecX& b, VecX& x) const { system_.solve(b, x); }
 
  private:
-  const SparseMat& A_;
-  const SparseRowMat& J_;
-  std::shared_ptr<SparseNewtonSystem>& system_;
+  std::span<const MatX* const> A_;
+  const BodyJacobian& J_;
+  SparseNewtonSystem& system_;
+  bool prepared_ = false;
 };
 
 }  // namespace
@@ -205,21 +226,28 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
                            const VecX& v_start, NewtonScratch& scratch) {
   DenseAlgebra alg(A, rows.J, scratch);
-  return newton(alg, r, rows, params, v_start, scratch);
+  return newton(alg, r, rows.blocks, params, v_start, scratch);
 }
 
-ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params) {
-  SparseCholesky A_chol;
-  A_chol.compute(A);
-  std::shared_ptr<SparseNewtonSystem> system;
+ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const BodyJacobian& J,
+                          const std::vector<ConstraintBlock>& blocks, const SolverParams& params) {
+  std::vector<const MatX*> A;
+  VecX v_free(r.size());
+  for (size_t b = 0; b < A_blocks.size(); ++b) {
+    A.push_back(&A_blocks[b]);
+    v_free.segment(J.body_start(static_cast<int>(b)), A_blocks[b].rows()) =
+        A_blocks[b].llt().solve(r.segment(J.body_start(static_cast<int>(b)), A_blocks[b].rows()));
+  }
+  SparseNewtonSystem system;
   NewtonScratch scratch;
-  return solve_convex(A, r, rows, params, A_chol.solve(r), system, scratch);
+  return solve_convex(A, r, J, blocks, params, v_free, system, scratch);
 }
 
-ConvexResult& solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                           const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system, NewtonScratch& scratch) {
-  SparseAlgebra alg(A, rows.J, system);
-  return newton(alg, r, rows, params, v_start, scratch);
+ConvexResult& solve_convex(std::span<const MatX* const> A_blocks, const VecX& r, const BodyJacobian& J,
+                           const std::vector<ConstraintBlock>& blocks, const SolverParams& params, const VecX& v_start,
+                           SparseNewtonSystem& system, NewtonScratch& scratch) {
+  BodyBlockAlgebra alg(A_blocks, J, system);
+  return newton(alg, r, blocks, params, v_start, scratch);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -16,6 +16,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Sparse>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "superdex/physics/real.h"
@@ -86,18 +87,21 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 // result is scratch.result.
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
                            const VecX& v_start, NewtonScratch& scratch);
-// The same with sparse linear algebra (large islands): Newton steps use a sparse Cholesky
-// factorization of A + J^T G J.
-ConvexResult solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params);
-// The same from v_start, with the Newton matrices on `system`'s pattern: built on the first
-// Newton iteration when empty, else it must hold A's and rows' structure and values (built for
-// them, or SparseNewtonSystem::reuse()d; blocks may differ in kind and parameters).
+// Large rigid islands, by bodies: A block diagonal, one dense block per body (A_blocks, in the
+// order of J's bodies), and J by bodies (body_jacobian.h); Newton steps factor A + J^T G J by
+// blocks (sparse_newton_system.h). From the unconstrained optimum A^-1 r:
+class BodyJacobian;
 class SparseNewtonSystem;
-ConvexResult& solve_convex(const SparseMat& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
-                           const VecX& v_start, std::shared_ptr<SparseNewtonSystem>& system, NewtonScratch& scratch);
+ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const BodyJacobian& J,
+                          const std::vector<ConstraintBlock>& blocks, const SolverParams& params);
+// and from v_start, in `scratch`, with the Newton matrices in `system` (kept across problems:
+// it keeps its analysis while the island's structure allows).
+ConvexResult& solve_convex(std::span<const MatX* const> A_blocks, const VecX& r, const BodyJacobian& J,
+                           const std::vector<ConstraintBlock>& blocks, const SolverParams& params, const VecX& v_start,
+                           SparseNewtonSystem& system, NewtonScratch& scratch);
 
 // J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.
-SparseMat constraint_hessian(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
+SparseMat constraint_hessian(const std::vector<ConstraintBlock>& blocks, const std::vector<Eigen::Matrix<real, 3, 3>>& G,
                              const SparseRowMat& J, const SparseMat& Jt);
 
 // Impulse and Hessian block d(-gamma)/d(vc) of one block at constraint velocity vc (the

@@ -19,13 +19,14 @@ void RowBlockAssembler::begin_block(int s) {
   open_.clear();
 }
 
-void RowBlockAssembler::add(int col, const real* v, bool keep_zeros) {
+void RowBlockAssembler::add(int col, const real* v) {
   Column c{col, 0u, {0, 0, 0}};
   for (int i = 0; i < s_; ++i) {
     c.v[i] = v[i];
-    if (keep_zeros || v[i] != 0) c.present |= 1u << i;
+    if (v[i] != 0) c.present |= 1u << i;
   }
-  open_.push_back(c);
+  // a column with no value adds nothing
+  if (c.present != 0) open_.push_back(c);
 }
 
 void RowBlockAssembler::end_block() {

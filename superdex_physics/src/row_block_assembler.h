@@ -18,10 +18,9 @@ class RowBlockAssembler {
   // Opens the next block, of `s` rows (1 to 3).
   void begin_block(int s);
   // Adds to the open block the values v[0..s) of column `col` in its s rows. A value that is
-  // exactly zero is left out of J's pattern unless `keep_zeros` (a pattern that depends on the
-  // columns alone, not on the values). A column given twice in a block adds up, in the order
-  // given.
-  void add(int col, const real* v, bool keep_zeros);
+  // exactly zero is left out of J's pattern. A column given twice in a block adds up, in the
+  // order given.
+  void add(int col, const real* v);
   // Closes the open block as the next s rows, its columns sorted within each row.
   void end_block();
   // The rows closed so far.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "island_solver.h"
+#include "sparse_newton_system.h"
 #include "debug_link.h"
 #include "recording_internal.h"
 #include "soft_contact.h"
@@ -422,14 +423,15 @@ void Scene::step_dynamics(real dt) {
   // each large rigid island gets its slot of the sparse pattern cache (kept for islands that
   // still exist, by their bodies); the map is complete before the parallel solves
   std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
-  std::vector<std::shared_ptr<SparseNewtonSystem>*>& sparse_cache = ws.sparse_cache;
+  std::vector<SparseNewtonSystem*>& sparse_cache = ws.sparse_cache;
   sparse_cache.assign(islands.size(), nullptr);
   for (size_t k = 0; k < islands.size(); ++k) {
     if (!island_is_sparse(s, islands[k], s.params)) continue;
     auto previous = s.sparse_systems.find(islands[k].bodies);
     auto& slot = sparse_systems[islands[k].bodies];
     if (previous != s.sparse_systems.end()) slot = std::move(previous->second);
-    sparse_cache[k] = &slot;
+    if (!slot) slot = std::make_shared<SparseNewtonSystem>();
+    sparse_cache[k] = slot.get();
   }
   s.sparse_systems = std::move(sparse_systems);
   // an island's size (contacts and DOFs) estimates its cost: largest first

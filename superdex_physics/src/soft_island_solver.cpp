@@ -29,6 +29,7 @@ class SoftAlgebra {
   }
 
   int n() const { return n_; }
+  int m() const { return static_cast<int>(J_.rows()); }
   void diagonal(VecX& d) const {
     d.resize(n_);
     d.head(nr_) = A_r_.diagonal();
@@ -56,8 +57,8 @@ class SoftAlgebra {
     return c;
   }
 
-  void factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX& v) {
-    const SparseMat C = constraint_hessian(rows, G, J_, Jt_);
+  void factor(const std::vector<ConstraintBlock>& blocks, const std::vector<Eigen::Matrix<real, 3, 3>>& G, const VecX& v) {
+    const SparseMat C = constraint_hessian(blocks, G, J_, Jt_);
     H_rr_ = A_r_;
     for (size_t k = 0; k < soft_.size(); ++k) {
       const SoftStep& s = *soft_[k];
@@ -216,7 +217,7 @@ ConvexResult& solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const C
                                     const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params,
                                     NewtonScratch& scratch) {
   SoftAlgebra alg(A_rigid, rows.J, soft);
-  return newton(alg, r, rows, params, v_start, scratch);
+  return newton(alg, r, rows.blocks, params, v_start, scratch);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -1,4 +1,4 @@
-// Newton matrices of large islands on a fixed pattern (sparse_newton_system.h).
+// Newton matrices of large rigid islands by bodies (sparse_newton_system.h).
 
 #include "sparse_newton_system.h"
 
@@ -7,161 +7,148 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-void SparseNewtonSystem::BlockColumns::gather(const ConstraintRows& rows) {
-  cols.clear();
-  col_start.assign(1, 0);
-  J_values.clear();
-  J_start.assign(1, 0);
-  block_rows.clear();
-  value_of.assign(rows.J.nonZeros(), -1);
-  for (const ConstraintBlock& b : rows.blocks) {
-    block_rows.push_back(b.row);
-    block_rows.push_back(b.size());
-    const int first = static_cast<int>(cols.size());
-    for (int i = 0; i < b.size(); ++i)
-      for (SparseRowMat::InnerIterator it(rows.J, b.row + i); it; ++it) cols.push_back(static_cast<int>(it.col()));
-    std::sort(cols.begin() + first, cols.end());
-    cols.erase(std::unique(cols.begin() + first, cols.end()), cols.end());
-    const int nc = static_cast<int>(cols.size()) - first;
-    const int J_first = static_cast<int>(J_values.size());
-    J_values.resize(J_first + b.size() * nc, real(0));
-    for (int i = 0; i < b.size(); ++i) {
-      const int row_first = rows.J.outerIndexPtr()[b.row + i];
-      for (SparseRowMat::InnerIterator it(rows.J, b.row + i); it; ++it) {
-        const int c = static_cast<int>(std::lower_bound(cols.begin() + first, cols.end(), static_cast<int>(it.col())) -
-                                       (cols.begin() + first));
-        J_values[J_first + i * nc + c] = it.value();
-        value_of[row_first + (&it.value() - &rows.J.valuePtr()[row_first])] = J_first + i * nc + c;
-      }
-    }
-    col_start.push_back(static_cast<int>(cols.size()));
-    J_start.push_back(static_cast<int>(J_values.size()));
+namespace {
+
+// J's structure as one integer list: the bodies' DOFs, then each block's rows and bodies.
+void structure_of(const BodyJacobian& J, std::vector<int>& out) {
+  out.clear();
+  out.push_back(J.num_bodies());
+  for (int b = 0; b < J.num_bodies(); ++b) out.push_back(J.body_dofs(b));
+  for (int k = 0; k < J.num_blocks(); ++k) {
+    out.push_back(J.block_size(k));
+    out.push_back(static_cast<int>(J.pieces(k).size()));
+    for (const BodyJacobian::Piece& p : J.pieces(k)) out.push_back(p.body);
   }
-  J_outer.assign(rows.J.outerIndexPtr(), rows.J.outerIndexPtr() + rows.J.rows() + 1);
-  J_inner.assign(rows.J.innerIndexPtr(), rows.J.innerIndexPtr() + rows.J.nonZeros());
 }
 
-bool SparseNewtonSystem::BlockColumns::refill(const ConstraintRows& rows) {
-  const SparseRowMat& J = rows.J;
-  if (!J.isCompressed() || static_cast<size_t>(J.rows()) + 1 != J_outer.size() ||
-      static_cast<size_t>(J.nonZeros()) != J_inner.size() || 2 * rows.blocks.size() != block_rows.size() ||
-      !std::equal(J_outer.begin(), J_outer.end(), J.outerIndexPtr()) ||
-      !std::equal(J_inner.begin(), J_inner.end(), J.innerIndexPtr()))
-    return false;
-  for (size_t k = 0; k < rows.blocks.size(); ++k)
-    if (block_rows[2 * k] != rows.blocks[k].row || block_rows[2 * k + 1] != rows.blocks[k].size()) return false;
-  // every entry lands where it did (the entries J lacks stay zero)
-  for (size_t e = 0; e < value_of.size(); ++e)
-    if (value_of[e] >= 0) J_values[value_of[e]] = J.valuePtr()[e];
-  return true;
-}
+}  // namespace
 
-SparseNewtonSystem::SparseNewtonSystem(const SparseMat& A, const ConstraintRows& rows) {
-  const int n = static_cast<int>(A.rows());
-  blocks_.gather(rows);
-  const std::vector<int>& cols = blocks_.cols;
-  const std::vector<int>& col_start = blocks_.col_start;
-  const size_t num_blocks = rows.blocks.size();
-  A_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
-  A_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  // the bodies: A is block diagonal, each body's block dense, so a body starts at the column whose
-  // first entry is on the diagonal (an empty column is a block of its own)
-  std::vector<int> body_of(n), local_of(n), body_sizes;
-  for (int c = 0; c < n; ++c) {
-    const bool starts = A.outerIndexPtr()[c] == A.outerIndexPtr()[c + 1] || A.innerIndexPtr()[A.outerIndexPtr()[c]] >= c;
-    if (starts || body_sizes.empty()) body_sizes.push_back(0);
-    body_of[c] = static_cast<int>(body_sizes.size()) - 1;
-    local_of[c] = body_sizes.back()++;
+void SparseNewtonSystem::prepare(const BodyJacobian& J) {
+  loaded_ = false;
+  structure_of(J, scratch_structure_);
+  const bool same = scratch_structure_ == structure_;
+  structure_.swap(scratch_structure_);
+  if (same && analyses_ > 0) return;
+  // the body pairs J couples, (later, earlier) in island order
+  std::vector<std::pair<int, int>>& pairs = scratch_pairs_;
+  pairs.clear();
+  for (int k = 0; k < J.num_blocks(); ++k) {
+    const auto pieces = J.pieces(k);
+    for (size_t p = 0; p < pieces.size(); ++p)
+      for (size_t q = 0; q < p; ++q)
+        pairs.emplace_back(std::max(pieces[p].body, pieces[q].body), std::min(pieces[p].body, pieces[q].body));
   }
-  // the body pairs that constraint blocks couple
-  std::vector<std::pair<int, int>> pairs;
-  for (size_t k = 0; k < num_blocks; ++k)
-    for (int i = col_start[k]; i < col_start[k + 1]; ++i)
-      for (int j = col_start[k]; j < i; ++j)
-        if (body_of[cols[i]] != body_of[cols[j]]) pairs.emplace_back(body_of[cols[i]], body_of[cols[j]]);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  H_.analyze(body_sizes, pairs);
-  auto slot = [&](int row, int col) { return H_.value_index(body_of[row], local_of[row], body_of[col], local_of[col]); };
-  A_slots_.clear();
-  for (int c = 0; c < n; ++c)
-    for (SparseMat::InnerIterator it(A, c); it; ++it) A_slots_.push_back(slot(static_cast<int>(it.row()), c));
-  load_A_values(A);
-  slots_.clear();
-  slot_start_.assign(1, 0);
-  for (size_t k = 0; k < num_blocks; ++k) {
-    for (int i = col_start[k]; i < col_start[k + 1]; ++i)
-      for (int j = col_start[k]; j < col_start[k + 1]; ++j) slots_.push_back(slot(cols[i], cols[j]));
-    slot_start_.push_back(static_cast<int>(slots_.size()));
+  // the analysis holds if it has these bodies and a block of H for each pair; pairs analysed
+  // but no longer coupled cost factorization work, so a pattern that has lost a quarter of its
+  // pairs is analysed anew
+  std::vector<int> dofs(J.num_bodies());
+  for (int b = 0; b < J.num_bodies(); ++b) dofs[b] = J.body_dofs(b);
+  const bool holds = analyses_ > 0 && dofs == body_dofs_ && std::includes(pairs_.begin(), pairs_.end(), pairs.begin(), pairs.end()) &&
+                     4 * pairs.size() >= 3 * pairs_.size();
+  if (!holds) {
+    body_dofs_ = std::move(dofs);
+    pairs_ = pairs;
+    H_.analyze(body_dofs_, pairs_);
+    A_values_.assign(H_.values().size(), 0.0);
+    ++analyses_;
+  }
+  locate_blocks(J);
+}
+
+void SparseNewtonSystem::locate_blocks(const BodyJacobian& J) {
+  where_.clear();
+  where_start_.assign(1, 0);
+  for (int k = 0; k < J.num_blocks(); ++k) {
+    const auto pieces = J.pieces(k);
+    for (const BodyJacobian::Piece& p : pieces) where_.push_back({H_.block_offset(p.body, p.body), false});
+    for (size_t p = 0; p < pieces.size(); ++p)
+      for (size_t q = 0; q < p; ++q) {
+        const int a = pieces[p].body, b = pieces[q].body;
+        const bool swapped = H_.eliminated_after(b, a);
+        where_.push_back({swapped ? H_.block_offset(b, a) : H_.block_offset(a, b), swapped});
+      }
+    where_start_.push_back(static_cast<int>(where_.size()));
   }
 }
 
-void SparseNewtonSystem::load_A_values(const SparseMat& A) {
-  A_values_.assign(H_.values().size(), 0.0);
-  for (Eigen::Index k = 0; k < A.nonZeros(); ++k) A_values_[A_slots_[k]] += A.valuePtr()[k];
+void SparseNewtonSystem::load_A(int body, const MatX& A_body) {
+  const int nb = body_dofs_[body];
+  double* D = A_values_.data() + H_.block_offset(body, body);
+  for (int c = 0; c < nb; ++c)
+    for (int r = 0; r < nb; ++r) D[r + c * nb] = A_body(r, c);
 }
 
-bool SparseNewtonSystem::reuse(const SparseMat& A, const ConstraintRows& rows) {
-  if (A.rows() != H_.dimension() || !A.isCompressed() ||
-      !std::equal(A_outer_.begin(), A_outer_.end(), A.outerIndexPtr()) ||
-      static_cast<size_t>(A.nonZeros()) != A_inner_.size() ||
-      !std::equal(A_inner_.begin(), A_inner_.end(), A.innerIndexPtr()))
-    return false;
-  // the same J pattern and blocks take J's values in place; otherwise every block must touch
-  // the same columns as before
-  if (!blocks_.refill(rows)) {
-    BlockColumns next;
-    next.gather(rows);
-    if (next.cols != blocks_.cols || next.col_start != blocks_.col_start) return false;
-    blocks_ = std::move(next);
-  }
-  load_A_values(A);
-  loaded_ = false;
-  return true;
-}
-
-VecX SparseNewtonSystem::solve(const VecX& b) const {
+void SparseNewtonSystem::solve(const VecX& b, VecX& x) const {
   x_ = b.cast<double>();
   H_.solve(x_.data(), x_.data());
-  return x_.cast<real>();
+  x = x_.cast<real>();
 }
 
-bool SparseNewtonSystem::factor(const ConstraintRows& rows, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
+bool SparseNewtonSystem::factor(const BodyJacobian& J, const std::vector<Eigen::Matrix<real, 3, 3>>& G) {
   std::vector<double>& values = H_.values();
   // the first factorization of a problem writes A + J^T G J; the next ones of the same problem
-  // (Newton iterations, friction passes) add J_b^T (G_b - G_b') J_b only for the blocks whose
-  // Hessian block changed since (most do not: sticking and separated contacts)
+  // (Newton iterations) add J_b^T (G_b - G_b') J_b only for the blocks whose Hessian block
+  // changed since (most do not: sticking and separated contacts)
   if (!loaded_ || G_loaded_.size() != G.size()) {
     std::copy(A_values_.begin(), A_values_.end(), values.begin());
     G_loaded_.assign(G.size(), Eigen::Matrix3d::Zero());
     loaded_ = true;
   }
-  // J_b^T dG J_b of each block, entry by entry into the slots stored (a block has 1 or 3 rows)
+  const real* J_values = J.values();
   Eigen::Matrix<double, 3, Eigen::Dynamic>& GJ = GJ_;
-  for (size_t k = 0; k < rows.blocks.size(); ++k) {
-    const int s = rows.blocks[k].size();
-    const Eigen::Matrix3d G_k = G[k].template cast<double>();
-    // the difference of two floats is exact in double: the sum stays that of the blocks' own
-    const Eigen::Matrix3d dG = G_k - G_loaded_[k];
-    if (s == 3 ? dG.isZero(0) : dG(0, 0) == 0) continue;
-    G_loaded_[k] = G_k;
-    const int nc = blocks_.col_start[k + 1] - blocks_.col_start[k];
-    const real* Jb = blocks_.J_values.data() + blocks_.J_start[k];  // s x nc, row-major
-    const int* slot = slots_.data() + slot_start_[k];
-    if (s == 1) {
-      for (int i = 0; i < nc; ++i)
-        for (int j = 0; j < nc; ++j)
-          if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += dG(0, 0) * Jb[i] * Jb[j];
-      continue;
-    }
-    // GJ = dG J_b (3 x nc), then entry (i, j) = J_b(:, i) . GJ(:, j)
-    GJ.resize(3, nc);
-    for (int j = 0; j < nc; ++j) GJ.col(j) = dG * Eigen::Vector3d(Jb[j], Jb[nc + j], Jb[2 * nc + j]);
-    for (int i = 0; i < nc; ++i) {
-      const Eigen::Vector3d Ji(Jb[i], Jb[nc + i], Jb[2 * nc + i]);
-      for (int j = 0; j < nc; ++j)
-        if (slot[i * nc + j] >= 0) values[slot[i * nc + j]] += Ji.dot(GJ.col(j));
-    }
+  for (int k = 0; k < J.num_blocks(); ++k) {
+    const int s = J.block_size(k);
+    // the block's s x s Hessian (a 1-row block's G holds its entry alone, the others are not
+    // written); the difference of two floats is exact in double, so the sums stay those of the
+    // blocks' own
+    Eigen::Matrix3d dG = Eigen::Matrix3d::Zero();
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < s; ++i) dG(i, j) = static_cast<double>(G[k](i, j)) - G_loaded_[k](i, j);
+    if (dG.isZero(0)) continue;
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < s; ++i) G_loaded_[k](i, j) = G[k](i, j);
+    const auto pieces = J.pieces(k);
+    const Where* where = where_.data() + where_start_[k];
+    // M = J_a^T dG J_b (columns of piece a against those of piece b) into H's block at `value`,
+    // column-major with piece a's DOFs as rows
+    auto add = [&](const BodyJacobian::Piece& a, const BodyJacobian::Piece& b, int value) {
+      const int na = J.body_dofs(a.body), nb = J.body_dofs(b.body);
+      const real* Ja = J_values + a.value;  // s x na, column-major
+      const real* Jb = J_values + b.value;
+      double* M = values.data() + value;
+      // a contact between free bodies (the common case), at fixed sizes
+      if (s == 3 && na == 6 && nb == 6) {
+        const Eigen::Matrix<double, 3, 6> Ja_d = Eigen::Map<const Eigen::Matrix<real, 3, 6>>(Ja).template cast<double>();
+        const Eigen::Matrix<double, 3, 6> GJb = dG * Eigen::Map<const Eigen::Matrix<real, 3, 6>>(Jb).template cast<double>();
+        Eigen::Map<Eigen::Matrix<double, 6, 6>>(M).noalias() += Ja_d.transpose() * GJb;
+        return;
+      }
+      GJ.resize(3, nb);
+      for (int c = 0; c < nb; ++c)
+        for (int i = 0; i < s; ++i) {
+          double sum = 0;
+          for (int j = 0; j < s; ++j) sum += dG(i, j) * Jb[c * s + j];
+          GJ(i, c) = sum;
+        }
+      for (int c = 0; c < nb; ++c)
+        for (int r = 0; r < na; ++r) {
+          double sum = 0;
+          for (int i = 0; i < s; ++i) sum += Ja[r * s + i] * GJ(i, c);
+          M[r + c * na] += sum;
+        }
+    };
+    for (size_t p = 0; p < pieces.size(); ++p) add(pieces[p], pieces[p], where[p].value);
+    const Where* pair = where + pieces.size();
+    for (size_t p = 0; p < pieces.size(); ++p)
+      for (size_t q = 0; q < p; ++q, ++pair) {
+        if (pair->swapped) {
+          add(pieces[q], pieces[p], pair->value);
+        } else {
+          add(pieces[p], pieces[q], pair->value);
+        }
+      }
   }
   return H_.factor();
 }

@@ -36,7 +36,7 @@ struct StepWorkspace {
   std::vector<ArticulationTerms> terms;                // per articulation
   std::vector<Island> islands;
   IslandScratch island_scratch;
-  std::vector<std::shared_ptr<SparseNewtonSystem>*> sparse_cache;  // per island
+  std::vector<SparseNewtonSystem*> sparse_cache;  // per island: its Newton system when sparse
   std::vector<double> island_size;                     // per island: its cost estimate
   std::vector<IslandSolution> solutions;               // per island
   std::vector<VecX> q_next, v_next, efforts_next;      // per articulation: the next state

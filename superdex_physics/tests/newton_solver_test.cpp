@@ -11,6 +11,7 @@
 
 #include <random>
 
+#include "body_jacobian.h"
 #include "newton_solver.h"
 
 namespace superdex::physics {
@@ -81,16 +82,26 @@ TEST(ContactProjection, HessianMatchesFiniteDifferencesInEveryRegion) {
   }
 }
 
+// A matrix of uniform entries in [-1, 1] from the test's own generator (not std::rand, which
+// other code may consume or reseed).
+MatX uniform_matrix(int rows, int cols, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  MatX M(rows, cols);
+  for (int c = 0; c < cols; ++c)
+    for (int r = 0; r < rows; ++r) M(r, c) = u(rng);
+  return M;
+}
+
 TEST(ConvexSolve, SatisfiesMomentumBalanceWithContactsAndLimits) {
   std::mt19937 rng(3);
   std::normal_distribution<double> nd;
   const int n = 6;
-  MatX L = MatX::Random(n, n);
+  MatX L = uniform_matrix(n, n, rng);
   const MatX A = L * L.transpose() + n * MatX::Identity(n, n);
   VecX r(n);
   for (int i = 0; i < n; ++i) r[i] = nd(rng);
   ConstraintRows rows;
-  rows.J = MatX(MatX::Random(7, n)).sparseView();
+  rows.J = uniform_matrix(7, n, rng).sparseView();
   rows.blocks.push_back(contact_block(0.01, 0.1, 0.4, 0.2));
   rows.blocks.back().row = 0;
   rows.blocks.push_back(contact_block(0.02, 0.05, 1.0, -0.1));
@@ -118,8 +129,20 @@ TEST(ConvexSolve, SatisfiesMomentumBalanceWithContactsAndLimits) {
   EXPECT_LT((A * res.v - r - rows.J.transpose() * gamma).norm(), 1e-9 * (1 + r.norm()));
   EXPECT_LT((gamma - res.gamma).norm(), 1e-12 * (1 + gamma.norm()));
 
-  // the sparse path solves the same problem
-  const ConvexResult sparse = solve_convex(SparseMat(A.sparseView()), r, rows, params);
+  // the path of large islands (by bodies; here one body of n DOFs) solves the same problem
+  BodyJacobian J_bodies;
+  const int dofs[] = {n};
+  J_bodies.reset(dofs);
+  const MatX J_dense(rows.J);
+  for (const ConstraintBlock& blk : rows.blocks) {
+    J_bodies.begin_block(blk.size());
+    real* P = J_bodies.piece(0);
+    for (int c = 0; c < n; ++c)
+      for (int i = 0; i < blk.size(); ++i) P[c * blk.size() + i] = J_dense(blk.row + i, c);
+    J_bodies.end_block();
+  }
+  const MatX A_blocks[] = {A};
+  const ConvexResult sparse = solve_convex(A_blocks, r, J_bodies, rows.blocks, params);
   ASSERT_TRUE(sparse.converged);
   EXPECT_LT((sparse.v - res.v).norm(), 1e-9 * (1 + res.v.norm()));
   EXPECT_LT((sparse.gamma - res.gamma).norm(), 1e-9 * (1 + res.gamma.norm()));
@@ -136,18 +159,22 @@ TEST(ConvexSolve, DriftCorrectionGivesCoulombsLawWithTheNormalTarget) {
   double normal_error_cone = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const int n = 12, contacts = 4;
-    MatX L = MatX::Random(n, n);
+    MatX L = uniform_matrix(n, n, rng);
     const MatX A = L * L.transpose() + n * MatX::Identity(n, n);
     VecX r(n);
     for (int i = 0; i < n; ++i) r[i] = 3 * nd(rng);
     ConstraintRows rows;
-    rows.J = MatX(MatX::Random(3 * contacts, n)).sparseView();
+    rows.J = uniform_matrix(3 * contacts, n, rng).sparseView();
     for (int c = 0; c < contacts; ++c) {
       rows.blocks.push_back(contact_block(0.002, 0.02, 0.5, 0.3 * nd(rng)));
       rows.blocks.back().row = 3 * c;
     }
     SolverParams params;
     params.relative_tolerance = 1e-12;
+    // these random contacts slide hard: with unlimited corrections, 600 such problems (30 seeds)
+    // converged in at most 34 iterations, and the default 20 corrections stop some of them
+    // short of the fixed point (the normal law then holds to about 1e-6 relative, not 1e-7)
+    params.drift_correction_iterations = 50;
     const Eigen::LLT<MatX> llt(A);
     const ConvexResult res = solve_convex(A, llt, r, rows, params);
     ASSERT_TRUE(res.converged);

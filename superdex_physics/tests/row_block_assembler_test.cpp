@@ -1,7 +1,7 @@
 /// @file row_block_assembler_test.cpp
 /// The constraint Jacobian's assembly block of rows by block of rows: the same matrix as
-/// Eigen's setFromTriplets from the entries kept (values, sorted columns, a repeated column's
-/// values summed in the order given, exact zeros left out unless kept), reusing one assembler
+/// Eigen's setFromTriplets from the non-zero entries (values, sorted columns, a repeated column's
+/// values summed in the order given, exact zeros left out), reusing one assembler
 /// and one matrix for problems of changing sizes.
 
 #include <gtest/gtest.h>
@@ -29,14 +29,13 @@ TEST(RowBlockAssembler, MatchesSetFromTripletsWithRepeatsZerosAndChangingSizes) 
       for (int c = 0; c < columns; ++c) {
         // columns in any order, some repeated; values with exact zeros among them
         const int col = uniform(0, n - 1);
-        const bool keep_zeros = uniform(0, 1) == 1;
         real v[3];
         for (int i = 0; i < s; ++i)
           v[i] = uniform(0, 3) == 0 ? real(0) : static_cast<real>(std::uniform_real_distribution<double>(-1, 1)(rng));
-        assembler.add(col, v, keep_zeros);
+        assembler.add(col, v);
         // a left-out zero adds nothing to a repeated column's sum
         for (int i = 0; i < s; ++i)
-          if (keep_zeros || v[i] != 0) kept.emplace_back(row + i, col, v[i]);
+          if (v[i] != 0) kept.emplace_back(row + i, col, v[i]);
       }
       assembler.end_block();
       row += s;
