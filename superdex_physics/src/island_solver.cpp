@@ -163,28 +163,50 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     r.segment(soft_offset[k], st.size()) = st.r;
     v_start.segment(soft_offset[k], st.size()) = st.v0;
   }
-  // J: on the sparse path by bodies, else block by block into rows.J
+  // J's form: by bodies on the sparse path; a dense matrix on the dense path (the dense algebra's
+  // own); with full soft bodies, compressed rows (rows.J) assembled block by block
+  enum class JForm { Bodies, Dense, Rows };
+  const JForm form = sparse ? JForm::Bodies : soft.empty() ? JForm::Dense : JForm::Rows;
   ConstraintRows& rows = w.rows;
   RowBlockAssembler& J_rows = w.J_rows;
   BodyJacobian& J_bodies = w.J_bodies;
+  MatXR& J_dense = w.J_dense;
   rows.blocks.clear();
   rows.blocks.reserve(joint_rows + num_contacts);
-  if (sparse) {
+  if (form == JForm::Bodies) {
     std::vector<int>& dofs = w.body_dofs;
     dofs.clear();
     for (int b : island.bodies) dofs.push_back(s.articulations[b]->model.nv);
     J_bodies.reset(dofs);
+  } else if (form == JForm::Dense) {
+    J_dense.setZero(joint_rows + 3 * num_contacts, n);
   } else {
     J_rows.clear();
   }
-  auto begin_block = [&](int size) { sparse ? J_bodies.begin_block(size) : J_rows.begin_block(size); };
-  auto end_block = [&]() { sparse ? J_bodies.end_block() : J_rows.end_block(); };
-  int row = 0;
+  int row = 0;         // the open block's first row
+  int block_rows = 0;  // and its rows
+  auto begin_block = [&](int size) {
+    block_rows = size;
+    if (form == JForm::Bodies) J_bodies.begin_block(size);
+    if (form == JForm::Rows) J_rows.begin_block(size);
+  };
+  auto end_block = [&]() {
+    if (form == JForm::Bodies) J_bodies.end_block();
+    if (form == JForm::Rows) J_rows.end_block();
+  };
+  // adds the open block's values v[0..block_rows) in column `col` (dense and compressed forms)
+  auto add_column = [&](int col, const real* v) {
+    if (form == JForm::Dense) {
+      for (int i = 0; i < block_rows; ++i) J_dense(row + i, col) += v[i];
+    } else {
+      J_rows.add(col, v);
+    }
+  };
   for (const auto [j, i] : solved_rows) {
     const int b = island.bodies[j];
     const JointRow& jr = terms[b].joint_rows[i];
     begin_block(1);
-    if (sparse) {
+    if (form == JForm::Bodies) {
       real* P = J_bodies.piece(j);
       if (jr.J.size() > 0) {
         std::copy(jr.J.data(), jr.J.data() + jr.J.size(), P);
@@ -192,9 +214,9 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
         P[jr.dof] = jr.sign;
       }
     } else if (jr.J.size() > 0) {
-      for (Eigen::Index c = 0; c < jr.J.size(); ++c) J_rows.add(offset[b] + static_cast<int>(c), &jr.J[c]);
+      for (Eigen::Index c = 0; c < jr.J.size(); ++c) add_column(offset[b] + static_cast<int>(c), &jr.J[c]);
     } else {
-      J_rows.add(offset[b] + jr.dof, &jr.sign);
+      add_column(offset[b] + jr.dof, &jr.sign);
     }
     end_block();
     ConstraintBlock blk = jr.block;
@@ -219,14 +241,14 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     const int o = offset[body];
     // on the sparse path the side's rows on all its body's DOFs (zeros included: the structure
     // is the contact's bodies), adding to the other side's when both are on one body
-    real* P = sparse ? J_bodies.piece(w.island_position[body]) : nullptr;
+    real* P = form == JForm::Bodies ? J_bodies.piece(w.island_position[body]) : nullptr;
     for (int k = 0; k < nb; ++k) {
       // velocity of point p_W per unit velocity of DOF k, in the contact frame
       const Vec3 v = R * (J.block<3, 1>(0, k) + J.block<3, 1>(3, k).cross(r));
       if (P) {
         for (int i = 0; i < 3; ++i) P[3 * k + i] += v[i];
       } else {
-        J_rows.add(o + k, v.data());
+        add_column(o + k, v.data());
       }
       vn_free += v[2] * v_start[o + k];
     }
@@ -275,7 +297,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     Jq.setZero(3, nq);
     for (int j = 0; j < 3; ++j)
       if (node[j]) Jq.noalias() += (c.weights[j] * R_C.transpose()) * model.Phi.middleRows<3>(3 * c.nodes[j]);
-    for (int k = 0; k < nq; ++k) J_rows.add(o + k, Jq.col(k).data());
+    for (int k = 0; k < nq; ++k) add_column(o + k, Jq.col(k).data());
     W_diag += (Jq.array().square().rowwise() / rv.A_q.transpose().array()).rowwise().sum().matrix();
     // the contact's regularization takes the full body's Delassus estimate too (its lumped node
     // masses), so that a reduced body and its full twin press alike
@@ -289,7 +311,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       if (cj < 0) continue;
       for (int a = 0; a < 3; ++a) {
         const Vec3 v = c.weights[j] * R_C.row(a).transpose();
-        J_rows.add(o + cj + a, v.data());
+        add_column(o + cj + a, v.data());
       }
       vn_free -= c.weights[j] * (dt / rv.h) * R_C.col(2).dot(rv.u_old.segment<3>(cj - nq));
       for (int l = 0; l < 3; ++l) {
@@ -308,7 +330,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
     frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
-    J_rows.begin_block(3);
+    begin_block(3);
     if (reduced_of[c.soft] >= 0) {
       add_reduced_side(reduced[reduced_of[c.soft]], c, R_C, W_diag, vn_free);
       add_link_side(c.body, c.link, c.p_W, R_C, -1, W_diag, vn_free);
@@ -323,7 +345,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
       for (int a = 0; a < 3; ++a) {
         const int f = st.pattern.free_of_dof[3 * c.nodes[j] + a];
         const Vec3 v = w * R_C.row(a).transpose();
-        J_rows.add(o + f, v.data());
+        add_column(o + f, v.data());
         vn_free += w * R_C(a, 2) * (st.r[f] / st.mass[f]);
       }
       W_diag.array() += w * w / st.mass[st.pattern.free_of_dof[3 * c.nodes[j]]];
@@ -333,7 +355,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   }
 
   // (same-row entries of a contact with both bodies on one articulation have added up)
-  if (!sparse) J_rows.finish(n, rows.J);
+  if (form == JForm::Rows) J_rows.finish(n, rows.J);
 
   // the solve (dense, sparse, or with soft bodies block elimination) starts from the free
   // motion A^-1 r, or, when bodies touch, from their current velocities: resting and pressing
@@ -354,7 +376,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // every path leaves its result in w.newton.result
   ConvexResult& sol = !soft.empty() ? solve_convex_with_soft(A, r, rows, soft, v_start, params, w.newton)
                       : sparse      ? solve_convex(w.A_blocks, r, J_bodies, rows.blocks, params, v_start, *system, w.newton)
-                                    : solve_convex(A, r, rows, params, v_start, w.newton);
+                                    : solve_convex(A, r, J_dense, rows.blocks, params, v_start, w.newton);
   out.iterations = sol.iterations;
   out.residual = sol.residual;
   out.converged = sol.converged;

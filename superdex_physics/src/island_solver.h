@@ -48,8 +48,9 @@ struct IslandWorkspace {
   MatX A;                          // A on the dense paths
   std::vector<const MatX*> A_blocks;  // A on the sparse path: its bodies' blocks, in island order
   VecX r, v_start;
-  ConstraintRows rows;  // the blocks; J itself on the dense paths
+  ConstraintRows rows;       // the blocks; J itself with full soft bodies
   RowBlockAssembler J_rows;  // rows.J as its blocks are made
+  MatXR J_dense;             // J on the dense path
   BodyJacobian J_bodies;     // J on the sparse path
   std::vector<int> body_dofs;  // the island's bodies' DOFs, in island order
   std::vector<int> island_position;  // by articulation index: its position in the island's bodies, or -1

@@ -90,16 +90,25 @@ class DenseAlgebra {
   // up to this many variables, the Hessian's constraint part is added block by block
   static constexpr int kSmallHessian = 24;
 
-  DenseAlgebra(const MatX& A, const SparseRowMat& J, NewtonScratch& w)
-      : A_(A), J_(w.J), H_(w.H), J_active_(w.J_active), GJ_(w.GJ), llt_(w.llt) {
-    J_ = J;
-  }
+  DenseAlgebra(const MatX& A, const MatXR& J, NewtonScratch& w)
+      : A_(A), J_(J), H_(w.H), J_active_(w.J_active), GJ_(w.GJ), llt_(w.llt) {}
   int n() const { return static_cast<int>(A_.rows()); }
   int m() const { return static_cast<int>(J_.rows()); }
   void diagonal(VecX& out) const { out = A_.diagonal(); }
-  void A_mul(const VecX& x, VecX& out) const { out.noalias() = A_ * x; }
-  void J_mul(const VecX& x, VecX& out) const { out.noalias() = J_ * x; }
-  void Jt_mul(const VecX& y, VecX& out) const { out.noalias() = J_.transpose() * y; }
+  // products: below kSmallHessian variables coefficient by coefficient (Eigen's blocked
+  // matrix-vector kernels cost more to set up than they save at these sizes)
+  void A_mul(const VecX& x, VecX& out) const {
+    if (n() <= kSmallHessian) out.noalias() = A_.lazyProduct(x);
+    else out.noalias() = A_ * x;
+  }
+  void J_mul(const VecX& x, VecX& out) const {
+    if (n() <= kSmallHessian) out.noalias() = J_.lazyProduct(x);
+    else out.noalias() = J_ * x;
+  }
+  void Jt_mul(const VecX& y, VecX& out) const {
+    if (n() <= kSmallHessian) out.noalias() = J_.transpose().lazyProduct(y);
+    else out.noalias() = J_.transpose() * y;
+  }
   // factors H = A + J^T G J (G block diagonal, of the given blocks)
   bool smooth() const { return false; }
   void add_smooth_gradient(const VecX&, VecX&) const {}
@@ -162,7 +171,7 @@ class DenseAlgebra {
 
  private:
   const MatX& A_;
-  MatXR& J_;
+  const MatXR& J_;
   MatX& H_;
   MatXR &J_active_, &GJ_;
   Eigen::LLT<MatX>& llt_;
@@ -225,8 +234,14 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
                            const VecX& v_start, NewtonScratch& scratch) {
-  DenseAlgebra alg(A, rows.J, scratch);
-  return newton(alg, r, rows.blocks, params, v_start, scratch);
+  scratch.J = rows.J;
+  return solve_convex(A, r, scratch.J, rows.blocks, params, v_start, scratch);
+}
+
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const MatXR& J, const std::vector<ConstraintBlock>& blocks,
+                           const SolverParams& params, const VecX& v_start, NewtonScratch& scratch) {
+  DenseAlgebra alg(A, J, scratch);
+  return newton(alg, r, blocks, params, v_start, scratch);
 }
 
 ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const BodyJacobian& J,

@@ -74,7 +74,7 @@ struct NewtonScratch {
   std::vector<Eigen::Matrix<real, 3, 3>> G;
   std::vector<int> live;  // the line search's blocks whose impulse may be non-zero on its segment
   std::vector<ConstraintBlock> blocks;  // the solve's blocks, with contacts' drift corrections (newton_loop.h)
-  MatXR J, J_active, GJ;  // dense algebra: J as a dense matrix, its active rows, G J on them
+  MatXR J, J_active, GJ;  // dense algebra: J made dense (when given sparse), its active rows, G J on them
   MatX H;                 // and the Hessian
   Eigen::LLT<MatX> llt;
 };
@@ -87,6 +87,9 @@ ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const Ve
 // result is scratch.result.
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
                            const VecX& v_start, NewtonScratch& scratch);
+// The same with J as a dense matrix (m x n, read in place).
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const MatXR& J, const std::vector<ConstraintBlock>& blocks,
+                           const SolverParams& params, const VecX& v_start, NewtonScratch& scratch);
 // Large rigid islands, by bodies: A block diagonal, one dense block per body (A_blocks, in the
 // order of J's bodies), and J by bodies (body_jacobian.h); Newton steps factor A + J^T G J by
 // blocks (sparse_newton_system.h). From the unconstrained optimum A^-1 r:
