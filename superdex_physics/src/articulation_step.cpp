@@ -149,7 +149,11 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   mass_matrix(model, a.kin, t.A);
   bias_forces(model, a.state, a.kin, g_W, t.c);
   // (M + dt D) v+ = M v + dt (tau - c): viscous joint friction integrated implicitly
-  t.r.noalias() = t.A * a.state.v;
+  if (model.nv <= SmallLLT::kSmall) {
+    t.r.noalias() = t.A.lazyProduct(a.state.v);  // (Eigen's blocked kernel costs more to set up)
+  } else {
+    t.r.noalias() = t.A * a.state.v;
+  }
   t.r.noalias() += dt * (a.state.tau_external - t.c);
   for (const JointModel& j : model.joints)
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;

@@ -4,6 +4,7 @@
 // factor, and the joint-limit and joint-friction rows.
 
 #include "newton_solver.h"
+#include "small_llt.h"
 #include "scene_data.h"
 #include "step_ticks.h"
 
@@ -59,7 +60,7 @@ struct ArticulationTerms {
   VecX r;                        // nv
   // factored from an empty matrix until computed: a default-constructed LLT leaves its status
   // uninitialized, and copying the terms of a body without DOFs read it (UBSan, issue 9)
-  Eigen::LLT<MatX> A_llt{MatX(0, 0)};
+  SmallLLT A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
   Ticks ticks = 0;               // time spent computing these (step_ticks.h)
   VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r

@@ -174,7 +174,7 @@ class DenseAlgebra {
   const MatXR& J_;
   MatX& H_;
   MatXR &J_active_, &GJ_;
-  Eigen::LLT<MatX>& llt_;
+  SmallLLT& llt_;
 };
 
 // Large rigid islands by bodies: A's blocks, J by bodies, H by blocks (sparse_newton_system.h).

@@ -19,6 +19,7 @@
 #include <span>
 #include <vector>
 
+#include "small_llt.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/scene.h"
 
@@ -76,7 +77,7 @@ struct NewtonScratch {
   std::vector<ConstraintBlock> blocks;  // the solve's blocks, with contacts' drift corrections (newton_loop.h)
   MatXR J, J_active, GJ;  // dense algebra: J made dense (when given sparse), its active rows, G J on them
   MatX H;                 // and the Hessian
-  Eigen::LLT<MatX> llt;
+  SmallLLT llt;
 };
 
 // Solves the problem from the unconstrained optimum A^-1 r with dense linear algebra (small

@@ -1,0 +1,28 @@
+#pragma once
+// Eigen's LLT whose factorization of small matrices (the momentum matrices of articulations and
+// the Newton matrices of small islands) runs in plain loops. Eigen's own runs a matrix-vector
+// product per column, whose set-up costs more than its arithmetic below some 16 variables. The
+// factor, its storage and every other method are Eigen's, so it goes wherever an LLT<MatX> is
+// read.
+
+#include <Eigen/Cholesky>
+
+#include "superdex/physics/real.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+class SmallLLT : public Eigen::LLT<MatX> {
+ public:
+  // matrices up to this size are factored by the loops below
+  static constexpr Eigen::Index kSmall = 16;
+
+  SmallLLT() = default;
+  explicit SmallLLT(const MatX& A) { compute(A); }
+  // Factors A (its lower triangle is read), as Eigen::LLT::compute does: info() tells whether
+  // it is positive definite.
+  SmallLLT& compute(const MatX& A);
+};
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
