@@ -2,8 +2,8 @@
 /// Google Benchmark micro-benchmarks of the engine's hot kernels, on the double build:
 /// kinematics, mass matrix and bias forces of revolute chains (7 and 30 DOFs), collision (one
 /// box-box manifold; the whole narrow and broad phase of a settled 50-box pile), the convex
-/// contact solve (a dense island of boxes in contact) and the block Cholesky factorization of a
-/// sparse one, FEM assembly (energy, gradient and projected Hessian of Neo-Hookean tetrahedra),
+/// contact solve of an island of boxes in contact (dense, and by bodies as large islands are
+/// solved) and the block Cholesky factorization of a sparse one, FEM assembly (energy, gradient and projected Hessian of Neo-Hookean tetrahedra),
 /// the signed distance grid of a 1280-triangle sphere at 32^3 cells, and whole steps of the
 /// 50-box pile for scale.
 /// Built by `cmake --build <build dir> --target superdex_microbench`; run by benchmarks/run.py.
@@ -16,6 +16,7 @@
 #include "articulation_model.h"
 #include "block_cholesky.h"
 #include "block_problems.h"
+#include "body_jacobian.h"
 #include "collision_detection.h"
 #include "contact_block.h"
 #include "dynamics.h"
@@ -182,43 +183,81 @@ void BM_StepPile50(benchmark::State& st) {
 }
 BENCHMARK(BM_StepPile50)->Unit(benchmark::kMillisecond);
 
-// The convex solve of an island of `bodies` free bodies (6 DOFs each) with 4 frictional
-// contacts per body between neighbours and with the ground (dense linear algebra).
-void BM_ContactSolveDense(benchmark::State& st) {
-  const int bodies = static_cast<int>(st.range(0)), n = 6 * bodies, contacts = 4 * bodies;
-  std::mt19937 rng(1);
-  std::normal_distribution<double> nd;
-  sp::MatX A = sp::MatX::Zero(n, n);
-  for (int b = 0; b < bodies; ++b) A.block(6 * b, 6 * b, 6, 6) = sp::Mat6(sp::Mat6::Identity() * 1.0 + 0.01 * sp::Mat6::Ones());
-  sp::VecX r(n);
-  for (int i = 0; i < n; ++i) r[i] = nd(rng) - (i % 6 == 2 ? 0.04 : 0.0);  // gravity's momentum on z
-  std::vector<Eigen::Triplet<real>> t;
+// An island of `bodies` free bodies (6 DOFs each) with 4 frictional contacts per body between
+// neighbours and with the ground: its convex problem, J both as compressed rows and by bodies.
+struct ContactIsland {
+  sp::MatX A;
+  std::vector<sp::MatX> A_blocks;
+  sp::VecX r;
   sp::ConstraintRows rows;
+  sp::BodyJacobian J_bodies;
   sp::SolverParams params;
-  for (int c = 0; c < contacts; ++c) {
-    const int a = c / 4, b = (c % 4 == 0) ? -1 : (a + c % 4) % bodies;  // -1: the ground
-    for (int k = 0; k < 3; ++k)
-      for (int j = 0; j < 6; ++j) {
-        t.emplace_back(3 * c + k, 6 * a + j, nd(rng) * (j < 3 ? 1.0 : 0.05));
-        if (b >= 0 && b != a) t.emplace_back(3 * c + k, 6 * b + j, -nd(rng) * (j < 3 ? 1.0 : 0.05));
-      }
-    sp::ContactMaterial mat;
-    sp::ConstraintBlock blk = sp::frictional_contact_block(mat, real(-1e-4), real(1.0), real(1.0), real(-0.05), real(0.004), params);
-    blk.row = 3 * c;
-    rows.blocks.push_back(blk);
+
+  explicit ContactIsland(int bodies) {
+    const int n = 6 * bodies, contacts = 4 * bodies;
+    std::mt19937 rng(1);
+    std::normal_distribution<double> nd;
+    A = sp::MatX::Zero(n, n);
+    for (int b = 0; b < bodies; ++b) {
+      A_blocks.push_back(sp::Mat6(sp::Mat6::Identity() * 1.0 + 0.01 * sp::Mat6::Ones()));
+      A.block(6 * b, 6 * b, 6, 6) = A_blocks.back();
+    }
+    r.resize(n);
+    for (int i = 0; i < n; ++i) r[i] = nd(rng) - (i % 6 == 2 ? 0.04 : 0.0);  // gravity's momentum on z
+    std::vector<Eigen::Triplet<real>> t;
+    J_bodies.reset(std::vector<int>(bodies, 6));
+    for (int c = 0; c < contacts; ++c) {
+      const int a = c / 4, b = (c % 4 == 0) ? -1 : (a + c % 4) % bodies;  // -1: the ground
+      J_bodies.begin_block(3);
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 6; ++j) {
+          const real va = static_cast<real>(nd(rng) * (j < 3 ? 1.0 : 0.05));
+          t.emplace_back(3 * c + k, 6 * a + j, va);
+          J_bodies.piece(a)[3 * j + k] += va;
+          if (b >= 0 && b != a) {
+            const real vb = static_cast<real>(-nd(rng) * (j < 3 ? 1.0 : 0.05));
+            t.emplace_back(3 * c + k, 6 * b + j, vb);
+            J_bodies.piece(b)[3 * j + k] += vb;
+          }
+        }
+      J_bodies.end_block();
+      sp::ContactMaterial mat;
+      sp::ConstraintBlock blk = sp::frictional_contact_block(mat, real(-1e-4), real(1.0), real(1.0), real(-0.05), real(0.004), params);
+      blk.row = 3 * c;
+      rows.blocks.push_back(blk);
+    }
+    rows.J.resize(3 * contacts, n);
+    rows.J.setFromTriplets(t.begin(), t.end());
   }
-  rows.J.resize(3 * contacts, n);
-  rows.J.setFromTriplets(t.begin(), t.end());
-  const Eigen::LLT<sp::MatX> llt(A);
+};
+
+// Its solve with dense linear algebra (the path of small islands).
+void BM_ContactSolveDense(benchmark::State& st) {
+  const ContactIsland island(static_cast<int>(st.range(0)));
+  const Eigen::LLT<sp::MatX> llt(island.A);
   int iterations = 0;
   for (auto _ : st) {
-    const sp::ConvexResult res = sp::solve_convex(A, llt, r, rows, params);
+    const sp::ConvexResult res = sp::solve_convex(island.A, llt, island.r, island.rows, island.params);
     iterations = res.iterations;
     benchmark::DoNotOptimize(res.v.data());
   }
   st.counters["newton_iterations"] = iterations;
 }
 BENCHMARK(BM_ContactSolveDense)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
+
+// The same solve by bodies (the path of large islands: J in dense pieces per body, the Newton
+// matrix factored by 6 x 6 blocks), with a new Newton system (pattern analysis included).
+void BM_ContactSolveByBodies(benchmark::State& st) {
+  const ContactIsland island(static_cast<int>(st.range(0)));
+  int iterations = 0;
+  for (auto _ : st) {
+    const sp::ConvexResult res = sp::solve_convex(island.A_blocks, island.r, island.J_bodies, island.rows.blocks, island.params);
+    iterations = res.iterations;
+    benchmark::DoNotOptimize(res.v.data());
+  }
+  st.counters["newton_iterations"] = iterations;
+}
+BENCHMARK(BM_ContactSolveByBodies)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 
 // The block Cholesky factorization of a rigid island's Newton matrix: `bodies` free bodies
 // (6 x 6 blocks) coupled along a chain and random pairs (about 6 neighbours each), an SPD matrix
