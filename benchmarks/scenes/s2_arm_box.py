@@ -6,6 +6,8 @@ Variants
   step, reading and writing each simulator through its Python API (the same per-step work).
 - physics: no control, the joints' efforts held at zero: the arm folds under gravity onto the
   box; only the simulator's step is timed (PyBullet still needs its torques given every step).
+- law alone: the control variant's Python law (controller and servos) with no simulator, on
+  fixed inputs near the circle: the part of a control step that is the same in every simulator.
 """
 
 from __future__ import annotations
@@ -25,15 +27,34 @@ def cases(opts):
     # the physics variant's loop lasts some 15 ms: the median of several episodes in the process
     episodes = 1 if opts.quick else 9
     return [{"label": f"{variant} / {sim}", "sim": sim, "variant": variant, "seconds": seconds, "episodes": episodes}
-            for variant in ("control", "physics") for sim in SIMS]
+            for variant in ("control", "physics") for sim in SIMS] + \
+        [{"label": "law alone", "sim": "none", "variant": "law alone", "seconds": seconds, "episodes": episodes}]
 
 
 def run_case(case):
     return median_of_episodes(case, run_episode)
 
 
+def run_law(case):
+    """The control law alone, on inputs near the circle (a fixed Jacobian and joint velocities,
+    the end effector 1 mm from its target, no contact force)."""
+    controller = arm.Controller()
+    servos = [arm.Servo(**params) for params in arm.arm_description()["servos"]]
+    J = np.array([[0.12, 0.05], [0.0, 0.0], [-0.18, -0.09]])
+    qd = np.array([0.1, -0.2])
+    steps = int(round(case["seconds"] / arm.DT))
+    with Timer() as timer:
+        for k in range(steps):
+            x = arm.trajectory_target(k * arm.DT)[0] - 0.001
+            q_dot_des = controller.compute(x, J, 0.0, k * arm.DT)
+            [s.effort(w, qd[i], arm.DT) for i, (s, w) in enumerate(zip(servos, q_dot_des))]
+    return timer.wall, {"steps": steps, "sim_time": steps * arm.DT, "checks": {}}
+
+
 def run_episode(case):
     """One episode on a freshly built simulation: (wall of its stepping loop, result)."""
+    if case["sim"] == "none":
+        return run_law(case)
     desc = arm.scene_description(with_box=True)
     sim = arm.ADAPTERS[case["sim"]](desc)
     steps = int(round(case["seconds"] / arm.DT))
