@@ -393,20 +393,26 @@ void Scene::step_dynamics(real dt) {
   for (auto& chunk : chunk_contacts) chunk.clear();
   std::vector<Ticks>& chunk_ticks = ws.chunk_ticks;
   chunk_ticks.assign(pairs.num_chunks(), 0);
+  // the articulations by groups of a few (each costs about a microsecond: one item each would
+  // pass the threads' shared item counter back and forth as often)
+  constexpr size_t kBodiesPerItem = 8;
+  const size_t body_items = (n + kBodiesPerItem - 1) / kBodiesPerItem;
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
       if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
-    } else if (i < num_soft + n) {
-      articulation_terms(*s.articulations[i - num_soft], s.gravity, dt, s.params, terms[i - num_soft]);
+    } else if (i < num_soft + body_items) {
+      const size_t first = (i - num_soft) * kBodiesPerItem;
+      for (size_t b = first; b < std::min(n, first + kBodiesPerItem); ++b)
+        articulation_terms(*s.articulations[b], s.gravity, dt, s.params, terms[b]);
     } else {
-      const size_t c = i - num_soft - n;
+      const size_t c = i - num_soft - body_items;
       const Ticks t = ticks_now();
       collide_pairs(s, pairs, c, chunk_contacts[c]);
       chunk_ticks[c] = ticks_now() - t;
     }
   };
   // by reference: a std::function holds a reference without allocating (the lambda is too large)
-  parallel(num_soft + n + pairs.num_chunks(), std::cref(prepare));
+  parallel(num_soft + body_items + pairs.num_chunks(), std::cref(prepare));
   // 2. the contact list, and soft contacts
   const Ticks k2 = ticks_now();
   std::vector<Contact>& contacts = ws.contacts;
