@@ -23,10 +23,8 @@ def machine():
                 break
     except OSError:
         pass
-    try:
-        nproc = subprocess.run(["nproc"], capture_output=True, text=True).stdout.strip()
-    except OSError:
-        nproc = str(os.cpu_count())
+    # the CPUs this process may run on (nproc would honour the OMP_NUM_THREADS=1 that run.py sets)
+    nproc = str(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count())
     mem = ""
     try:
         for line in open("/proc/meminfo"):
@@ -34,7 +32,7 @@ def machine():
                 mem = f", {int(line.split()[1]) / 1024 / 1024:.0f} GiB memory"
     except OSError:
         pass
-    return f"{cpu}, {nproc} cores (nproc){mem}; {platform.system()} {platform.release()}; Python {platform.python_version()}"
+    return f"{cpu}, {nproc} cores (affinity){mem}; {platform.system()} {platform.release()}; Python {platform.python_version()}"
 
 
 def versions():
@@ -459,6 +457,23 @@ this run's.
   J A^-1 J^T, computed once per link and solve, and no dense matrix on the sparse path (about 3 %
   now). What remains in a settled step: J's assembly from triplets (a tenth), writing every
   contact's J^T G J into the block factor (a tenth) and its factorization.
+  Found next (perf on an unstripped build, 12000 settled steps and 10 landings): in a settled
+  step, J's assembly (compressed rows, then refilled into the Newton system's own per-block copy
+  through an index map) was about 14 %, scattering each contact's J_b^T G_b J_b entry by entry
+  through a table of slots 8 %, the sparse products with J 6 %; in the landing, analysing the
+  block pattern anew (AMD ordering, slots) whenever a contact came or went was 13 % and the
+  block factorization 17 %. Fixed: large islands keep J by bodies (BodyJacobian: each block's
+  rows on each body it moves as one dense piece, written by the island solver directly), J x
+  and J^T y run on the pieces, each block's J_a^T dG J_b goes into its bodies' dense blocks of
+  H whole (6 x 6 at fixed size for free bodies), the block Cholesky analysis is kept while the
+  island has the same bodies and couples no new pair (and three quarters of those analysed), and
+  the factor's 6 x 6 Schur updates use Eigen's fixed-size product (BM_BlockCholeskyFactor/50
+  88 to 74 us). Summed over 4 pile seeds (1000 steps each, one thread): 2.015 to 1.633 s (the
+  landing 0.789 to 0.614 s, the settled steps 1.226 to 1.019 s), the landing's Newton
+  iterations unchanged (9928 against 9974); the settled steps' count moves by some 10 % either
+  way with the float round-off of the new products. What remains in a settled step (perf): the
+  box-box narrow phase (about a sixth), the contacts' rows and Delassus diagonals (a sixth),
+  J_b^T G_b J_b into H and its factorization (a fifth).
 - Scenes 2, 3 and 6 (step). Found: the mass matrix was built with 6 x 6 products for every
   (link, ancestor) pair, a third of a free Panda step, and a pressing contact took 6 Newton
   iterations per step. Fixed: composite inertias about link origins (additive, moved up the tree
@@ -499,7 +514,19 @@ this run's.
   (CMake SUPERDEX_ARCH; MuJoCo's own wheels use AVX): with these changes, scene 6's step 4.8 to
   4.5 us, the Panda on the table 6.45 to 6.2 us. Compiler-contracted FMA stays off
   (-ffp-contract=off): with it a built-in component no longer matched the same law in Python bit
-  for bit.
+  for bit. Found next (callgrind, scene 2's physics step: 68k instructions, two islands and
+  five contacts): Eigen's blocked matrix-vector kernel ran every product of the dense Newton
+  loop (A v, J v, J^T y) and each column of the small Cholesky factorizations, and cost more to
+  set up than to compute at 2 to 12 variables (about 8 %); J was assembled as compressed rows
+  block by block and then copied into the dense matrix the dense algebra works on (about 8 %).
+  Fixed: below 24 variables the products are coefficient-based; dense islands write J as a dense
+  matrix in place; Cholesky factorizations up to 16 rows run in plain loops (SmallLLT, Eigen's
+  LLT with its own factorization). 68k to 59k instructions, 5.9 to 4.4 us per step. What remains
+  is spread thin: the Newton loop a quarter (its own vector arithmetic on dynamic-size vectors,
+  one factorization per island), the contact rows and compliances a sixth, the articulations'
+  mass matrices, bias forces and factorizations a sixth, collision an eighth. The control
+  variant cannot reach half of PyBullet's time in any simulator: the shared Python law alone
+  takes about 0.6 of PyBullet's control step (the note under scene 2's table).
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
@@ -553,6 +580,24 @@ this run's.
   0.344-0.346 s (1.89-1.91x). What remains serial: the broad phase and the islands, some 10 ms of
   the 0.35 s on two threads. And the machine: in some spells a 2-thread run takes 0.42 s instead
   of 0.35 s, with no other process running, so the ratio of one run can still land under 1.8.
+  Later, with the large islands solved by bodies (scene 4), 250 steps of scene 7 on one thread
+  took 0.267 s instead of 0.359 s, on two 0.147 s instead of 0.192 s: the ratio went from 1.87x
+  to 1.82x, the serial part (about 11 ms: broad phase, islands, the commit, contact results and
+  the step's Python call) being the same. Found then: OpenBLAS threads spin for a while after
+  they start and after each call, and take a core from a 2-thread run (in a process of its own,
+  a run right after the import took 0.187 s instead of 0.145 s, its CPU time 0.37 s instead of
+  0.29 s). The harness kept them to one thread in each measurement's process but not in the
+  suite's own, which imports numpy too: its threads slowed the children's 2-thread runs, scene 7
+  with worker threads measuring 1.44x in three runs in a row and 1.83x to 1.87x once the suite's
+  process had them on one thread as well (it now does). The runs before that were affected
+  when the spinning overlapped a measurement, which explains part of the spread reported above.
+  Also fixed: the articulations' dynamics terms (about 1 us each) go to the threads by groups of
+  8 instead of one work item each (the region with the narrow phase scaled 1.74x, now 1.88x).
+  Scene 8's seed task, measured by parts (64 scenes): the batch step 276-279 us on one thread
+  and 143-160 us on two (1.74x to 1.94x between runs of one build), the Python part 26 us (the
+  task's target, reward and observation 15.7 us of it, nearly all fixed cost per call: 19 us
+  with 8 scenes); with the physics now cheaper, that serial part weighs more: 1.81x and 1.82x
+  in three runs of the scene with the suite's threads fixed, just over the target.
 """
 
 
