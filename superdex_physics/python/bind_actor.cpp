@@ -19,13 +19,15 @@ nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg) {
   return nb::borrow(out);
 }
 
-std::vector<int> read_indices(nb::handle obj, std::string_view arg) {
+// DOF indices from a list or tuple of ints or an array of integral numbers, into `out` (which
+// keeps its storage).
+void read_indices(nb::handle obj, std::string_view arg, std::vector<int>& out) {
   // a list or tuple of Python ints, without a conversion to numpy
   PyObject* o = obj.ptr();
   if (PyList_Check(o) || PyTuple_Check(o)) {
     const Py_ssize_t n = PySequence_Fast_GET_SIZE(o);
     PyObject** items = PySequence_Fast_ITEMS(o);
-    std::vector<int> out(n);
+    out.resize(n);
     bool all_ints = true;
     for (Py_ssize_t i = 0; i < n && all_ints; ++i) {
       int overflow = 0;
@@ -33,16 +35,15 @@ std::vector<int> read_indices(nb::handle obj, std::string_view arg) {
       all_ints = PyLong_Check(items[i]) && !overflow && k >= INT_MIN && k <= INT_MAX;
       out[i] = static_cast<int>(k);
     }
-    if (all_ints) return out;
+    if (all_ints) return;
   }
   const VecX v = read_vector(obj, arg);
-  std::vector<int> out(v.size());
+  out.resize(v.size());
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i]) || v[i] != std::floor(v[i]))
       throw Error(std::string(arg) + "[" + std::to_string(i) + "]: expected an integer DOF index");
     out[i] = static_cast<int>(v[i]);
   }
-  return out;
 }
 
 NumpyArray matrix_to_numpy(const MatX& M) {
@@ -111,8 +112,11 @@ void export_actor(nb::module_& m) {
       .def("get_mass", [](const Actor& a) { return a.scene.mass(a.handle); })
       .def("get_num_dofs", [](const Actor& a) { return a.scene.num_dofs(a.handle); })
       .def("set_external_forces_on_dofs", [](Actor& a, nb::handle dof_indices, nb::handle force_values) {
-             const std::vector<int> dofs = read_indices(dof_indices, "set_external_forces_on_dofs: dof_indices");
-             const VecX f = read_vector(force_values, "set_external_forces_on_dofs: force_values");
+             // kept across calls (the GIL is held), so that a control loop's call allocates nothing
+             thread_local std::vector<int> dofs;
+             thread_local VecX f;
+             read_indices(dof_indices, "set_external_forces_on_dofs: dof_indices", dofs);
+             read_vector(force_values, "set_external_forces_on_dofs: force_values", f);
              a.scene.set_external_forces_on_dofs(a.handle, dofs, std::span<const real>(f.data(), static_cast<size_t>(f.size())));
            }, "dof_indices"_a, "force_values"_a,
            "Replaces the whole set of external generalized forces (N, N m); held until replaced or cleared.")

@@ -32,6 +32,8 @@ inline NumpyArray numpy_copy(const VecX& v) { return numpy_copy(v.data(), {stati
 
 // Reads any sequence or array of numbers as a vector; `expected` < 0 accepts any length.
 VecX read_vector(nb::handle obj, std::string_view arg, long expected = -1);
+// The same into `out`, which keeps its storage when the size is unchanged.
+void read_vector(nb::handle obj, std::string_view arg, VecX& out, long expected = -1);
 Vec3 read_vec3(nb::handle obj, std::string_view arg);
 
 // The writable, contiguous 1-D buffer of length `n` behind an out-parameter: a numpy array of

@@ -53,11 +53,16 @@ bool read_vector_fast(nb::handle obj, VecX& out) {
 }  // namespace
 
 VecX read_vector(nb::handle obj, std::string_view arg, long expected) {
-  VecX fast;
-  if (read_vector_fast(obj, fast)) {
-    if (expected >= 0 && fast.size() != expected)
-      throw Error(std::string(arg) + ": expected " + std::to_string(expected) + " values, got " + std::to_string(fast.size()));
-    return fast;
+  VecX out;
+  read_vector(obj, arg, out, expected);
+  return out;
+}
+
+void read_vector(nb::handle obj, std::string_view arg, VecX& out, long expected) {
+  if (read_vector_fast(obj, out)) {
+    if (expected >= 0 && out.size() != expected)
+      throw Error(std::string(arg) + ": expected " + std::to_string(expected) + " values, got " + std::to_string(out.size()));
+    return;
   }
   nb::object arr;
   try {
@@ -72,9 +77,8 @@ VecX read_vector(nb::handle obj, std::string_view arg, long expected) {
   const long n = a.ndim() == 0 ? 1 : static_cast<long>(a.shape(0));
   if (expected >= 0 && n != expected)
     throw Error(std::string(arg) + ": expected " + std::to_string(expected) + " values, got " + std::to_string(n));
-  VecX out(n);
+  out.resize(n);
   for (long i = 0; i < n; ++i) out[i] = static_cast<real>(a.data()[i]);
-  return out;
 }
 
 Vec3 read_vec3(nb::handle obj, std::string_view arg) { return read_vector(obj, arg, 3); }
