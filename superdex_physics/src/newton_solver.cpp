@@ -129,6 +129,12 @@ class DenseAlgebra {
       for (size_t k = 0; k < blocks.size(); ++k) {
         if (!active(k)) continue;
         const int r0 = blocks[k].row, s = blocks[k].size();
+        // a contact on a free body alone (the commonest island): at fixed size, both triangles
+        if (n == 6 && s == 3) {
+          const Eigen::Map<const Eigen::Matrix<real, 3, 6, Eigen::RowMajor>> J_k(J_.row(r0).data());
+          Eigen::Map<Mat6>(H_.data()).noalias() += J_k.transpose() * (G[k] * J_k);
+          continue;
+        }
         GJ_.topRows(s).noalias() = G[k].topLeftCorner(s, s) * J_.middleRows(r0, s);
         // H(r, c) += sum_i J(r0 + i, r) (G J)(i, c) for r >= c; J's rows are contiguous
         for (int i = 0; i < s; ++i) {
