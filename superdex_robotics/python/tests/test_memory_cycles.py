@@ -5,11 +5,16 @@
 A 100-step episode of this scene costs about 2.5 ms, so the run takes about 25 s per precision
 build. superdex_robotics/tests/memory_cycles_test.cpp runs the same cycle in C++, where
 `tools/dev.sh sanitize` also runs it under LeakSanitizer; `tools/soak.py` runs one scene for an
-hour of simulated time.
+hour of simulated time. Under AddressSanitizer (SUPERDEX_SANITIZED=1, tools/sanitize.sh) the
+episodes run but the resident size is not compared: ASan keeps freed memory in its quarantine
+(256 MB) before reusing it, so the process grows until the quarantine is full whatever the engine
+does (measured: 1043 to 1104 MB over the first 1,000 episodes, then flat within 1 MB over 8,000);
+leaks there are LeakSanitizer's to find in the C++ test.
 """
 
 import gc
 import json
+import os
 import warnings
 
 import pytest
@@ -92,6 +97,8 @@ def test_ten_thousand_episodes_keep_memory_flat(tmp_path):
                     gc.collect()
                     samples.append(rss_kib())
         end = samples[-1]
+        if os.environ.get("SUPERDEX_SANITIZED") == "1":
+            return
         assert end <= start * 1.05, f"RSS grew from {start} KiB to {end} KiB over {EPISODES - WARM_UP} episodes: {samples}"
     finally:
         sdp.shutdown()
