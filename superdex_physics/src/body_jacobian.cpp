@@ -2,7 +2,6 @@
 
 #include "body_jacobian.h"
 
-#include <algorithm>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -96,13 +95,6 @@ void BodyJacobian::multiply_transposed(const VecX& y, VecX& out) const {
       }
     }
   }
-}
-
-bool BodyJacobian::same_structure(const BodyJacobian& other) const {
-  return rows_ == other.rows_ && body_start_ == other.body_start_ && block_row_ == other.block_row_ &&
-         piece_start_ == other.piece_start_ &&
-         std::equal(pieces_.begin(), pieces_.end(), other.pieces_.begin(), other.pieces_.end(),
-                    [](const Piece& a, const Piece& b) { return a.body == b.body; });
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -51,9 +51,6 @@ class BodyJacobian {
   void multiply(const VecX& x, VecX& out) const;
   // out = J^T y (y: rows(), out: cols()).
   void multiply_transposed(const VecX& y, VecX& out) const;
-  // Whether J and `other` have the same bodies and blocks, each block with the same rows on the
-  // same bodies (their values may differ).
-  bool same_structure(const BodyJacobian& other) const;
 
  private:
   std::vector<int> body_start_;   // per body: its first variable (size bodies + 1)

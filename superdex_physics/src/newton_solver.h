@@ -54,8 +54,6 @@ using SparseRowMat = Eigen::SparseMatrix<real, Eigen::RowMajor>;
 struct ConstraintRows {
   SparseRowMat J;                      // constraint Jacobian (m x n), a few non-zeros per row
   std::vector<ConstraintBlock> blocks; // in row order, covering all m rows
-
-  int size() const { return static_cast<int>(J.rows()); }
 };
 
 struct ConvexResult {

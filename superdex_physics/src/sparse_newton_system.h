@@ -33,7 +33,6 @@ class SparseNewtonSystem {
   int analyses() const { return analyses_; }
 
  private:
-  void analyse(const BodyJacobian& J, const std::vector<std::pair<int, int>>& pairs);
   // the value offsets in H of every block's pieces and pairs of pieces
   void locate_blocks(const BodyJacobian& J);
 
