@@ -2,8 +2,9 @@
 // capsule and plane pairs and sphere/capsule against any distance field; otherwise the
 // surface samples of each shape against the other's signed-distance field.
 
-#include <array>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "collision_detection.h"
 
@@ -12,15 +13,17 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// A ball (centre c, radius r) against a point-queryable field; normal from the field towards the ball.
-void ball_vs_field(const Vec3& c_W, real r, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
+// A ball (centre c, radius r) against a point-queryable field; normal from the field towards the
+// ball. Returns the ball's signed gap (m).
+real ball_vs_field(const Vec3& c_W, real r, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
                    std::vector<ContactPoint>& out) {
   Vec3 g_F;
   const Vec3 c_F = X_WF.R.transpose() * (c_W - X_WF.p);
   const real phi = shape_signed_distance(field.shape, c_F, &g_F) - r;
-  if (phi >= margin) return;
+  if (phi >= margin) return phi;
   const Vec3 n = X_WF.R * g_F;
   out.push_back({c_W - n * (r + phi / 2), n, phi});
+  return phi;
 }
 
 void ball_vs_ball(const Vec3& ca, real ra, const Vec3& cb, real rb, real margin, std::vector<ContactPoint>& out) {
@@ -58,38 +61,65 @@ void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, cons
   cq = q0 + d2 * t;
 }
 
-// Ball centres of a rounded shape (world), on the stack: at most a capsule's 17.
-struct BallCentres {
+// The balls that make a rounded shape, posed in the world: one for a sphere; for a capsule the
+// segment ends and interior balls no further apart than the radius (so that its side meets edges
+// and faces), at most 17. A centre is computed when asked for.
+struct RoundedBalls {
   static constexpr int kMaxSegments = 16;
-  std::array<Vec3, kMaxSegments + 1> centre;
-  int count = 0;
-  void push_back(const Vec3& c) { centre[count++] = c; }
-  const Vec3& front() const { return centre[0]; }
-  const Vec3& back() const { return centre[count - 1]; }
-  const Vec3* begin() const { return centre.data(); }
-  const Vec3* end() const { return centre.data() + count; }
+  const SpatialTransform* X_WS = nullptr;
+  const SphereShape* sphere = nullptr;    // or
+  const CapsuleShape* capsule = nullptr;
+  int count = 0;     // balls
+  real radius = 0;   // theirs (m)
+  real spacing = 0;  // between consecutive centres (m); 0 for a sphere
+  Vec3 centre(int k) const {
+    if (sphere) return X_WS->R * sphere->center + X_WS->p;
+    const real z = -capsule->half_length + 2 * capsule->half_length * k / (count - 1);
+    return X_WS->R * Vec3(0, 0, z) + X_WS->p;
+  }
+  Vec3 front() const { return centre(0); }
+  Vec3 back() const { return centre(count - 1); }
 };
 
-// The balls that make a rounded shape: one for a sphere; for a capsule the segment ends and
-// interior balls no further apart than the radius (so that its side meets edges and faces).
-bool rounded_balls(const LinkCollider& c, const SpatialTransform& X_WS, BallCentres& centres, real& radius) {
-  centres.count = 0;
+// `c`'s balls when it is a rounded shape (sphere or capsule) posed at X_WS.
+bool rounded_balls(const LinkCollider& c, const SpatialTransform& X_WS, RoundedBalls& balls) {
+  balls = RoundedBalls{};
+  balls.X_WS = &X_WS;
   if (auto* s = std::get_if<SphereShape>(&c.shape)) {
-    centres.push_back(X_WS.R * s->center + X_WS.p);
-    radius = s->radius;
+    balls.sphere = s;
+    balls.count = 1;
+    balls.radius = s->radius;
     return true;
   }
   if (auto* s = std::get_if<CapsuleShape>(&c.shape)) {
     const int segments = std::max(1, static_cast<int>(std::ceil(2 * s->half_length / std::max(s->radius, real(1e-6)))));
-    const int used = std::min(segments, BallCentres::kMaxSegments);
-    for (int k = 0; k <= used; ++k) {
-      const real z = -s->half_length + 2 * s->half_length * k / used;
-      centres.push_back(X_WS.R * Vec3(0, 0, z) + X_WS.p);
-    }
-    radius = s->radius;
+    const int used = std::min(segments, RoundedBalls::kMaxSegments);
+    balls.capsule = s;
+    balls.count = used + 1;
+    balls.radius = s->radius;
+    balls.spacing = 2 * s->half_length / used;
     return true;
   }
   return false;
+}
+
+// A rounded shape's balls against a field. An exact distance field (every shape but a mesh's
+// sampled one) changes by at most the distance moved, so a ball with gap phi keeps the balls
+// within phi - margin of it along the line of centres out of contact: those are skipped without
+// a query (sphere tracing along the capsule's core).
+void balls_vs_field(const RoundedBalls& balls, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
+                    std::vector<ContactPoint>& out) {
+  const bool exact = !std::holds_alternative<MeshShape>(field.shape);
+  for (int k = 0; k < balls.count;) {
+    const Vec3 c_W = balls.centre(k);
+    const real phi = ball_vs_field(c_W, balls.radius, field, X_WF, margin, out);
+    ++k;
+    if (!exact || balls.spacing <= 0) continue;
+    // the gap's round-off, from the coordinates' magnitude
+    const real round_off = 64 * std::numeric_limits<real>::epsilon() * (1 + c_W.cwiseAbs().maxCoeff() + X_WF.p.cwiseAbs().maxCoeff());
+    const real clear = phi - margin - round_off;
+    if (clear > 0) k += static_cast<int>(std::min<real>(clear / balls.spacing, real(balls.count)));
+  }
 }
 
 bool has_field(const LinkCollider& c) {
@@ -129,22 +159,18 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
     flip_into(tmp, out);
     return;
   }
-  BallCentres balls_a, balls_b;
-  real ra = 0, rb = 0;
-  const bool a_round = rounded_balls(a, X_WA, balls_a, ra);
-  const bool b_round = rounded_balls(b, X_WB, balls_b, rb);
   if (b_plane) {
     const WorldPlane pl = world_plane(std::get<PlaneShape>(b.shape), X_WB);
     auto add = [&](const Vec3& p, real r) {
       const real phi = pl.n.dot(p) - pl.d - r;
       if (phi < margin) out.push_back({p - pl.n * (r + phi / 2), pl.n, phi});
     };
-    if (std::holds_alternative<SphereShape>(a.shape)) {
-      add(balls_a.front(), ra);
+    if (auto* sphere = std::get_if<SphereShape>(&a.shape)) {
+      add(X_WA.R * sphere->center + X_WA.p, sphere->radius);
     } else if (auto* cap = std::get_if<CapsuleShape>(&a.shape)) {
       // a segment's closest points to a plane are its ends
-      add(X_WA.R * Vec3(0, 0, -cap->half_length) + X_WA.p, ra);
-      add(X_WA.R * Vec3(0, 0, cap->half_length) + X_WA.p, ra);
+      add(X_WA.R * Vec3(0, 0, -cap->half_length) + X_WA.p, cap->radius);
+      add(X_WA.R * Vec3(0, 0, cap->half_length) + X_WA.p, cap->radius);
     } else if (auto* box = std::get_if<BoxShape>(&a.shape)) {
       for (int i = 0; i < 8; ++i) {
         const Vec3 c((i & 1 ? 1 : -1) * box->half_extents.x(), (i & 2 ? 1 : -1) * box->half_extents.y(),
@@ -156,6 +182,10 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
     }
     return;
   }
+  RoundedBalls balls_a, balls_b;
+  const bool a_round = rounded_balls(a, X_WA, balls_a);
+  const bool b_round = rounded_balls(b, X_WB, balls_b);
+  const real ra = balls_a.radius, rb = balls_b.radius;
   const bool a_sphere = std::holds_alternative<SphereShape>(a.shape), b_sphere = std::holds_alternative<SphereShape>(b.shape);
   const auto* a_cap = std::get_if<CapsuleShape>(&a.shape);
   const auto* b_cap = std::get_if<CapsuleShape>(&b.shape);
@@ -173,12 +203,9 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
     collide_shapes(b, X_WB, a, X_WA, margin, tmp);
     return flip_into(tmp, out);
   }
-  if (a_round) {
-    for (const Vec3& c : balls_a) ball_vs_field(c, ra, b, X_WB, margin, out);
-    return;
-  }
+  if (a_round) return balls_vs_field(balls_a, b, X_WB, margin, out);
   if (b_round) {
-    for (const Vec3& c : balls_b) ball_vs_field(c, rb, a, X_WA, margin, tmp);
+    balls_vs_field(balls_b, a, X_WA, margin, tmp);
     return flip_into(tmp, out);
   }
   if (std::holds_alternative<BoxShape>(a.shape) && std::holds_alternative<BoxShape>(b.shape))
