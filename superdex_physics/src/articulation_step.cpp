@@ -134,10 +134,8 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
 }  // namespace
 
 void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t) {
-  const Ticks t0 = ticks_now();
   const ArticulationModel& model = a.model;
   t.joint_rows.clear();
-  t.ticks = 0;
   t.have_inverse_diagonal_ = false;
   if (model.nv == 0) {
     t.A.resize(0, 0);
@@ -162,7 +160,6 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   t.v_free = t.A_llt.solve(t.r);
   joint_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
-  t.ticks = ticks_now() - t0;
 }
 
 real ArticulationTerms::inverse_diagonal(int k) const {

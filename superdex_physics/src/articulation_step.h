@@ -6,7 +6,6 @@
 #include "newton_solver.h"
 #include "small_llt.h"
 #include "scene_data.h"
-#include "step_ticks.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -62,7 +61,6 @@ struct ArticulationTerms {
   // uninitialized, and copying the terms of a body without DOFs read it (UBSan, issue 9)
   SmallLLT A_llt{MatX(0, 0)};
   std::vector<JointRow> joint_rows;
-  Ticks ticks = 0;               // time spent computing these (step_ticks.h)
   VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r
   // working storage: bias forces
   VecX c;

@@ -9,6 +9,7 @@
 #include "reduced_soft.h"
 #include "row_block_assembler.h"
 #include "soft_body.h"
+#include "step_ticks.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {

@@ -365,8 +365,10 @@ void Scene::step(real dt) {
 
 void Scene::step_dynamics(real dt) {
   SceneData& s = scene_data(handle_);
-  // the step's wall time by steady_clock; its parts in time-stamp ticks (step_ticks.h)
-  const auto t0 = std::chrono::steady_clock::now();
+  // the step's wall time and its parts in time-stamp ticks (step_ticks.h); by steady_clock too
+  // until the ticks' rate is calibrated
+  const double calibrated_tick_seconds = calibrated_seconds_per_tick();
+  const auto t0 = calibrated_tick_seconds > 0 ? std::chrono::steady_clock::time_point{} : std::chrono::steady_clock::now();
   const Ticks k0 = ticks_now();
   const size_t n = s.articulations.size();
   const auto parallel = run_on_worker_threads;
@@ -376,10 +378,9 @@ void Scene::step_dynamics(real dt) {
 
   // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem
   // (the costliest items, first), the dynamics terms of every body and the narrow phase
-  const Ticks k1 = ticks_now();
   ContactPairs& pairs = ws.pairs;
   find_contact_pairs(s, s.params.contact_margin, dt, pairs);
-  Ticks collision_ticks = ticks_now() - k1;
+  Ticks collision_ticks = ticks_now() - k0;
   const size_t num_soft = s.soft_bodies.size();
   std::vector<std::unique_ptr<SoftStep>> soft_steps(num_soft);
   std::vector<int>& soft_free = ws.soft_free;
@@ -391,35 +392,39 @@ void Scene::step_dynamics(real dt) {
   std::vector<std::vector<Contact>>& chunk_contacts = ws.chunk_contacts;
   chunk_contacts.resize(pairs.num_chunks());
   for (auto& chunk : chunk_contacts) chunk.clear();
-  std::vector<Ticks>& chunk_ticks = ws.chunk_ticks;
-  chunk_ticks.assign(pairs.num_chunks(), 0);
   // the articulations by groups of a few (each costs about a microsecond: one item each would
   // pass the threads' shared item counter back and forth as often)
   constexpr size_t kBodiesPerItem = 8;
   const size_t body_items = (n + kBodiesPerItem - 1) / kBodiesPerItem;
+  // each item's time (the soft bodies' are not reported)
+  std::vector<Ticks>& item_ticks = ws.item_ticks;
+  item_ticks.assign(num_soft + body_items + pairs.num_chunks(), 0);
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
       if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
-    } else if (i < num_soft + body_items) {
+      return;
+    }
+    const Ticks t = ticks_now();
+    if (i < num_soft + body_items) {
       const size_t first = (i - num_soft) * kBodiesPerItem;
       for (size_t b = first; b < std::min(n, first + kBodiesPerItem); ++b)
         articulation_terms(*s.articulations[b], s.gravity, dt, s.params, terms[b]);
     } else {
       const size_t c = i - num_soft - body_items;
-      const Ticks t = ticks_now();
       collide_pairs(s, pairs, c, chunk_contacts[c]);
-      chunk_ticks[c] = ticks_now() - t;
     }
+    item_ticks[i] = ticks_now() - t;
   };
   // by reference: a std::function holds a reference without allocating (the lambda is too large)
-  parallel(num_soft + body_items + pairs.num_chunks(), std::cref(prepare));
+  parallel(item_ticks.size(), std::cref(prepare));
   // 2. the contact list, and soft contacts
   const Ticks k2 = ticks_now();
   std::vector<Contact>& contacts = ws.contacts;
   join_contacts(chunk_contacts, contacts);
   const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
   collision_ticks += ticks_now() - k2;
-  for (Ticks ticks : chunk_ticks) collision_ticks += ticks;
+  Ticks kinematics_ticks = 0;
+  for (size_t i = num_soft; i < item_ticks.size(); ++i) (i < num_soft + body_items ? kinematics_ticks : collision_ticks) += item_ticks[i];
   // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
   std::vector<int>& num_dofs = ws.num_dofs;
   num_dofs.resize(n);
@@ -536,8 +541,7 @@ void Scene::step_dynamics(real dt) {
   SolverStats stats;
   stats.num_islands = static_cast<int>(islands.size());
   stats.num_contacts = static_cast<int>(contacts.size());
-  Ticks kinematics_ticks = 0, solve_ticks = 0;
-  for (const ArticulationTerms& t : terms) kinematics_ticks += t.ticks;
+  Ticks solve_ticks = 0;
   for (const auto& st : soft_steps)
     if (st) {
       stats.soft_element_hessians += st->element_hessians();
@@ -553,8 +557,14 @@ void Scene::step_dynamics(real dt) {
   }
   s.time += dt;
   s.step_count += 1;
-  stats.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double tick_seconds = seconds_per_tick(stats.time_total, ticks_now() - k0);
+  const Ticks total_ticks = ticks_now() - k0;
+  double tick_seconds = calibrated_tick_seconds;
+  if (tick_seconds > 0) {
+    stats.time_total = tick_seconds * static_cast<double>(total_ticks);
+  } else {
+    stats.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    tick_seconds = seconds_per_tick(stats.time_total, total_ticks);
+  }
   stats.time_kinematics = tick_seconds * static_cast<double>(kinematics_ticks);
   stats.time_collision = tick_seconds * static_cast<double>(collision_ticks);
   stats.time_solve = tick_seconds * static_cast<double>(solve_ticks);

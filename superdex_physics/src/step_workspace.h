@@ -29,7 +29,7 @@ struct SoftContactRecordKey {
 struct StepWorkspace {
   ContactPairs pairs;                                  // broad phase
   std::vector<std::vector<Contact>> chunk_contacts;    // narrow phase, per chunk of pairs
-  std::vector<Ticks> chunk_ticks;                      // narrow phase time per chunk (step_ticks.h)
+  std::vector<Ticks> item_ticks;                       // time per item of the parallel preparation (step_ticks.h)
   std::vector<Contact> contacts;                       // the chunks' contacts, joined
   std::vector<int> soft_free;                          // free DOFs per soft body
   std::vector<int> num_dofs;                           // DOFs per articulation

@@ -1,6 +1,7 @@
 """The physics API surface of API.md: lifecycle, scenes, value types, rigid and articulated actors."""
 
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -219,6 +220,28 @@ def test_solver_params_and_stats(scene):
     bad.max_newton_iterations = 0
     with pytest.raises(sdp.Error, match="max_newton_iterations"):
         scene.set_solver_params(bad)
+
+
+def test_step_times_lie_within_the_wall_time_around_the_steps(scene):
+    """The step's own times (its time-stamp counter, calibrated against the steady clock over the
+    process's first steps) add up to most of the wall time measured around the steps, never more,
+    and each part of a single-threaded step lies within the step."""
+    arms = [two_link_arm(scene, name=f"a{k}") for k in range(6)]
+    for k, a in enumerate(arms):
+        a.set_articulated_pose_from_joints([0.1 * k, 0.2])
+    start = time.perf_counter()
+    while time.perf_counter() - start < 0.1:  # past the counter's calibration
+        scene.step(0.001)
+    totals = 0.0
+    wall = time.perf_counter()
+    for _ in range(300):
+        scene.step(0.001)
+        stats = scene.get_solver_stats()
+        totals += stats.time_total
+        for part in (stats.time_kinematics, stats.time_collision, stats.time_solve):
+            assert 0 <= part <= stats.time_total
+    wall = time.perf_counter() - wall
+    assert 0.25 * wall < totals <= wall
 
 
 def test_threaded_engine_matches_single_threaded():
