@@ -157,7 +157,8 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   implicit_gyroscopic(model, a.state, dt, t.r);
   t.A_llt.compute(t.A);
-  t.v_free = t.A_llt.solve(t.r);
+  t.v_free = t.r;
+  t.A_llt.solve_in_place(t.v_free);
   joint_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
 }

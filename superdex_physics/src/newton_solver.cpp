@@ -172,7 +172,7 @@ class DenseAlgebra {
   }
   void solve(const VecX& b, VecX& x) const {
     x = b;
-    llt_.solveInPlace(x);
+    llt_.solve_in_place(x);
   }
 
  private:

@@ -43,5 +43,25 @@ SmallLLT& SmallLLT::compute(const MatX& A) {
   return *this;
 }
 
+void SmallLLT::solve_in_place(VecX& x) const {
+  const Eigen::Index n = m_matrix.rows();
+  if (n > kSmall) {
+    solveInPlace(x);
+    return;
+  }
+  const real* L = m_matrix.data();  // column-major: L(i, j) = L[i + n j]
+  // L y = x, then L^T x = y
+  for (Eigen::Index i = 0; i < n; ++i) {
+    real v = x[i];
+    for (Eigen::Index j = 0; j < i; ++j) v -= L[i + n * j] * x[j];
+    x[i] = v / L[i + n * i];
+  }
+  for (Eigen::Index i = n - 1; i >= 0; --i) {
+    real v = x[i];
+    for (Eigen::Index j = i + 1; j < n; ++j) v -= L[j + n * i] * x[j];
+    x[i] = v / L[i + n * i];
+  }
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

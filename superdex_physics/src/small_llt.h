@@ -1,6 +1,6 @@
 #pragma once
 // Eigen's LLT whose factorization of small matrices (the momentum matrices of articulations and
-// the Newton matrices of small islands) runs in plain loops. Eigen's own runs a matrix-vector
+// the Newton matrices of small islands), and its solves with one vector, run in plain loops. Eigen's own runs a matrix-vector
 // product per column, whose set-up costs more than its arithmetic below some 16 variables. The
 // factor, its storage and every other method are Eigen's, so it goes wherever an LLT<MatX> is
 // read.
@@ -22,6 +22,9 @@ class SmallLLT : public Eigen::LLT<MatX> {
   // Factors A (its lower triangle is read), as Eigen::LLT::compute does: info() tells whether
   // it is positive definite.
   SmallLLT& compute(const MatX& A);
+  // x <- A^-1 x: below kSmall rows by forward and back substitution in plain loops (Eigen's
+  // triangular solves set up a blocked kernel), above by Eigen's solveInPlace.
+  void solve_in_place(VecX& x) const;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

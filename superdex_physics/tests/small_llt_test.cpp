@@ -1,9 +1,9 @@
 /// @file small_llt_test.cpp
 /// The Cholesky factorization of small matrices in plain loops: on random symmetric positive
 /// definite matrices of 1 to 20 rows (below and above SmallLLT::kSmall), whose upper triangle
-/// holds values it must not read, its factor, solutions and 1-norm match Eigen's LLT (an
-/// independent factorization); a matrix that is not positive definite is reported as Eigen
-/// reports it.
+/// holds values it must not read, its factor, solutions (Eigen's and its own) and 1-norm match
+/// Eigen's LLT (an independent factorization); a matrix that is not positive definite is
+/// reported as Eigen reports it.
 
 #include <gtest/gtest.h>
 
@@ -34,6 +34,10 @@ TEST(SmallLLT, FactorsLikeEigensLLT) {
     const MatX L_ours = llt.matrixL(), L_ref = reference.matrixL();
     EXPECT_LT((L_ours - L_ref).norm(), 1e-10 * L_ref.norm()) << "n = " << n;
     EXPECT_LT((llt.solve(b) - reference.solve(b)).norm(), 1e-9 * (1 + reference.solve(b).norm())) << "n = " << n;
+    // its own solve with one vector
+    VecX x = b.col(0);
+    llt.solve_in_place(x);
+    EXPECT_LT((x - reference.solve(b.col(0))).norm(), 1e-9 * (1 + x.norm())) << "n = " << n;
     EXPECT_NEAR(llt.rcond(), reference.rcond(), 1e-9 * reference.rcond()) << "n = " << n;
   }
 }
