@@ -45,8 +45,9 @@ real box_distance(const Vec3& h, const Vec3& p, Vec3* grad) {
 }  // namespace
 
 WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS) {
-  const Vec3 n = X_WS.R * s.normal.normalized();
-  return {n, s.distance / s.normal.norm() + n.dot(X_WS.p)};
+  const real inverse_length = 1 / s.normal.norm();
+  const Vec3 n = X_WS.R * (inverse_length * s.normal);
+  return {n, inverse_length * s.distance + n.dot(X_WS.p)};
 }
 
 real shape_signed_distance(const ShapeGeometry& shape, const Vec3& p, Vec3* grad) {

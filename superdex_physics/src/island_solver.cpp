@@ -23,6 +23,13 @@ bool island_is_sparse(const SceneData& s, const Island& island, const SolverPara
 
 namespace {
 
+// v <- n copies of `value`, inline (vector::assign calls out to a general routine, a dozen
+// times per island)
+void fill_to(std::vector<int>& v, size_t n, int value) {
+  v.resize(n);
+  std::fill(v.begin(), v.end(), value);
+}
+
 // A soft contact too far apart to close within the step at the current speeds: it is left out of
 // the first solve, and joins a second one only if that solve's velocities would close (half) its
 // gap. Most speculative contacts of a soft surface are such.
@@ -68,10 +75,10 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   // variable offsets: the articulations' DOFs, then each soft body's free DOFs
   std::vector<int>& offset = w.body_offset;
   std::vector<int>& soft_offset = w.soft_offset;
-  offset.assign(s.articulations.size(), -1);
-  soft_offset.assign(soft_steps.size(), -1);
-  w.link_base.assign(s.articulations.size(), -1);
-  w.island_position.assign(s.articulations.size(), -1);
+  fill_to(offset, s.articulations.size(), -1);
+  fill_to(soft_offset, soft_steps.size(), -1);
+  fill_to(w.link_base, s.articulations.size(), -1);
+  fill_to(w.island_position, s.articulations.size(), -1);
   int n = 0, links = 0;
   for (size_t j = 0; j < island.bodies.size(); ++j) {
     const int b = island.bodies[j];
@@ -89,7 +96,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
   std::vector<ReducedVariables>& reduced = w.reduced;
   std::vector<int>& reduced_of = w.reduced_of;
   reduced.resize(0);
-  reduced_of.assign(soft_steps.size(), -1);
+  fill_to(reduced_of, soft_steps.size(), -1);
   for (int k : island.soft_bodies) {
     const SoftBody& body = *s.soft_bodies[k];
     if (!body.reduced) continue;
@@ -227,7 +234,7 @@ void solve_island_once(const SceneData& s, const Island& island, const std::vect
 
   // contact blocks: rows R_C^T (J_a(p) - J_b(p)), regularised by the Delassus estimate w
   w.link_jacobians_used = 0;
-  w.link_slot.assign(links, -1);
+  fill_to(w.link_slot, links, -1);
   // adds the rows of one side (an articulation link) of a contact in frame R_C, with the
   // diagonal of its Delassus block (the only part the contact block reads) and free-motion
   // normal velocity

@@ -25,6 +25,10 @@ class SmallLLT : public Eigen::LLT<MatX> {
   // x <- A^-1 x: below kSmall rows by forward and back substitution in plain loops (Eigen's
   // triangular solves set up a blocked kernel), above by Eigen's solveInPlace.
   void solve_in_place(VecX& x) const;
+
+ private:
+  // below kSmall rows: the reciprocals of the factor's diagonal (the solves multiply by them)
+  VecX inverse_diagonal_;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
