@@ -526,7 +526,20 @@ this run's.
   one factorization per island), the contact rows and compliances a sixth, the articulations'
   mass matrices, bias forces and factorizations a sixth, collision an eighth. The control
   variant cannot reach half of PyBullet's time in any simulator: the shared Python law alone
-  takes about 0.6 of PyBullet's control step (the note under scene 2's table).
+  takes about 0.6 of PyBullet's control step (the note under scene 2's table). Found next
+  (callgrind, 57.6k instructions per physics step; and the clock reads): each of a capsule's 17
+  balls queried the box's distance where none was near, and the ball list was built against the
+  ground plane too (collision an eighth of the step); the step read steady_clock twice (21 ns a
+  read here) and the time-stamp counter 17 times (9 ns) to time its parts, some 0.2 us in all.
+  Fixed: against an exact distance field (every shape but a mesh) the balls that a queried
+  neighbour's distance proves out of contact are skipped, and planes need no ball list (the
+  contacts are the same ones); the counter's rate is calibrated once per process and the
+  articulations are timed by group; the small solves multiply by the factor's reciprocal
+  diagonal. 57.6k to 53.2k instructions, 4.2 to 4.0 us per step, 0.55 to 0.53 of PyBullet's
+  step. What remains is spread as before; 0.5 needs some 0.25 us more. Tried and not kept:
+  carrying the line search's last trial (its constraint velocities and impulses) into the next
+  Newton iteration (0.7k instructions fewer, no measurable time, and a sum that drifts from J v
+  over many iterations).
 - Scene 6 (calls). Found: every call imported numpy and converted its arguments with
   numpy.ascontiguousarray; an out array was checked through Python attribute lookups. Fixed: lists
   and contiguous arrays are read directly and writable out arrays of the right dtype are used as
@@ -597,7 +610,12 @@ this run's.
   and 143-160 us on two (1.74x to 1.94x between runs of one build), the Python part 26 us (the
   task's target, reward and observation 15.7 us of it, nearly all fixed cost per call: 19 us
   with 8 scenes); with the physics now cheaper, that serial part weighs more: 1.81x and 1.82x
-  in three runs of the scene with the suite's threads fixed, just over the target.
+  in three runs of the scene with the suite's threads fixed, just over the target. With scene
+  2's speed-ups (the same arm and box), measured by parts: the batch step 252 us on one thread
+  and 129 us on two (1.96x), the Python part 25 us, so 1.82x by parts and 1.79x in the suite's
+  runs. The target and reward written with fewer numpy calls (one cosine for the circle's three
+  coordinates, the contact test as any()) were no cheaper (the target 5.5 to 6.3 us): at 64 rows
+  each numpy call costs its fixed half microsecond or more whatever it computes.
 """
 
 
