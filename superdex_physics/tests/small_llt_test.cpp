@@ -1,9 +1,9 @@
 /// @file small_llt_test.cpp
 /// The Cholesky factorization of small matrices in plain loops: on random symmetric positive
-/// definite matrices of 1 to 20 rows (below and above SmallLLT::kSmall), whose upper triangle
-/// holds values it must not read, its factor, solutions (Eigen's and its own) and 1-norm match
-/// Eigen's LLT (an independent factorization); a matrix that is not positive definite is
-/// reported as Eigen reports it.
+/// definite matrices of 1 to 20 rows (the unrolled sizes, the loops below SmallLLT::kSmall and
+/// Eigen above), whose upper triangle holds values it must not read, its factor, solutions
+/// (Eigen's and its own) and 1-norm match Eigen's LLT (an independent factorization); a matrix
+/// that is not positive definite is reported as Eigen reports it.
 
 #include <gtest/gtest.h>
 
@@ -43,7 +43,7 @@ TEST(SmallLLT, FactorsLikeEigensLLT) {
 }
 
 TEST(SmallLLT, ReportsAMatrixThatIsNotPositiveDefinite) {
-  for (int n : {1, 4, 12}) {
+  for (int n : {1, 2, 3, 4, 6, 12}) {
     MatX A = MatX::Identity(n, n);
     A(n - 1, n - 1) = -0.5;
     SmallLLT llt(A);
