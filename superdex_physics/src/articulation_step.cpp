@@ -96,7 +96,7 @@ void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState
 // Link drive rows: per world axis, a bounded implicit spring-damper on the link origin's velocity
 // (linear) or the link's angular velocity (angular), with the link Jacobian's rows.
 void link_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
-                     const Eigen::LLT<MatX>& A_llt, real dt, const SolverParams& params, std::vector<JointRow>& rows) {
+                     const SmallLLT& A_llt, real dt, const SolverParams& params, std::vector<JointRow>& rows) {
   const real near_rigid = near_rigid_factor(params);
   for (int link = 0; link < model.num_links; ++link) {
     const LinkDrive& d = state.link_drives[link];

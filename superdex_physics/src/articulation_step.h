@@ -25,32 +25,12 @@ struct JointRow {
   VecX J;              // full row, for rows that involve several DOFs
 };
 
-// X <- L^-1 X for the SPD matrix A = L L^T factored in A_llt (X: n x k).
-inline void solve_lower_in_place(const Eigen::LLT<MatX>& A_llt, Eigen::Ref<MatX> X) {
-  const MatX& L = A_llt.matrixLLT();
-  const int n = static_cast<int>(L.rows());
-  if (n > 32) {
-    A_llt.matrixL().solveInPlace(X);
-    return;
-  }
-  // small articulations: forward substitution, row by row over all columns at once (a blocked
-  // solve costs more in set-up than in arithmetic at these sizes)
-  for (int i = 0; i < n; ++i) {
-    const real inverse = 1 / L(i, i);
-    for (Eigen::Index c = 0; c < X.cols(); ++c) {
-      real y = X(i, c);
-      for (int l = 0; l < i; ++l) y -= L(i, l) * X(l, c);
-      X(i, c) = y * inverse;
-    }
-  }
-}
-
 // diag(X^T A^-1 X) for the SPD matrix A = L L^T factored in A_llt: the squared column norms of
 // L^-1 X, one triangular solve. X (n x k: a matrix, or a block of one) is overwritten by
 // L^-1 X; the result reads it.
 template <class Derived>
-auto compliance_diagonal(const Eigen::LLT<MatX>& A_llt, Eigen::MatrixBase<Derived>& X) {
-  solve_lower_in_place(A_llt, X.derived());
+auto compliance_diagonal(const SmallLLT& A_llt, Eigen::MatrixBase<Derived>& X) {
+  A_llt.solve_lower_in_place(X.derived());
   return X.colwise().squaredNorm().transpose();
 }
 

@@ -53,12 +53,12 @@ IslandWorkspace::LinkJacobian& cached_link_jacobian(const SceneData& s, int body
 }
 
 // The same with its compliance W_L = J_WL A^-1 J_WL^T, for the body's factored A.
-const IslandWorkspace::LinkJacobian& link_compliance(const SceneData& s, int body, int link, const Eigen::LLT<MatX>& A_llt,
+const IslandWorkspace::LinkJacobian& link_compliance(const SceneData& s, int body, int link, const SmallLLT& A_llt,
                                                      IslandWorkspace& w) {
   IslandWorkspace::LinkJacobian& lj = cached_link_jacobian(s, body, link, w);
   if (!lj.has_W_L) {
     w.L_inv_Jt = lj.J_WL.transpose();
-    solve_lower_in_place(A_llt, w.L_inv_Jt);
+    A_llt.solve_lower_in_place(w.L_inv_Jt);
     lj.W_L.noalias() = w.L_inv_Jt.transpose() * w.L_inv_Jt;
     lj.has_W_L = true;
   }

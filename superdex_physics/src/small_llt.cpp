@@ -65,6 +65,20 @@ void solve_factored(const real* L, const real* inverse, real* x, Eigen::Index n_
   }
 }
 
+// X <- L^-1 X for the k columns of X (column c at X + c stride).
+template <int N>
+void solve_lower_columns(const real* L, const real* inverse, real* X, Eigen::Index k, Eigen::Index stride, Eigen::Index n_runtime) {
+  const Eigen::Index n = N > 0 ? N : n_runtime;
+  for (Eigen::Index c = 0; c < k; ++c) {
+    real* x = X + c * stride;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      real v = x[i];
+      for (Eigen::Index j = 0; j < i; ++j) v -= L[i + n * j] * x[j];
+      x[i] = v * inverse[i];
+    }
+  }
+}
+
 // Calls kernel.template operator()<N>() with N = n for the unrolled sizes, N = 0 otherwise.
 template <class Kernel>
 auto by_size(Eigen::Index n, Kernel&& kernel) {
@@ -102,6 +116,27 @@ void SmallLLT::solve_in_place(VecX& x) const {
     return;
   }
   by_size(n, [&]<int N>() { solve_factored<N>(m_matrix.data(), inverse_diagonal_.data(), x.data(), n); });
+}
+
+void SmallLLT::solve_lower_in_place(Eigen::Ref<MatX> X) const {
+  const Eigen::Index n = m_matrix.rows();
+  if (n <= kSmall) {
+    by_size(n, [&]<int N>() { solve_lower_columns<N>(m_matrix.data(), inverse_diagonal_.data(), X.data(), X.cols(), X.outerStride(), n); });
+    return;
+  }
+  if (n > 32) {
+    matrixL().solveInPlace(X);
+    return;
+  }
+  // 17 to 32 rows (factored by Eigen: no reciprocals kept)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const real inverse = 1 / m_matrix(i, i);
+    for (Eigen::Index c = 0; c < X.cols(); ++c) {
+      real y = X(i, c);
+      for (Eigen::Index l = 0; l < i; ++l) y -= m_matrix(i, l) * X(l, c);
+      X(i, c) = y * inverse;
+    }
+  }
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -26,6 +26,9 @@ class SmallLLT : public Eigen::LLT<MatX> {
   // x <- A^-1 x: below kSmall rows by forward and back substitution in plain loops (Eigen's
   // triangular solves set up a blocked kernel), above by Eigen's solveInPlace.
   void solve_in_place(VecX& x) const;
+  // X <- L^-1 X (X: n x k, a matrix or a block of one): forward substitution column by column
+  // in plain loops up to 32 rows, Eigen's blocked solve above.
+  void solve_lower_in_place(Eigen::Ref<MatX> X) const;
 
  private:
   // below kSmall rows: the reciprocals of the factor's diagonal (the solves multiply by them)
