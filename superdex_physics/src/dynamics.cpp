@@ -115,6 +115,22 @@ MatX mass_matrix(const ArticulationModel& model, const ArticulationKinematics& k
 
 void mass_matrix(const ArticulationModel& model, const ArticulationKinematics& kin, MatX& M) {
   const int n = model.num_links;
+  // a single free body (its welded links merged): M = S^T Ic S in closed form, with S =
+  // diag(R^T, 1) (linear velocity in the parent frame, angular velocity in the body's):
+  // [m 1, -R [h]x; [h]x R^T, I_o]
+  if (model.dynamics_order.size() == 1 && model.joints[model.dynamics_order[0]].type == JointType::Free) {
+    const int i = model.dynamics_order[0];
+    const OriginInertia I = OriginInertia::of(model.dynamics_inertia[i]);
+    const Mat3 R = kin.S[i].topLeftCorner<3, 3>().transpose();
+    const Mat3 M_la = -R * skew(I.h);
+    M.resize(6, 6);
+    M.topLeftCorner<3, 3>() = I.m * Mat3::Identity();
+    M.topRightCorner<3, 3>() = M_la;
+    M.bottomLeftCorner<3, 3>() = M_la.transpose();
+    M.bottomRightCorner<3, 3>() = I.I;
+    M.diagonal().array() += model.joints[i].armature;
+    return;
+  }
   // composite inertias, leaves first, each expressed in its own link frame (kept per thread)
   thread_local std::vector<OriginInertia> Ic;
   Ic.resize(n);

@@ -1,7 +1,7 @@
 /// @file dynamics_test.cpp
 /// Mass matrix, bias forces and forward dynamics of a branched articulation with a free root:
 /// M is symmetric positive definite, equals the columns of inverse dynamics and the sum of
-/// per-link J^T M_link J; gravity forces equal -sum J_com^T m g; the rate of change of
+/// per-link J^T M_link J (and so does a single free body's, computed in closed form); gravity forces equal -sum J_com^T m g; the rate of change of
 /// energy equals the power tau . v; forward dynamics satisfies M a + c = tau and the
 /// pendulum's analytic acceleration.
 
@@ -137,6 +137,29 @@ TEST_F(DynamicsTest, MassMatrixEqualsSumOfLinkJacobianInertias) {
     M_ref += *l.mass * Jc.transpose() * Jc + Jw.transpose() * (R * inertia_of(l) * R.transpose()) * Jw;
   }
   for (int k : {6, 7, 11}) M_ref(k, k) += 0.05;
+  EXPECT_LE((scene.mass_matrix(art) - M_ref).norm(), 1e-12 * M_ref.norm());
+}
+
+TEST_F(DynamicsTest, SingleFreeBodyMassMatrixEqualsItsJacobianInertia) {
+  // one free link (the closed form of a free body's M), offset COM and a non-diagonal inertia,
+  // rotated: M = m Jc^T Jc + Jw^T R I R^T Jw, as for the tree above
+  ArticulationDesc desc;
+  desc.name = "body";
+  desc.links = {make_link("body", -1, 2.5, Vec3(0.07, -0.03, 0.12), Vec3(0.02, 0.03, 0.04))};
+  desc.links[0].moment_of_inertia = std::array<real, 6>{0.03, 0.004, -0.003, 0.025, 0.002, 0.035};
+  desc.joints = {make_joint("j0", JointType::Free)};
+  Scene scene = create_scene("free body");
+  const ActorHandle art = scene.create_articulated_actor(desc, "body");
+  VecX pose(6);
+  pose << 0.3, -0.2, 1.0, 0.4, -0.9, 0.7;
+  scene.set_pose(art, pose);
+  const ActorHandle link = scene.nested_link_actors(art)[0];
+  const Mat3 R = scene.link_transforms(art)[0].rotation.toRotationMatrix();
+  const MatXR J = scene.link_jacobian(link);
+  const Vec3 r = R * *desc.links[0].center_of_mass;
+  const MatX Jw = J.bottomRows(3);
+  const MatX Jc = J.topRows(3) - skew(r) * Jw;
+  const MatX M_ref = *desc.links[0].mass * Jc.transpose() * Jc + Jw.transpose() * (R * inertia_of(desc.links[0]) * R.transpose()) * Jw;
   EXPECT_LE((scene.mass_matrix(art) - M_ref).norm(), 1e-12 * M_ref.norm());
 }
 
