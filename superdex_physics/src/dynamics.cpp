@@ -20,12 +20,12 @@ void rnea(const ArticulationModel& model, const ArticulationState& state, const 
   for (int i : model.dynamics_order) {
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
-    // joint velocity and acceleration, column by column (nv is at most 6)
+    // joint velocity and acceleration, column by column (nv is at most 6); no acceleration for
+    // the bias forces
     Vec6 vJ = Vec6::Zero(), aJ = Vec6::Zero();
-    for (int c = 0; c < j.nv; ++c) {
-      vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
-      aJ += kin.S[i].col(c) * accel(j.v_offset + c);
-    }
+    for (int c = 0; c < j.nv; ++c) vJ += kin.S[i].col(c) * state.v[j.v_offset + c];
+    if (a)
+      for (int c = 0; c < j.nv; ++c) aJ += kin.S[i].col(c) * (*a)[j.v_offset + c];
     Vec6 A_i = aJ + cross_motion(kin.V_L[i], vJ);
     // a Free joint's S changes with its rotation: Sdot qdot = (-w x (R^T v), 0)
     if (j.type == JointType::Free) A_i.head<3>() -= vJ.tail<3>().cross(vJ.head<3>());
