@@ -98,16 +98,48 @@ class DenseAlgebra {
   // products: below kSmallHessian variables coefficient by coefficient (Eigen's blocked
   // matrix-vector kernels cost more to set up than they save at these sizes)
   void A_mul(const VecX& x, VecX& out) const {
-    if (n() <= kSmallHessian) out.noalias() = A_.lazyProduct(x);
-    else out.noalias() = A_ * x;
+    const int n = this->n();
+    if (n > kSmallHessian) {
+      out.noalias() = A_ * x;
+      return;
+    }
+    // A column-major: out += A(:, c) x_c
+    out.setZero(n);
+    const real* A = A_.data();
+    for (int c = 0; c < n; ++c) {
+      const real x_c = x[c];
+      for (int r = 0; r < n; ++r) out[r] += A[r + n * c] * x_c;
+    }
   }
   void J_mul(const VecX& x, VecX& out) const {
-    if (n() <= kSmallHessian) out.noalias() = J_.lazyProduct(x);
-    else out.noalias() = J_ * x;
+    const int n = this->n(), m = this->m();
+    if (n > kSmallHessian) {
+      out.noalias() = J_ * x;
+      return;
+    }
+    // J row-major: out_i = J(i, :) . x
+    out.resize(m);
+    const real* J = J_.data();
+    for (int i = 0; i < m; ++i) {
+      real sum = 0;
+      for (int c = 0; c < n; ++c) sum += J[n * i + c] * x[c];
+      out[i] = sum;
+    }
   }
   void Jt_mul(const VecX& y, VecX& out) const {
-    if (n() <= kSmallHessian) out.noalias() = J_.transpose().lazyProduct(y);
-    else out.noalias() = J_.transpose() * y;
+    const int n = this->n(), m = this->m();
+    if (n > kSmallHessian) {
+      out.noalias() = J_.transpose() * y;
+      return;
+    }
+    // out += J(i, :)^T y_i
+    out.setZero(n);
+    const real* J = J_.data();
+    for (int i = 0; i < m; ++i) {
+      const real y_i = y[i];
+      if (y_i == 0) continue;
+      for (int c = 0; c < n; ++c) out[c] += J[n * i + c] * y_i;
+    }
   }
   // factors H = A + J^T G J (G block diagonal, of the given blocks)
   bool smooth() const { return false; }
