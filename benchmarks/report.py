@@ -535,8 +535,15 @@ this run's.
   neighbour's distance proves out of contact are skipped, and planes need no ball list (the
   contacts are the same ones); the counter's rate is calibrated once per process and the
   articulations are timed by group; the small solves multiply by the factor's reciprocal
-  diagonal. 57.6k to 53.2k instructions, 4.2 to 4.0 us per step, 0.55 to 0.53 of PyBullet's
-  step. What remains is spread as before; 0.5 needs some 0.25 us more. Tried and not kept:
+  diagonal: 57.6k to 53.2k instructions, 4.2 to 4.0 us per step, 0.55 to 0.53 of PyBullet's
+  step. Then: the small Cholesky factorizations and solves (the momentum matrices, the Newton
+  matrices and the link compliances' L^-1 J^T) on raw storage, unrolled at 1, 2, 3 and 6 rows
+  (about 1k instructions a 6 x 6 factorization before); a free body's mass matrix in closed
+  form; the dense islands' products with A, J and J^T in plain loops (few instructions fewer,
+  but 3.80 to 3.70 us: shorter dependency chains than Eigen's dynamic-size lazy products).
+  49.7k instructions, 3.7 us per step, 0.49 of PyBullet's in this run and the two before it. What
+  remains is spread as before: the Newton loop's dynamic-size vector arithmetic, the contact
+  rows, the articulations' terms and collision, none above a tenth. Tried and not kept:
   carrying the line search's last trial (its constraint velocities and impulses) into the next
   Newton iteration (0.7k instructions fewer, no measurable time, and a sum that drifts from J v
   over many iterations).
