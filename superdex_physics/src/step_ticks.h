@@ -35,7 +35,7 @@ inline double seconds_per_tick(double seconds, Ticks ticks) { return ticks > 0 ?
 // 0 until that interval reaches kTickCalibrationSeconds, then fixed (on x86-64; elsewhere the
 // ticks are steady_clock's and the ratio its period). Until then, callers time their intervals
 // with steady_clock themselves.
-inline constexpr double kTickCalibrationSeconds = 0.002;
+inline constexpr double kTickCalibrationSeconds = 0.01;
 double calibrated_seconds_per_tick();
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
