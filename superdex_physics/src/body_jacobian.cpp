@@ -2,7 +2,6 @@
 
 #include "body_jacobian.h"
 
-
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 

@@ -95,8 +95,8 @@ class DenseAlgebra {
   int n() const { return static_cast<int>(A_.rows()); }
   int m() const { return static_cast<int>(J_.rows()); }
   void diagonal(VecX& out) const { out = A_.diagonal(); }
-  // products: below kSmallHessian variables coefficient by coefficient (Eigen's blocked
-  // matrix-vector kernels cost more to set up than they save at these sizes)
+  // products: up to kSmallHessian variables in plain loops on A's and J's storage (Eigen's
+  // kernels for dynamic sizes cost more to set up than they save at these sizes)
   void A_mul(const VecX& x, VecX& out) const {
     const int n = this->n();
     if (n > kSmallHessian) {

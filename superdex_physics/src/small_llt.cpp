@@ -49,22 +49,6 @@ bool factor_lower(real* L, real* inverse, Eigen::Index n_runtime) {
   return true;
 }
 
-// x <- (L L^T)^-1 x: L y = x, then L^T x = y.
-template <int N>
-void solve_factored(const real* L, const real* inverse, real* x, Eigen::Index n_runtime) {
-  const Eigen::Index n = N > 0 ? N : n_runtime;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    real v = x[i];
-    for (Eigen::Index j = 0; j < i; ++j) v -= L[i + n * j] * x[j];
-    x[i] = v * inverse[i];
-  }
-  for (Eigen::Index i = n - 1; i >= 0; --i) {
-    real v = x[i];
-    for (Eigen::Index j = i + 1; j < n; ++j) v -= L[j + n * i] * x[j];
-    x[i] = v * inverse[i];
-  }
-}
-
 // X <- L^-1 X for the k columns of X (column c at X + c stride).
 template <int N>
 void solve_lower_columns(const real* L, const real* inverse, real* X, Eigen::Index k, Eigen::Index stride, Eigen::Index n_runtime) {
@@ -76,6 +60,18 @@ void solve_lower_columns(const real* L, const real* inverse, real* X, Eigen::Ind
       for (Eigen::Index j = 0; j < i; ++j) v -= L[i + n * j] * x[j];
       x[i] = v * inverse[i];
     }
+  }
+}
+
+// x <- (L L^T)^-1 x: L y = x, then L^T x = y.
+template <int N>
+void solve_factored(const real* L, const real* inverse, real* x, Eigen::Index n_runtime) {
+  const Eigen::Index n = N > 0 ? N : n_runtime;
+  solve_lower_columns<N>(L, inverse, x, 1, n, n);
+  for (Eigen::Index i = n - 1; i >= 0; --i) {
+    real v = x[i];
+    for (Eigen::Index j = i + 1; j < n; ++j) v -= L[j + n * i] * x[j];
+    x[i] = v * inverse[i];
   }
 }
 

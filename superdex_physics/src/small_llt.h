@@ -23,7 +23,7 @@ class SmallLLT : public Eigen::LLT<MatX> {
   // Factors A (its lower triangle is read), as Eigen::LLT::compute does: info() tells whether
   // it is positive definite.
   SmallLLT& compute(const MatX& A);
-  // x <- A^-1 x: below kSmall rows by forward and back substitution in plain loops (Eigen's
+  // x <- A^-1 x: up to kSmall rows by forward and back substitution in plain loops (Eigen's
   // triangular solves set up a blocked kernel), above by Eigen's solveInPlace.
   void solve_in_place(VecX& x) const;
   // X <- L^-1 X (X: n x k, a matrix or a block of one): forward substitution column by column
@@ -31,7 +31,7 @@ class SmallLLT : public Eigen::LLT<MatX> {
   void solve_lower_in_place(Eigen::Ref<MatX> X) const;
 
  private:
-  // below kSmall rows: the reciprocals of the factor's diagonal (the solves multiply by them)
+  // up to kSmall rows: the reciprocals of the factor's diagonal (the solves multiply by them)
   VecX inverse_diagonal_;
 };
 
