@@ -11,6 +11,7 @@
 
 #include "superdex/physics/engine.h"
 #include "superdex/physics/error.h"
+#include "batch_task.h"
 #include "velocity_servo_law.h"
 
 namespace superdex::robotics {
@@ -29,6 +30,8 @@ struct SceneSlot {
   std::vector<servo::VelocityServoLaw> servos;  // VelocityServo: one per action column
   std::vector<double> q_target;                 // VelocityDrive: integrated target per column (rad or m)
   bool contact_valid = false;                   // the contact query has a completed step since the reset
+  std::vector<double> params;                   // the task's parameters since the reset
+  long t = 0;                                   // batch steps since the reset (the task's time)
   double seconds = 0;                           // wall time of its last batch step (s)
 };
 
@@ -46,8 +49,8 @@ struct SceneBatch::Impl {
   std::vector<double> last_seconds;  // each slot's last step wall time (s): the order of the next
   int n = 0;  // action columns
 
-  // the observation row of one scene
-  void observe(const SceneSlot& slot, real* row) const {
+  // the observation row of one scene, its task columns included; returns the task's reward
+  double observe(const SceneSlot& slot, real* row) const {
     const Scene& scene = slot.member.scene;
     const ActorHandle art = slot.member.articulation;
     // kept per thread: a batch step observes every scene of its thread into the same vectors
@@ -64,6 +67,7 @@ struct SceneBatch::Impl {
       row[2 * n + k] = p_WE[k];
       row[2 * n + 3 + k] = f_C_W[k];
     }
+    return write_task_columns_and_reward(spec.task, slot.params.data(), static_cast<double>(slot.t) * spec.dt * spec.substeps, n, row);
   }
 
   // one physics step of one scene with its row of actions applied
@@ -125,6 +129,7 @@ SceneBatch::SceneBatch(SceneBatchSpec spec, std::vector<SceneBatchMember> member
     check_size(spec.drive_damping, n, "drive_damping");
     check_size(spec.drive_max_effort, n, "drive_max_effort");
   }
+  check_batch_task(spec.task);
   if (std::set<int>(spec.action_dofs.begin(), spec.action_dofs.end()).size() != n)
     throw Error("SceneBatch: spec.action_dofs lists a DOF twice");
 
@@ -164,6 +169,7 @@ SceneBatch::SceneBatch(SceneBatchSpec spec, std::vector<SceneBatchMember> member
       slot.servos[j].params = {b.spec.servo_k_p[j], b.spec.servo_k_i[j], b.spec.servo_effort_limit[j], b.spec.servo_profile_accel[j]};
     const VecX q = m.scene.pose(m.articulation);
     for (int dof : b.spec.action_dofs) slot.q_target.push_back(q[dof]);
+    slot.params.assign(batch_task_params_size(b.spec.task.kind), 0.0);
     b.slots.push_back(std::move(slot));
   }
   b.last_seconds.resize(b.slots.size());
@@ -175,10 +181,11 @@ SceneBatch& SceneBatch::operator=(SceneBatch&&) noexcept = default;
 
 int SceneBatch::num_scenes() const { return static_cast<int>(impl_->slots.size()); }
 int SceneBatch::action_size() const { return impl_->n; }
-int SceneBatch::obs_size() const { return 2 * impl_->n + 6; }
+int SceneBatch::obs_size() const { return 2 * impl_->n + 6 + batch_task_obs_size(impl_->spec.task.kind); }
+int SceneBatch::params_size() const { return batch_task_params_size(impl_->spec.task.kind); }
 const SceneBatchSpec& SceneBatch::spec() const { return impl_->spec; }
 
-void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* obs_out) {
+void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* obs_out, const double* params) {
   Impl& b = *impl_;
   std::vector<char> seen(num_scenes(), 0);
   for (int k : indices) {
@@ -201,11 +208,14 @@ void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* 
       slot.q_target[j] = q[b.spec.action_dofs[j]];
     }
     slot.contact_valid = false;
+    slot.t = 0;
+    const int p = params_size();
+    for (int j = 0; j < p; ++j) slot.params[j] = params != nullptr ? params[i * p + j] : 0.0;
     b.observe(slot, obs_out + static_cast<size_t>(indices[i]) * obs_size());
   });
 }
 
-void SceneBatch::step(const double* actions, real* obs_out) {
+void SceneBatch::step(const double* actions, real* obs_out, double* reward_out) {
   Impl& b = *impl_;
   // each scene on the same thread step after step, so that its data stays in that core's cache
   // (with each scene going to whichever thread was free, 2 threads gave about 1.45x the batch
@@ -221,7 +231,9 @@ void SceneBatch::step(const double* actions, real* obs_out) {
     b.clip(actions + k * b.n, a.data());
     for (int s = 0; s < b.spec.substeps; ++s) b.substep(slot, a.data());
     slot.contact_valid = true;
-    b.observe(slot, obs_out + k * obs_size());
+    ++slot.t;
+    const double reward = b.observe(slot, obs_out + k * obs_size());
+    if (reward_out != nullptr) reward_out[k] = reward;
     slot.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   });
 }

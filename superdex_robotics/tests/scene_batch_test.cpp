@@ -1,11 +1,13 @@
 /// @file scene_batch_test.cpp
 /// SceneBatch (scene_batch.h): scenes stepped on two worker threads give bitwise the trajectory
 /// of one scene stepped by hand with the same servo law and forces; reset restores the captured
-/// state; the velocity drive reaches its command; bad specs throw naming the field.
+/// state; the velocity drive reaches its command; the C++ tasks give their documented target
+/// points and rewards; bad specs throw naming the field.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "superdex/physics/error.h"
 #include "superdex/physics/scene.h"
 #include "superdex/robotics/scene_batch.h"
+#include "batch_task.h"
 #include "velocity_servo_law.h"
 
 namespace superdex::robotics::test {
@@ -150,6 +153,81 @@ TEST_F(Batch, VelocityDriveReachesItsCommand) {
   EXPECT_NEAR(obs[0] - q_start, 0.25, 0.02) << "the angle grows by command x time";
 }
 
+BatchTask circle_task() {
+  BatchTask task;
+  task.kind = BatchTaskKind::CircleTracking;
+  task.center = {0.1, -0.2, 0.9};
+  task.radius = 0.15;
+  task.omega = 2.5;
+  task.force_target = 0.5;
+  task.force_weight = 0.7;
+  return task;
+}
+
+TEST_F(Batch, CircleTaskWritesItsTargetPointAndRewardAfterEachStep) {
+  SceneBatchSpec spec = servo_spec();
+  spec.task = circle_task();
+  SceneBatch batch(spec, make_members(2));
+  ASSERT_EQ(batch.obs_size(), 2 * 2 + 6 + 3);
+  ASSERT_EQ(batch.params_size(), 1);
+  const int m = batch.obs_size();
+  std::vector<real> obs(2 * m);
+  std::vector<double> reward(2, 99);
+  const double phase[2] = {0.4, -2.0};
+  batch.reset({0, 1}, nullptr, obs.data(), phase);
+  const double control_dt = spec.dt * spec.substeps;
+  const std::vector<double> actions = {1, -1, -0.5, 0.5};
+  for (int t = 0; t <= 12; ++t) {
+    if (t > 0) batch.step(actions.data(), obs.data(), reward.data());
+    for (int k = 0; k < 2; ++k) {
+      const real* row = obs.data() + k * m;
+      // x*(t) = c + r (cos theta, 0, sin theta), theta = omega t T + phase, and the reward's tracking term
+      const double theta = spec.task.omega * t * control_dt + phase[k];
+      const double x = 0.1 + 0.15 * std::cos(theta), z = 0.9 + 0.15 * std::sin(theta);
+      EXPECT_NEAR(row[10], x, 1e-6) << "step " << t << " scene " << k;
+      EXPECT_EQ(row[11], real(-0.2));
+      EXPECT_NEAR(row[12], z, 1e-6);
+      // no contact actor: no force term
+      if (t > 0) EXPECT_NEAR(reward[k], -std::sqrt(std::pow(row[4] - x, 2) + std::pow(row[6] - z, 2)) / 0.15, 1e-5);
+    }
+  }
+  // a reset restarts the task's time at the new phase; the other row keeps its time
+  const double phase1 = 1.0;
+  batch.reset({1}, nullptr, obs.data(), &phase1);
+  EXPECT_NEAR(obs[m + 10], 0.1 + 0.15 * std::cos(1.0), 1e-6);
+  EXPECT_NEAR(obs[m + 12], 0.9 + 0.15 * std::sin(1.0), 1e-6);
+  EXPECT_NEAR(obs[10], 0.1 + 0.15 * std::cos(2.5 * 12 * control_dt + 0.4), 1e-6);
+}
+
+TEST(BatchTask, CircleRewardRegulatesTheForceOnlyInContact) {
+  const BatchTask task = circle_task();
+  const double phase = 0.3;
+  // n = 1 action column: [q | v | p_WE (3) | f_C_W (3) | target (3)]
+  real row[11] = {0, 0, 0.2f, 0.0f, 0.95f, 0, 0, 0, 0, 0, 0};
+  const double t = 0.8, theta = 2.5 * t + phase;
+  const double x = 0.1 + 0.15 * std::cos(theta), z = 0.9 + 0.15 * std::sin(theta);
+  const double tracking = std::hypot(double(row[2]) - x, double(row[4]) - z) / 0.15;
+  EXPECT_NEAR(write_task_columns_and_reward(task, &phase, t, 1, row), -tracking, 1e-12) << "no force, no force term";
+  row[5] = 0.3f, row[6] = -0.1f, row[7] = 1.25f;  // pressing with 1.25 N: 0.75 N over the 0.5 N target
+  EXPECT_NEAR(write_task_columns_and_reward(task, &phase, t, 1, row), -tracking - 0.7 * (double(1.25f) - 0.5) / 0.5, 1e-12);
+  row[7] = 0;  // touching sideways: f_z 0.5 N under the target
+  EXPECT_NEAR(write_task_columns_and_reward(task, &phase, t, 1, row), -tracking - 0.7 * 1.0, 1e-12);
+}
+
+TEST(BatchTask, GoalRewardIsDistanceAndForce) {
+  BatchTask task;
+  task.kind = BatchTaskKind::GoalReach;
+  task.force_weight = 0.01;
+  const double goal[3] = {0.45, 0.1, 0.42};
+  // n = 2 action columns
+  real row[13] = {0, 0, 0, 0, 0.5f, 0.0f, 0.5f, 3.0f, 0.0f, 4.0f, 0, 0, 0};
+  const double d = std::sqrt(std::pow(double(0.5f) - 0.45, 2) + 0.01 + std::pow(double(0.5f) - 0.42, 2));
+  EXPECT_NEAR(write_task_columns_and_reward(task, goal, 7.0, 2, row), -d - 0.01 * 5.0, 1e-12);
+  EXPECT_EQ(row[10], real(0.45));
+  EXPECT_EQ(row[11], real(0.1));
+  EXPECT_EQ(row[12], real(0.42));
+}
+
 TEST_F(Batch, BadSpecsThrowNamingTheField) {
   SceneBatchSpec s = servo_spec();
   s.action_dofs = {0, 7};
@@ -166,6 +244,15 @@ TEST_F(Batch, BadSpecsThrowNamingTheField) {
   members[1].articulation = 12345;
   EXPECT_THAT([&] { SceneBatch(servo_spec(), members); },
               ::testing::ThrowsMessage<Error>(HasSubstr("members[1]: articulation 12345 is not an articulated actor")));
+  s = servo_spec();
+  s.task = circle_task();
+  s.task.radius = 0;
+  EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.radius must be a positive")));
+  s.task = circle_task();
+  s.task.force_target = -1;
+  EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.force_target")));
+  s.task.kind = static_cast<BatchTaskKind>(9);
+  EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.kind")));
   SceneBatch batch(servo_spec(), make_members(2));
   std::vector<real> obs(2 * batch.obs_size());
   EXPECT_THAT([&] { batch.reset({0, 2}, nullptr, obs.data()); }, ::testing::ThrowsMessage<Error>(HasSubstr("index 2 is out of range")));

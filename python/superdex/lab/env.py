@@ -18,15 +18,18 @@ no Python runs inside the physics step).
 
 Hooks (rows: arrays have one row per scene, so the same code serves the vector environment)
     build_scene(scene) -> BuiltScene          the robot, props and contact actor of one scene
-    batch_spec() -> SceneBatchSpec            action DOFs, action mode, observed link
+    batch_spec() -> SceneBatchSpec            action DOFs, action mode, observed link, and
+                                              optionally a C++ task (spec.task: BatchTask)
     sample_episode(rng) -> (q0, params)       start pose of the action DOFs, task parameters
+and, for a task written in Python (a spec without a C++ task):
     task_observation(raw, t, params) -> obs   observation rows from raw SceneBatch rows
     task_reward(raw, t, params, actions) -> (reward, terminated)
     task_step(raw, t, params, actions) -> (reward, terminated, obs)
                                               both after a control step; by default the two
                                               hooks above, overridden where they share work
 with t the control steps taken since each row's reset, and attributes `action_size`,
-`obs_size`, `params_size`.
+`obs_size`, `params_size`. With a C++ task (the built-in environments), the batch writes the
+observation rows and rewards itself, per scene on the worker threads, and never terminates.
 """
 
 from __future__ import annotations
@@ -74,6 +77,8 @@ class SuperDexEnv(gym.Env):
         self._params = np.zeros((1, self.params_size))
         self._needs_reset = True
         self._debugger_attached = False
+        #: the spec's task is computed by the C++ batch (observation rows and rewards), not by the hooks
+        self.task_in_cxx = self.batch_spec().task.kind != sdr.BatchTaskKind.NONE
 
     # ------------------------------------------------------------------ hooks
     def build_scene(self, scene) -> BuiltScene:
@@ -96,6 +101,21 @@ class SuperDexEnv(gym.Env):
         task_observation give; a task overrides it to compute what the two share once)."""
         reward, terminated = self.task_reward(raw, t, params, actions)
         return reward, terminated, self.task_observation(raw, t, params)
+
+    def observation_rows(self, raw, t, params):
+        """Observation rows after a reset: the batch's rows for a C++ task, else task_observation."""
+        return raw.copy() if self.task_in_cxx else self.task_observation(raw, t, params)
+
+    def step_rows(self, raw, reward, t, params, actions):
+        """(reward, terminated, obs) rows after a control step: the batch's rows and rewards
+        (`reward`, written by the batch's step) for a C++ task, else task_step."""
+        if self.task_in_cxx:
+            return reward.copy(), np.zeros(len(raw), dtype=bool), raw.copy()
+        return self.task_step(raw, t, params, actions)
+
+    def batch_params(self, params):
+        """The task parameter rows the batch's reset takes: float64 rows for a C++ task, else None."""
+        return np.ascontiguousarray(params, dtype=np.float64) if self.task_in_cxx else None
 
     # ------------------------------------------------------------------ timing
     @property
@@ -122,6 +142,7 @@ class SuperDexEnv(gym.Env):
         self._built = self.build_scene(scene)
         self._batch = make_batch(self.full_spec(), [self._built])
         self._raw = np.zeros((1, self._batch.obs_size), dtype=np_real)
+        self._reward = np.zeros(1)
 
     @property
     def scene(self):
@@ -135,11 +156,12 @@ class SuperDexEnv(gym.Env):
         q0, params = self.sample_episode(self.np_random)
         self._params[0] = params
         self._t[0] = 0
-        self._batch.reset([0], np.ascontiguousarray(np.reshape(q0, (1, -1)), dtype=np.float64), self._raw)
+        self._batch.reset([0], np.ascontiguousarray(np.reshape(q0, (1, -1)), dtype=np.float64), self._raw,
+                          self.batch_params(self._params))
         self._needs_reset = False
         if self.render_mode == "human":
             self._attach_debugger()
-        return self.task_observation(self._raw, self._t, self._params)[0], {}
+        return self.observation_rows(self._raw, self._t, self._params)[0], {}
 
     def step(self, action):
         if self._needs_reset:
@@ -148,9 +170,9 @@ class SuperDexEnv(gym.Env):
         if a.shape != (1, self.action_size):
             raise sdp.Error(f"step: action must have shape ({self.action_size},), got {np.shape(action)}")
         a = np.ascontiguousarray(np.clip(a, -1.0, 1.0) * self.action_scale)
-        self._batch.step(a, self._raw)
+        self._batch.step(a, self._raw, self._reward)
         self._t += 1
-        reward, terminated, obs = self.task_step(self._raw, self._t, self._params, a)
+        reward, terminated, obs = self.step_rows(self._raw, self._reward, self._t, self._params, a)
         truncated = bool(self._t[0] >= self.episode_steps)
         self._needs_reset = bool(terminated[0]) or truncated
         return obs[0], float(reward[0]), bool(terminated[0]), truncated, {}

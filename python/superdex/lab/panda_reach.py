@@ -10,7 +10,8 @@ superdex.robotics) reaching goal points just above a table, at 50 Hz control and
 - observation (23,): joint positions (rad, 7), joint velocities (rad/s, 7), the TCP position p_WE
   (m, world, 3), the contact force on the table f_W (N, world, 3) in the last step, the goal (m,
   world, 3).
-- reward: -|p_WE - goal| (m) - force_weight * |f_W| (N): reach the goal without pushing on the table.
+- reward: -|p_WE - goal| (m) - force_weight * |f_W| (N): reach the goal without pushing on the table
+  (the batch's C++ task, BatchTaskKind.GOAL_REACH, computed per scene on its worker thread).
 - episode: `episode_steps` control steps (default 100: 2 s); start pose: the "ready" pose plus
   uniform noise of +-0.1 rad; goal: uniform in a box whose bottom is the table top.
 """
@@ -25,7 +26,7 @@ import numpy as np
 import superdex.physics as sdp
 import superdex.robotics as sdr
 from superdex.lab.env import SuperDexEnv
-from superdex.lab.task import BuiltScene, np_real, split_raw
+from superdex.lab.task import BuiltScene, np_real
 from superdex.robot_files import PANDA_URDF, example_robot_data_file
 
 READY = np.array([0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785])  # rad
@@ -93,19 +94,14 @@ class PandaReachEnv(SuperDexEnv):
         spec.drive_damping = DAMPING
         spec.drive_max_effort = self._efforts
         spec.observed_link = self._link_names.index(TCP_LINK)
+        # the observation's goal columns and the reward in C++, per scene on its worker thread
+        spec.task.kind = sdr.BatchTaskKind.GOAL_REACH
+        spec.task.force_weight = self.force_weight
         return spec
 
     def sample_episode(self, rng):
         q0 = READY + rng.uniform(-0.1, 0.1, size=7)
         return q0, rng.uniform(GOAL_LOW, GOAL_HIGH)
-
-    def task_observation(self, raw, t, params):
-        return np.concatenate([raw, params.astype(np_real)], axis=1)
-
-    def task_reward(self, raw, t, params, actions):
-        _, _, p_WE, f_W = split_raw(raw.astype(np.float64), 7)
-        distance = np.linalg.norm(p_WE - params, axis=1)
-        return -distance - self.force_weight * np.linalg.norm(f_W, axis=1), np.zeros(len(raw), dtype=bool)
 
     def render_targets(self):
         return self._params[:, :3]

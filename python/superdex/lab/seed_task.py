@@ -14,6 +14,8 @@ whose lower part lies inside the soft duck-lamp prop, where the ball should pres
   circle's target point x*(t) (m, world, 3).
 - reward: -|p_xz - x*_xz| / radius (circle tracking) - force_weight * |f_z - 0.5 N| / 0.5 N while
   the ball touches something (force regulation on the duck).
+The target point, the observation and the reward are the batch's C++ task (SceneBatchSpec.task,
+BatchTaskKind.CIRCLE_TRACKING), computed per scene on its worker thread.
 
 `prop="box"` swaps the soft duck (about 40 ms per step) for the rigid 12 x 12 x 9 cm box of the
 benchmarks (benchmarks/scenes/arm.py: where the duck lies, its top at 9 cm), for fast runs and tests.
@@ -31,7 +33,7 @@ import superdex.physics as sdp
 import superdex.robotics as sdr
 from superdex.physics.paths import get_assets_root, resolve_asset
 from superdex.lab.env import SuperDexEnv
-from superdex.lab.task import BuiltScene, np_real, split_raw
+from superdex.lab.task import BuiltScene
 
 BOT_ASSET = "bots/fun/example_bot_2dof/example_bot_2dof.superdex_bot"
 DUCK_LAMP_ASSET = "prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab"
@@ -97,43 +99,18 @@ class SeedTaskEnv(SuperDexEnv):
         spec.servo_effort_limit = [float(s.get("effort_limit", 1.0)) for s in self._servos]
         spec.servo_profile_accel = [float(s.get("profile_accel", 0.0)) for s in self._servos]
         spec.observed_link = END_EFFECTOR_LINK
+        # the target point, observation and reward in C++, per scene on its worker thread
+        spec.task.kind = sdr.BatchTaskKind.CIRCLE_TRACKING
+        spec.task.center = CENTER.tolist()
+        spec.task.radius = RADIUS
+        spec.task.omega = OMEGA
+        spec.task.force_target = FORCE_TARGET
+        spec.task.force_weight = self.force_weight
         return spec
 
     def sample_episode(self, rng):
         q0 = np.asarray(self._prefab.default_pose, dtype=np.float64) + rng.uniform(-0.05, 0.05, size=2)
         return q0, np.array([rng.uniform(0.0, 2 * math.pi)])
 
-    def target(self, t, params):
-        """The circle's target points x*(t) (rows x 3, m, world) after t control steps."""
-        theta = OMEGA * self.control_dt * np.asarray(t, dtype=np.float64) + params[:, 0]
-        x = np.empty((len(theta), 3))
-        x[:, 0] = CENTER[0] + RADIUS * np.cos(theta)
-        x[:, 1] = CENTER[1]
-        x[:, 2] = CENTER[2] + RADIUS * np.sin(theta)
-        return x
-
-    def task_observation(self, raw, t, params):
-        return self._observation(raw, self.target(t, params))
-
-    def task_reward(self, raw, t, params, actions):
-        return self._reward(raw, self.target(t, params))
-
-    def task_step(self, raw, t, params, actions):
-        # the target points once for both
-        x_target = self.target(t, params)
-        reward, terminated = self._reward(raw, x_target)
-        return reward, terminated, self._observation(raw, x_target)
-
-    @staticmethod
-    def _observation(raw, x_target):
-        return np.concatenate([raw, x_target.astype(np_real)], axis=1)
-
-    def _reward(self, raw, x_target):
-        _, _, p_WE, f_W = split_raw(np.asarray(raw, dtype=np.float64), 2)
-        tracking = np.hypot(p_WE[:, 0] - x_target[:, 0], p_WE[:, 2] - x_target[:, 2]) / RADIUS
-        touching = np.einsum("ij,ij->i", f_W, f_W) > 0
-        force = np.where(touching, np.abs(f_W[:, 2] - FORCE_TARGET) / FORCE_TARGET, 0.0)
-        return -tracking - self.force_weight * force, np.zeros(len(raw), dtype=bool)
-
     def render_targets(self):
-        return self.target(self._t, self._params)
+        return self._raw[:, -3:].astype(np.float64)  # the task's target point x*(t)

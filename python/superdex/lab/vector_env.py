@@ -4,7 +4,8 @@
 scenes with the environment's `build_scene`, puts them in one superdex.robotics.SceneBatch and
 steps them all per `step(actions)` on the engine's worker threads (the GIL released): actions and
 observations are contiguous (num_envs x n) numpy arrays, and the task's observation and reward are
-computed on whole arrays (the environment's row hooks), with no per-scene Python loop.
+computed in C++ per scene (the built-in environments' C++ tasks) or on whole arrays (the
+environment's row hooks), with no per-scene Python loop.
 
 Sub-environment i behaves exactly as the single environment (same class and arguments) reset
 with seed `seed + i`: same start, same physics, bitwise the same trajectory. Autoreset follows
@@ -44,6 +45,7 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
         self._built = [self.env.build_scene(sdp.create_scene(f"{env_class.__name__}[{k}]")) for k in range(self.num_envs)]
         self._batch = make_batch(self.env.full_spec(), self._built)
         self._raw = np.zeros((self.num_envs, self._batch.obs_size), dtype=np_real)
+        self._reward = np.zeros(self.num_envs)
         self._t = np.zeros(self.num_envs, dtype=np.int64)
         self._params = np.zeros((self.num_envs, self.env.params_size))
         self._needs_reset = np.zeros(self.num_envs, dtype=bool)
@@ -59,7 +61,7 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
         for i, k in enumerate(rows):  # draws from each sub-environment's own generator (cheap, at resets only)
             q0[i], self._params[k] = self.env.sample_episode(self._rngs[k])
         self._t[rows] = 0
-        self._batch.reset([int(k) for k in rows], np.ascontiguousarray(q0), self._raw)
+        self._batch.reset([int(k) for k in rows], np.ascontiguousarray(q0), self._raw, self.env.batch_params(self._params[rows]))
         self._needs_reset[rows] = False
 
     def reset(self, *, seed=None, options=None):
@@ -69,22 +71,22 @@ class SuperDexVectorEnv(gym.vector.VectorEnv):
                 raise sdp.Error(f"seed: expected an int or {self.num_envs} seeds, got {len(seeds)}")
             self._rngs = [seeding.np_random(s)[0] for s in seeds]
         self._reset_rows(np.arange(self.num_envs))
-        return self.env.task_observation(self._raw, self._t, self._params), {}
+        return self.env.observation_rows(self._raw, self._t, self._params), {}
 
     def step(self, actions):
         a = np.asarray(actions, dtype=np.float64)
         if a.shape != self._action_shape:
             raise sdp.Error(f"step: actions must have shape {self._action_shape}, got {a.shape}")
         a = np.clip(a, -1.0, 1.0) * self.env.action_scale  # a new C-contiguous array
-        self._batch.step(a, self._raw)
+        self._batch.step(a, self._raw, self._reward)
         self._t += 1
-        reward, terminated, obs = self.env.task_step(self._raw, self._t, self._params, a)
+        reward, terminated, obs = self.env.step_rows(self._raw, self._reward, self._t, self._params, a)
         truncated = self._t >= self.env.episode_steps
         if self._needs_reset.any():  # NEXT_STEP autoreset: these rows start a new episode instead
             restart = np.flatnonzero(self._needs_reset)
             self._reset_rows(restart)
             reward[restart], terminated[restart], truncated[restart] = 0.0, False, False
-            obs[restart] = self.env.task_observation(self._raw[restart], self._t[restart], self._params[restart])
+            obs[restart] = self.env.observation_rows(self._raw[restart], self._t[restart], self._params[restart])
         self._needs_reset = terminated | truncated
         return obs, np.asarray(reward, dtype=np.float64), terminated, truncated, {}
 

@@ -22,6 +22,8 @@ EFFORT_UNBOUNDED = _r.EFFORT_UNBOUNDED
 SceneBatch = _r.SceneBatch
 SceneBatchSpec = _r.SceneBatchSpec
 BatchActionMode = _r.BatchActionMode
+BatchTask = _r.BatchTask
+BatchTaskKind = _r.BatchTaskKind
 
 create_context = _r.create_context
 register_python_controller = _r.register_python_controller

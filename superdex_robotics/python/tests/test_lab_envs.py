@@ -49,6 +49,67 @@ ENVS = {
 }
 
 
+class PythonSeedTask(SeedTaskEnv):
+    """The seed task with its target point, observation and reward written here in numpy from the
+    task's definition (seed_task.py's docstring) instead of the batch's C++ task: the reference
+    for the C++ task, and a task that runs through the Python hooks."""
+
+    def batch_spec(self):
+        spec = super().batch_spec()
+        spec.task = sdr.BatchTask()  # no C++ task
+        return spec
+
+    def target(self, t, params):
+        theta = 2 * math.pi / 3.0 * np.asarray(t) / 250.0 + params[:, 0]
+        return np.stack([-0.3 + 0.08 * np.cos(theta), np.zeros_like(theta), 0.15 + 0.08 * np.sin(theta)], axis=1)
+
+    def task_observation(self, raw, t, params):
+        return np.concatenate([raw, self.target(t, params).astype(np_real)], axis=1)
+
+    def task_reward(self, raw, t, params, actions):
+        x = self.target(t, params)
+        p, f = raw[:, 4:7].astype(np.float64), raw[:, 7:10].astype(np.float64)
+        tracking = np.hypot(p[:, 0] - x[:, 0], p[:, 2] - x[:, 2]) / 0.08
+        force = np.where(np.any(f != 0, axis=1), np.abs(f[:, 2] - 0.5) / 0.5, 0.0)
+        return -tracking - self.force_weight * force, np.zeros(len(raw), dtype=bool)
+
+
+def test_cxx_tasks_match_their_python_definitions(engine):
+    """The built-in environments' C++ tasks against numpy written from their definitions: the seed
+    task against the same environment run through the Python hooks (the ball pressing on the box
+    for part of the run), the Panda's reward from its observations."""
+    assert not PythonSeedTask(prop="box").task_in_cxx and SeedTaskEnv(prop="box").task_in_cxx
+    actions = np.tile(np.array([[-1.0, 1.0]], dtype=np.float32), (150, 1))  # fold down onto the box
+    actions[100:] = [0.6, -0.4]
+    runs = []
+    for cls in (SeedTaskEnv, PythonSeedTask):
+        env = cls(prop="box", episode_steps=1000)
+        obs, _ = env.reset(seed=5)
+        out, rewards = [obs], []
+        for a in actions:
+            obs, r, *_ = env.step(a)
+            out.append(obs), rewards.append(r)
+        runs.append((np.array(out), np.array(rewards)))
+        env.close()
+    (obs_c, rew_c), (obs_py, rew_py) = runs
+    touching = np.any(obs_c[1:, 7:10] != 0, axis=1)
+    assert 10 < touching.sum() < len(touching), "the run has steps with and without contact"
+    assert np.array_equal(obs_c[:, :10], obs_py[:, :10]), "the same physics"
+    np.testing.assert_allclose(obs_c[:, 10:], obs_py[:, 10:], atol=1e-6)
+    np.testing.assert_allclose(rew_c, rew_py, rtol=1e-6, atol=1e-6)
+
+    env = PandaReachEnv()
+    obs, _ = env.reset(seed=2)
+    goal = env._params[0].copy()
+    rng = np.random.default_rng(0)
+    for _ in range(20):
+        obs, r, *_ = env.step(rng.uniform(-1, 1, 7).astype(np.float32))
+        o = obs.astype(np.float64)
+        np.testing.assert_allclose(o[20:23], goal, rtol=1e-6)
+        assert r == pytest.approx(-np.linalg.norm(o[14:17] - goal) - 0.01 * np.linalg.norm(o[17:20]), rel=1e-6, abs=1e-7)
+    env.close()
+
+
 @pytest.mark.parametrize("name", ["seed_box", "panda", "seed_duck"])
 def test_check_env_passes(engine, name):
     make, _ = ENVS[name]
