@@ -255,6 +255,14 @@ def test_bad_input_raises_error_naming_the_argument(engine):
         out = np.zeros((1, batch.obs_size), dtype=np_real)
         out.flags.writeable = False
         batch.step(np.zeros((1, 2)), out)
+    with pytest.raises(sdp.Error, match=r"SceneBatch.step: reward_out: expected .*float64 and shape \(1,\), got shape \(2,\)"):
+        batch.step(np.zeros((1, 2)), raw, np.zeros(2))
+    with pytest.raises(sdp.Error, match=r"SceneBatch.reset: params: expected .*shape \(1, 1\), got shape \(1, 3\)"):
+        batch.reset([0], None, raw, np.zeros((1, 3)))
+    with pytest.raises(sdp.Error, match=r"spec.task.radius must be a positive length"):
+        spec = env.full_spec()
+        spec.task.radius = -0.1
+        sdr.SceneBatch(spec, [built.scene], [built.articulation], [built.contact_actor])
     with pytest.raises(sdp.Error, match="prop must be"):
         SeedTaskEnv(prop="sponge")
     with pytest.raises(sdp.Error, match="step: action must have shape"):
