@@ -83,10 +83,10 @@ void export_actor(nb::module_& m) {
   nb::class_<ContactPointInfo>(m, "ContactPoint", "One contact of the last step, seen from actor_a.")
       .def_ro("actor_a", &ContactPointInfo::actor_a)
       .def_ro("actor_b", &ContactPointInfo::actor_b)
-      .def_prop_ro("position", [](const ContactPointInfo& c) { return numpy_copy(c.position.data(), {3}); }, nb::rv_policy::move)
-      .def_prop_ro("normal", [](const ContactPointInfo& c) { return numpy_copy(c.normal.data(), {3}); }, nb::rv_policy::move)
+      .def_prop_ro("position", [](const ContactPointInfo& c) { return numpy_copy(c.position.data(), {3}); }, nb::rv_policy::automatic)
+      .def_prop_ro("normal", [](const ContactPointInfo& c) { return numpy_copy(c.normal.data(), {3}); }, nb::rv_policy::automatic)
       .def_ro("distance", &ContactPointInfo::distance)
-      .def_prop_ro("force", [](const ContactPointInfo& c) { return numpy_copy(c.force.data(), {3}); }, nb::rv_policy::move)
+      .def_prop_ro("force", [](const ContactPointInfo& c) { return numpy_copy(c.force.data(), {3}); }, nb::rv_policy::automatic)
       .def("__repr__", [](const ContactPointInfo& c) {
         return "ContactPoint(actor_a=" + std::to_string(c.actor_a) + ", actor_b=" + std::to_string(c.actor_b) +
                ", distance=" + std::to_string(c.distance) + ")";

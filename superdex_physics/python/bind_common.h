@@ -26,7 +26,9 @@ using NumpyArray = nb::ndarray<nb::numpy, real>;
 // Name of the build's numpy dtype ("float32" or "float64").
 inline const char* real_dtype_name() { return kUsesDoublePrecision ? "float64" : "float32"; }
 
-// A numpy array owning a copy of `n` values laid out with `shape` (C order).
+// A numpy array owning a copy of `n` values laid out with `shape` (C order). Return it with
+// rv_policy::automatic (a property's default, reference_internal, refuses an array with an owner;
+// move or copy would make numpy copy the values a second time).
 NumpyArray numpy_copy(const real* data, std::initializer_list<size_t> shape);
 inline NumpyArray numpy_copy(const VecX& v) { return numpy_copy(v.data(), {static_cast<size_t>(v.size())}); }
 

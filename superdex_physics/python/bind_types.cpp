@@ -189,7 +189,7 @@ void export_types(nb::module_& m) {
                    [](TransformRT& t, nb::handle q) { t.rotation = read_quaternion(q, "TransformRT.rotation"); })
       .def_prop_rw("translation", [](const TransformRT& t) { return numpy_copy(t.translation.data(), {3}); },
                    [](TransformRT& t, nb::handle v) { t.translation = read_vec3(v, "TransformRT.translation"); },
-                   nb::rv_policy::move)
+                   nb::rv_policy::automatic)
       .def("__repr__", [](const TransformRT& t) {
             return "TransformRT(rotation=[" + std::to_string(t.rotation.x) + ", " + std::to_string(t.rotation.y) + ", " +
                    std::to_string(t.rotation.z) + ", " + std::to_string(t.rotation.w) + "], translation=[" +

@@ -76,7 +76,7 @@ void export_prefab(nb::module_& m) {
       .def_rw("name", &JointDesc::name)
       .def_rw("type", &JointDesc::type)
       .def_prop_rw("axis", [](const JointDesc& j) { return numpy_copy(j.axis.data(), {3}); },
-                   [](JointDesc& j, nb::handle v) { j.axis = read_vec3(v, "axis"); }, nb::rv_policy::move)
+                   [](JointDesc& j, nb::handle v) { j.axis = read_vec3(v, "axis"); }, nb::rv_policy::automatic)
       .def_prop_rw("parent_link_from_joint", [](const JointDesc& j) { return TransformRT::from(j.parent_link_from_joint); },
                    [](JointDesc& j, nb::handle t) { j.parent_link_from_joint = read_transform(t, "parent_link_from_joint"); })
       .def_prop_rw("min_limit", [](const JointDesc& j) { return optional_vec3(j.min_limit); },
