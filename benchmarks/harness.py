@@ -108,14 +108,18 @@ class Timer:
 def median_of_episodes(case: dict, episode) -> dict:
     """Runs `episode(case)` case["episodes"] times (default 1) in this process; each call builds
     its simulation, times its stepping loop and returns (wall, result). Returns the last
-    episode's result with the median wall as "wall" and every wall as "episode_walls". For scenes
-    whose timed loop lasts a few milliseconds, where one fresh process per measurement leaves the
-    result to the machine's noise (a timer interrupt, another process) and to the first steps'
-    cold caches."""
-    walls, result = [], None
+    episode's result with the median wall as "wall" and every wall as "episode_walls" (and, for
+    any other field named *_wall, a part of the loop's time, the median over the episodes). For
+    scenes whose timed loop lasts a few milliseconds, where one fresh process per measurement
+    leaves the result to the machine's noise (a timer interrupt, another process) and to the first
+    steps' cold caches."""
+    walls, results = [], []
     for _ in range(max(1, case.get("episodes", 1))):
         wall, result = episode(case)
         walls.append(wall)
+        results.append(result)
+    for key in [k for k in result if k.endswith("_wall")]:
+        result[key] = statistics.median(r[key] for r in results)
     result.update(wall=statistics.median(walls), episode_walls=walls)
     return result
 

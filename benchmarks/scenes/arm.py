@@ -118,14 +118,17 @@ class SuperDexArm:
         self.real = np.float64 if sdp.uses_double_precision() else np.float32
         self.xforms = sdp.DynamicArrayTransformRT(len(self.arm.get_nested_link_actors()))
         self.qd = np.zeros(self.arm.get_num_dofs(), dtype=self.real)
+        # the ball's Jacobian filled in place (6 x n, row-major), as MuJoCo's adapter passes mj_jacBody its array
+        self.jac = np.zeros(6 * self.arm.get_num_dofs(), dtype=self.real)
+        self.jac_rows = self.jac.reshape(6, -1)
         self.dt = desc["dt"]
 
     def observe(self):
         self.arm.get_articulated_link_transforms(self.xforms)
-        x = np.array(self.xforms[BALL_LINK].translation, dtype=np.float64)
-        J = np.array(self.ball.get_articulated_jacobian(), dtype=np.float64).reshape(6, -1)[0:3]
+        x = self.xforms[BALL_LINK].translation.astype(np.float64)
+        self.ball.get_articulated_jacobian(self.jac)
         self.arm.get_articulated_joint_velocities(self.qd)
-        return x, J, self.qd.astype(np.float64)
+        return x, self.jac_rows[0:3].astype(np.float64), self.qd.astype(np.float64)
 
     def apply(self, efforts):
         self.arm.set_external_forces_on_dofs([0, 1], efforts)
@@ -134,7 +137,7 @@ class SuperDexArm:
         self.scene.step(self.dt)
 
     def contact_force(self):
-        return np.array(self.ball.get_contact_force_world(), dtype=np.float64)
+        return self.ball.get_contact_force_world().astype(np.float64)
 
     def time(self):
         return self.scene.get_total_simulation_time()

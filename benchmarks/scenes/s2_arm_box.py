@@ -3,7 +3,9 @@ MuJoCo and PyBullet, from one description (scenes/arm.py), at the seed's 250 Hz.
 
 Variants
 - control: the seed's law (circle tracking, force control on contact, PI servos) in Python every
-  step, reading and writing each simulator through its Python API (the same per-step work).
+  step, reading and writing each simulator through its Python API (the same per-step work). The
+  law's calls are timed apart inside the loop (perf_counter around them): the rest of the step,
+  the simulator's part (its API calls and its step), is what the simulators are compared on.
 - physics: no control, the joints' efforts held at zero: the arm folds under gravity onto the
   box; only the simulator's step is timed (PyBullet still needs its torques given every step).
 - law alone: the control variant's Python law (controller and servos) with no simulator, on
@@ -11,6 +13,8 @@ Variants
 """
 
 from __future__ import annotations
+
+import time
 
 import numpy as np
 
@@ -63,12 +67,17 @@ def run_episode(case):
     servos = [arm.Servo(**params) for params in arm.arm_description()["servos"]]
     f = np.zeros(3)
     fz_tail = []
+    law = 0.0  # s in the law's calls
+    clock = time.perf_counter
     with Timer() as timer:
         for k in range(steps):
             if control:
                 x, J, qd = sim.observe()
+                t0 = clock()
                 q_dot_des = controller.compute(x, J, f[2], k * arm.DT)
-                sim.apply([s.effort(w, qd[i], arm.DT) for i, (s, w) in enumerate(zip(servos, q_dot_des))])
+                efforts = [s.effort(w, qd[i], arm.DT) for i, (s, w) in enumerate(zip(servos, q_dot_des))]
+                law += clock() - t0
+                sim.apply(efforts)
                 sim.step()
                 f = sim.contact_force()
                 if k >= steps - int(1.0 / arm.DT):
@@ -81,5 +90,7 @@ def run_episode(case):
         checks["fz_last_1s_N"] = float(np.mean(fz_tail)) if fz_tail else 0.0
         checks["force_mode_frac"] = controller.force_steps / steps
     result = {"steps": steps, "sim_time": steps * arm.DT, "checks": checks}
+    if control:
+        result.update(law_wall=law, simulator_wall=timer.wall - law)
     sim.close()
     return timer.wall, result
