@@ -25,6 +25,8 @@ void check_batch_task(const BatchTask& task) {
   auto fail = [](const std::string& what) { throw Error("SceneBatch: spec.task." + what); };
   if (task.kind != BatchTaskKind::None && task.kind != BatchTaskKind::CircleTracking && task.kind != BatchTaskKind::GoalReach)
     fail("kind is not a BatchTaskKind");
+  if (task.kind == BatchTaskKind::None) return;
+  if (!std::isfinite(task.force_weight)) fail("force_weight must be finite");
   if (task.kind != BatchTaskKind::CircleTracking) return;
   for (double c : task.center)
     if (!std::isfinite(c)) fail("center must be finite (m)");
@@ -32,7 +34,6 @@ void check_batch_task(const BatchTask& task) {
   if (!std::isfinite(task.omega)) fail("omega must be finite (rad/s)");
   if (!(task.force_target > 0) || !std::isfinite(task.force_target))
     fail("force_target must be a positive force (N), got " + std::to_string(task.force_target));
-  if (!std::isfinite(task.force_weight)) fail("force_weight must be finite");
 }
 
 double write_task_columns_and_reward(const BatchTask& task, const double* params, double t_seconds, int n, real* row) {

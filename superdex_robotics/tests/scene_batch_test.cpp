@@ -251,6 +251,10 @@ TEST_F(Batch, BadSpecsThrowNamingTheField) {
   s.task = circle_task();
   s.task.force_target = -1;
   EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.force_target")));
+  s.task = BatchTask{};
+  s.task.kind = BatchTaskKind::GoalReach;
+  s.task.force_weight = std::nan("");
+  EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.force_weight must be finite")));
   s.task.kind = static_cast<BatchTaskKind>(9);
   EXPECT_THAT([&] { SceneBatch(s, make_members(1)); }, ::testing::ThrowsMessage<Error>(HasSubstr("spec.task.kind")));
   SceneBatch batch(servo_spec(), make_members(2));

@@ -45,7 +45,3 @@ def ensure_engine(num_worker_threads: int = 0) -> None:
     if not sdp.is_initialized():
         sdp.initialize(num_worker_threads=num_worker_threads)
 
-
-def split_raw(raw: np.ndarray, n: int):
-    """(q, v, p_WE, f_C_W) views of raw SceneBatch observation rows with n action DOFs."""
-    return raw[:, :n], raw[:, n:2 * n], raw[:, 2 * n:2 * n + 3], raw[:, 2 * n + 3:2 * n + 6]
