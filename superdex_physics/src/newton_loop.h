@@ -36,7 +36,9 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 // start (the bodies' last velocities) a contact that slid in the last step starts from about
 // the correction it ended with, so that the later iterations only refine it. The corrections
 // stop once the residual is within 100 times the tolerance (a fixed point to that accuracy) or
-// when the iterations run out; the problem is then convex and Newton converges.
+// when the iterations run out; the problem is then convex and Newton converges. The corrections
+// are not left to their fixed point alone: each Newton step predicts them from the step's
+// linearization (predict_corrections below), which makes the pair converge like Newton's method.
 template <class Algebra>
 ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBlock>& given_blocks, const SolverParams& params,
                      const VecX& v_start, NewtonScratch& w) {
@@ -75,19 +77,84 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
   };
   // lowers each contact's normal target by its drift at constraint velocities vc (impulses of
   // the last iterate in out.gamma); whether any target differs from its uncorrected one
+  real correction_change = 0;  // the largest change of a target by the last corrections
   auto correct_drift = [&]() {
     bool corrected = false;
+    correction_change = 0;
     for (size_t k = 0; k < blocks.size(); ++k) {
       ConstraintBlock& b = blocks[k];
       if (b.kind != BlockKind::FrictionalContact) continue;
       const int r0 = b.row;
       const real slip = std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2];
-      b.vhat = given_blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
+      const real vhat = given_blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
+      correction_change = std::max(correction_change, std::abs(vhat - b.vhat));
+      b.vhat = vhat;
       corrected = corrected || slip > 0;
     }
     return corrected;
   };
+  // Newton on the corrections: after the Newton direction for the current targets, each sliding
+  // contact's correction d_c = mu_c (|v_t| - R mu_c gamma_n) is linearized together with the
+  // step, whose gradient changes with the targets (d grad / d d_e = J_e^T G_e e_n):
+  //   d_c + dd_c = mu_c (s_c + w_c . (dvc_c - sum_e z_ec dd_e) + R mu_c G_c,nn dd_c),
+  //   w_c = (t_c, 0) + R mu_c G_c e_n, t_c = v_t / |v_t|, z_e = J H^-1 J_e^T G_e e_n,
+  // a small system for the sliding contacts' changes dd (one solve with H each). Its targets
+  // replace the plain corrections'; the plain fixed point converges only linearly (by some 0.3
+  // per iteration where friction couples the contacts). Up to kMaxPredicted sliding contacts;
+  // with more, the plain corrections alone. Returns whether it set the targets.
+  constexpr int kMaxPredicted = 8, kPredictionFailures = 6;
+  using SmallMat = Eigen::Matrix<real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPredicted, kMaxPredicted>;
+  using SmallVec = Eigen::Matrix<real, Eigen::Dynamic, 1, 0, kMaxPredicted, 1>;
+  std::vector<int>& sliding = w.sliding;
+  auto predict_corrections = [&]() {
+    sliding.clear();
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      const ConstraintBlock& b = blocks[k];
+      if (b.kind != BlockKind::FrictionalContact) continue;
+      const int r0 = b.row;
+      if (std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2] > 0) sliding.push_back(static_cast<int>(k));
+      if (sliding.size() > static_cast<size_t>(kMaxPredicted)) return false;
+    }
+    const int c = static_cast<int>(sliding.size());
+    if (c == 0) return false;
+    // the sliding contacts' velocities z_e (their rows of J) per unit change of contact e's target
+    w.pred_z.resize(c);
+    VecX &y = w.pred_y, &Jty = w.pred_Jty, &s = w.pred_s;
+    for (int e = 0; e < c; ++e) {
+      const int r0 = blocks[sliding[e]].row;
+      y.setZero(m);
+      for (int i = 0; i < 3; ++i) y[r0 + i] = G[sliding[e]](i, 2);
+      alg.Jt_mul(y, Jty);
+      alg.solve(Jty, s);
+      alg.J_mul(s, w.pred_z[e]);
+    }
+    SmallMat M(c, c);
+    SmallVec rhs(c);
+    for (int i = 0; i < c; ++i) {
+      const ConstraintBlock& b = blocks[sliding[i]];
+      const auto& G_i = G[sliding[i]];
+      const int r0 = b.row;
+      const real vt = std::hypot(vc[r0], vc[r0 + 1]);
+      const real slip = vt - b.R * b.bound * out.gamma[r0 + 2];
+      const Eigen::Matrix<real, 3, 1> w_i = Eigen::Matrix<real, 3, 1>(vc[r0] / vt, vc[r0 + 1] / vt, 0) + b.R * b.bound * G_i.col(2);
+      const real d_i = given_blocks[sliding[i]].vhat - b.vhat;
+      rhs[i] = b.bound * (slip + w_i.dot(dvc.template segment<3>(r0))) - d_i;
+      for (int e = 0; e < c; ++e) M(i, e) = b.bound * w_i.dot(w.pred_z[e].template segment<3>(r0));
+      M(i, i) += 1 - b.bound * b.bound * b.R * G_i(2, 2);
+    }
+    const SmallVec dd = M.partialPivLu().solve(rhs);
+    if (!dd.allFinite()) return false;
+    for (int i = 0; i < c; ++i) {
+      ConstraintBlock& b = blocks[sliding[i]];
+      const real d_i = given_blocks[sliding[i]].vhat - b.vhat;
+      b.vhat = given_blocks[sliding[i]].vhat - std::max(real(0), d_i + dd[i]);
+    }
+    return true;
+  };
 
+  bool predicting = true, predicted = false;
+  int failures = 0;
+  real last_change = std::numeric_limits<real>::infinity();
   real best = std::numeric_limits<real>::infinity();
   int stalled = 0;
   // the line search's last trial evaluates the smooth gradient at its point; when that point is
@@ -96,7 +163,15 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
       alg.J_mul(out.v, vc);
-      if (correcting && it > 0) correct_drift();
+      if (correcting && it > 0) {
+        correct_drift();
+        // a prediction works when the plain corrections after it move the targets less than half
+        // as far as those before it; they stop after kPredictionFailures that do not in a row
+        // (contacts switching between sliding and sticking or touching can make them cycle)
+        if (predicted) failures = correction_change <= real(0.5) * last_change ? 0 : failures + 1;
+        if (failures >= kPredictionFailures) predicting = false;
+        last_change = correction_change;
+      }
       respond(vc, out.gamma);
       // the first correction, at the start's own impulses
       if (correcting && it == 0 && correct_drift()) respond(vc, out.gamma);
@@ -142,6 +217,18 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     alg.solve(grad, dv);
     dv = -dv;
     if (m > 0) alg.J_mul(dv, dvc);
+    predicted = correcting && predicting && m > 0 && predict_corrections();
+    if (predicted) {
+      // the gradient at the new targets, and the step from it with the same H (SPD, so a
+      // descent direction for the new targets' problem)
+      respond(vc, out.gamma);
+      alg.Jt_mul(out.gamma, jc);
+      grad = Av_r - jc;
+      if (smooth) grad += smooth_grad;
+      alg.solve(grad, dv);
+      dv = -dv;
+      alg.J_mul(dv, dvc);
+    }
     // exact line search: phi'(alpha) is monotone; find its root in (0, 1]
     const real a0 = dv.dot(Av_r);
     alg.A_mul(dv, Adv);

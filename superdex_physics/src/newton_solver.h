@@ -73,6 +73,9 @@ struct NewtonScratch {
   std::vector<Eigen::Matrix<real, 3, 3>> G;
   std::vector<int> live;  // the line search's blocks whose impulse may be non-zero on its segment
   std::vector<ConstraintBlock> blocks;  // the solve's blocks, with contacts' drift corrections (newton_loop.h)
+  std::vector<int> sliding;             // the corrections' prediction (newton_loop.h): its contacts,
+  VecX pred_y, pred_Jty, pred_s;        // its right-hand sides and solves,
+  std::vector<VecX> pred_z;             // and their constraint velocities
   MatXR J, J_active, GJ;  // dense algebra: J made dense (when given sparse), its active rows, G J on them
   MatX H;                 // and the Hessian
   SmallLLT llt;
