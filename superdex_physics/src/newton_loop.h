@@ -101,29 +101,37 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
   // a small system for the sliding contacts' changes dd (one solve with H each). Its targets
   // replace the plain corrections'; the plain fixed point converges only linearly (by some 0.3
   // per iteration where friction couples the contacts). Up to kMaxPredicted sliding contacts;
-  // with more, the plain corrections alone. Returns whether it set the targets.
+  // with more, the plain corrections alone. Sets `predicted` when it sets the targets; returns
+  // whether that changed the gradient.
   constexpr int kMaxPredicted = 8, kPredictionFailures = 6;
   using SmallMat = Eigen::Matrix<real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxPredicted, kMaxPredicted>;
   using SmallVec = Eigen::Matrix<real, Eigen::Dynamic, 1, 0, kMaxPredicted, 1>;
   std::vector<int>& sliding = w.sliding;
+  bool predicting = true, predicted = false;
   auto predict_corrections = [&]() {
     sliding.clear();
     for (size_t k = 0; k < blocks.size(); ++k) {
       const ConstraintBlock& b = blocks[k];
       if (b.kind != BlockKind::FrictionalContact) continue;
       const int r0 = b.row;
-      if (std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2] > 0) sliding.push_back(static_cast<int>(k));
-      if (sliding.size() > static_cast<size_t>(kMaxPredicted)) return false;
+      if (std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2] <= 0) continue;
+      if (sliding.size() == static_cast<size_t>(kMaxPredicted)) return false;
+      sliding.push_back(static_cast<int>(k));
     }
     const int c = static_cast<int>(sliding.size());
     if (c == 0) return false;
-    // the sliding contacts' velocities z_e (their rows of J) per unit change of contact e's target
-    w.pred_z.resize(c);
+    // the sliding contacts' velocities z_e (their rows of J) per unit change of contact e's
+    // target: none for a contact apart
     VecX &y = w.pred_y, &Jty = w.pred_Jty, &s = w.pred_s;
+    w.pred_z.resize(c);
     for (int e = 0; e < c; ++e) {
-      const int r0 = blocks[sliding[e]].row;
+      const int k = sliding[e], r0 = blocks[k].row;
+      if (G[k].col(2).isZero(0)) {
+        w.pred_z[e].setZero(m);
+        continue;
+      }
       y.setZero(m);
-      for (int i = 0; i < 3; ++i) y[r0 + i] = G[sliding[e]](i, 2);
+      for (int i = 0; i < 3; ++i) y[r0 + i] = G[k](i, 2);
       alg.Jt_mul(y, Jty);
       alg.solve(Jty, s);
       alg.J_mul(s, w.pred_z[e]);
@@ -144,15 +152,23 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     }
     const SmallVec dd = M.partialPivLu().solve(rhs);
     if (!dd.allFinite()) return false;
+    // the new targets, and the contacts' impulses at them (whether any is or was non-zero: if
+    // none, the gradient is the same)
+    bool gradient_changed = false;
     for (int i = 0; i < c; ++i) {
-      ConstraintBlock& b = blocks[sliding[i]];
-      const real d_i = given_blocks[sliding[i]].vhat - b.vhat;
-      b.vhat = given_blocks[sliding[i]].vhat - std::max(real(0), d_i + dd[i]);
+      const int k = sliding[i];
+      ConstraintBlock& b = blocks[k];
+      const real d_i = given_blocks[k].vhat - b.vhat;
+      b.vhat = given_blocks[k].vhat - std::max(real(0), d_i + dd[i]);
+      real* gamma_k = out.gamma.data() + b.row;
+      const bool acted = gamma_k[0] != 0 || gamma_k[1] != 0 || gamma_k[2] != 0;
+      block_response(b, vc.data() + b.row, gamma_k, G[k].data());
+      gradient_changed = gradient_changed || acted || gamma_k[0] != 0 || gamma_k[1] != 0 || gamma_k[2] != 0;
     }
-    return true;
+    predicted = true;
+    return gradient_changed;
   };
 
-  bool predicting = true, predicted = false;
   int failures = 0;
   real last_change = std::numeric_limits<real>::infinity();
   real best = std::numeric_limits<real>::infinity();
@@ -217,11 +233,10 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     alg.solve(grad, dv);
     dv = -dv;
     if (m > 0) alg.J_mul(dv, dvc);
-    predicted = correcting && predicting && m > 0 && predict_corrections();
-    if (predicted) {
+    predicted = false;
+    if (correcting && predicting && m > 0 && predict_corrections()) {
       // the gradient at the new targets, and the step from it with the same H (SPD, so a
       // descent direction for the new targets' problem)
-      respond(vc, out.gamma);
       alg.Jt_mul(out.gamma, jc);
       grad = Av_r - jc;
       if (smooth) grad += smooth_grad;
