@@ -74,7 +74,9 @@ struct SolverParams {
   /// so that a sliding contact keeps its normal target while its friction stays mu times its
   /// normal impulse; the remaining iterations converge on the corrected problem. The first
   /// correction is made at the solve's start (the bodies' last velocities, so the last step's
-  /// slip), which leaves the others little to change. 0 keeps the pure cone model.
+  /// slip), which leaves the others little to change; with up to 8 sliding contacts in an
+  /// island, each Newton step also predicts the corrections from its own linearization, which
+  /// reaches the fixed point in a few iterations. 0 keeps the pure cone model.
   int drift_correction_iterations = 20;
   /// Islands with more DOFs than this are solved with (block-)sparse linear algebra; up to it,
   /// dense. Above two free bodies (12 DOFs) the sparse path costs less per Newton iteration: on
