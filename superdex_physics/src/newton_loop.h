@@ -75,6 +75,11 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     for (size_t k = 0; k < blocks.size(); ++k)
       block_response(blocks[k], velocities.data() + blocks[k].row, gamma.data() + blocks[k].row, G[k].data());
   };
+  // a contact's slip beyond its friction regularisation at constraint velocities vc and the
+  // impulses in out.gamma (m/s; > 0: sliding, whose drift the corrections remove)
+  auto slip_of = [&](const ConstraintBlock& b) {
+    return std::hypot(vc[b.row], vc[b.row + 1]) - b.R * b.bound * out.gamma[b.row + 2];
+  };
   // lowers each contact's normal target by its drift at constraint velocities vc (impulses of
   // the last iterate in out.gamma); whether any target differs from its uncorrected one
   real correction_change = 0;  // the largest change of a target by the last corrections
@@ -84,8 +89,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     for (size_t k = 0; k < blocks.size(); ++k) {
       ConstraintBlock& b = blocks[k];
       if (b.kind != BlockKind::FrictionalContact) continue;
-      const int r0 = b.row;
-      const real slip = std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2];
+      const real slip = slip_of(b);
       const real vhat = given_blocks[k].vhat - (slip > 0 ? b.bound * slip : real(0));
       correction_change = std::max(correction_change, std::abs(vhat - b.vhat));
       b.vhat = vhat;
@@ -112,9 +116,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     sliding.clear();
     for (size_t k = 0; k < blocks.size(); ++k) {
       const ConstraintBlock& b = blocks[k];
-      if (b.kind != BlockKind::FrictionalContact) continue;
-      const int r0 = b.row;
-      if (std::hypot(vc[r0], vc[r0 + 1]) - b.R * b.bound * out.gamma[r0 + 2] <= 0) continue;
+      if (b.kind != BlockKind::FrictionalContact || slip_of(b) <= 0) continue;
       if (sliding.size() == static_cast<size_t>(kMaxPredicted)) return false;
       sliding.push_back(static_cast<int>(k));
     }
@@ -137,16 +139,15 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       alg.J_mul(s, w.pred_z[e]);
     }
     SmallMat M(c, c);
-    SmallVec rhs(c);
+    SmallVec rhs(c), d(c);  // d: the current corrections
     for (int i = 0; i < c; ++i) {
       const ConstraintBlock& b = blocks[sliding[i]];
       const auto& G_i = G[sliding[i]];
       const int r0 = b.row;
       const real vt = std::hypot(vc[r0], vc[r0 + 1]);
-      const real slip = vt - b.R * b.bound * out.gamma[r0 + 2];
       const Eigen::Matrix<real, 3, 1> w_i = Eigen::Matrix<real, 3, 1>(vc[r0] / vt, vc[r0 + 1] / vt, 0) + b.R * b.bound * G_i.col(2);
-      const real d_i = given_blocks[sliding[i]].vhat - b.vhat;
-      rhs[i] = b.bound * (slip + w_i.dot(dvc.template segment<3>(r0))) - d_i;
+      d[i] = given_blocks[sliding[i]].vhat - b.vhat;
+      rhs[i] = b.bound * (slip_of(b) + w_i.dot(dvc.template segment<3>(r0))) - d[i];
       for (int e = 0; e < c; ++e) M(i, e) = b.bound * w_i.dot(w.pred_z[e].template segment<3>(r0));
       M(i, i) += 1 - b.bound * b.bound * b.R * G_i(2, 2);
     }
@@ -158,12 +159,11 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     for (int i = 0; i < c; ++i) {
       const int k = sliding[i];
       ConstraintBlock& b = blocks[k];
-      const real d_i = given_blocks[k].vhat - b.vhat;
-      b.vhat = given_blocks[k].vhat - std::max(real(0), d_i + dd[i]);
-      real* gamma_k = out.gamma.data() + b.row;
-      const bool acted = gamma_k[0] != 0 || gamma_k[1] != 0 || gamma_k[2] != 0;
-      block_response(b, vc.data() + b.row, gamma_k, G[k].data());
-      gradient_changed = gradient_changed || acted || gamma_k[0] != 0 || gamma_k[1] != 0 || gamma_k[2] != 0;
+      b.vhat = given_blocks[k].vhat - std::max(real(0), d[i] + dd[i]);
+      auto gamma_k = out.gamma.template segment<3>(b.row);
+      const bool acted = !gamma_k.isZero(0);
+      block_response(b, vc.data() + b.row, gamma_k.data(), G[k].data());
+      gradient_changed = gradient_changed || acted || !gamma_k.isZero(0);
     }
     predicted = true;
     return gradient_changed;
