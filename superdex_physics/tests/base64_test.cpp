@@ -1,6 +1,6 @@
 // Base64 against the test vectors of RFC 4648, section 10.
 
-#include "base64.h"
+#include "core/base64.h"
 
 #include <gtest/gtest.h>
 

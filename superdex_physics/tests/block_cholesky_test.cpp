@@ -11,7 +11,7 @@
 #include <Eigen/Cholesky>
 #include <random>
 
-#include "block_cholesky.h"
+#include "linalg/block_cholesky.h"
 #include "block_problems.h"
 
 namespace superdex::physics {

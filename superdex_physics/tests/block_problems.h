@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "block_cholesky.h"
+#include "linalg/block_cholesky.h"
 
 namespace superdex::physics {
 

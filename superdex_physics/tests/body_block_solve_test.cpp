@@ -16,9 +16,9 @@
 #include <algorithm>
 #include <random>
 
-#include "body_jacobian.h"
-#include "newton_solver.h"
-#include "sparse_newton_system.h"
+#include "multibody/body_jacobian.h"
+#include "solver/newton_solver.h"
+#include "solver/sparse_newton_system.h"
 
 namespace superdex::physics {
 namespace {

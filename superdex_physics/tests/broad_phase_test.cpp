@@ -10,7 +10,7 @@
 #include <random>
 #include <tuple>
 
-#include "collision_detection.h"
+#include "collision/collision_detection.h"
 #include "test_helpers.h"
 
 namespace superdex::physics::test {

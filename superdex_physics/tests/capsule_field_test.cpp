@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "collision_detection.h"
+#include "collision/collision_detection.h"
 
 namespace superdex::physics::test {
 namespace {

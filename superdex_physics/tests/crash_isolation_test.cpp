@@ -1,7 +1,7 @@
 // try_in_child_process: a crash or a hang of the trial becomes an Error naming the file; a trial
 // that finishes (or throws) lets the caller go on, and the same contents are not tried twice.
 
-#include "crash_isolation.h"
+#include "core/crash_isolation.h"
 
 #include <gtest/gtest.h>
 

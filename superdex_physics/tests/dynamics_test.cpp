@@ -8,10 +8,10 @@
 #include <Eigen/Eigenvalues>
 #include <vector>
 
-#include "articulation_model.h"
-#include "dynamics.h"
-#include "kinematics.h"
-#include "spatial.h"
+#include "multibody/articulation_model.h"
+#include "multibody/dynamics.h"
+#include "multibody/kinematics.h"
+#include "core/spatial.h"
 #include "test_helpers.h"
 
 namespace superdex::physics::test {

@@ -11,7 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
-#include "fem_elasticity.h"
+#include "soft/fem_elasticity.h"
 #include "superdex/physics/error.h"
 
 namespace superdex::physics {

@@ -10,7 +10,7 @@
 #include <queue>
 #include <random>
 
-#include "islands.h"
+#include "island/islands.h"
 
 namespace superdex::physics {
 namespace {

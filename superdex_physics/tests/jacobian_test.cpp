@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "articulation_model.h"
-#include "kinematics.h"
-#include "spatial.h"
+#include "multibody/articulation_model.h"
+#include "multibody/kinematics.h"
+#include "core/spatial.h"
 #include "test_helpers.h"
 
 namespace superdex::physics::test {

@@ -9,8 +9,8 @@
 
 #include <cstdlib>
 
-#include "collision_geometry.h"
-#include "h5_file.h"
+#include "collision/collision_geometry.h"
+#include "io/h5_file.h"
 #include "mesh_test_helpers.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_shape.h"

@@ -11,8 +11,8 @@
 
 #include <random>
 
-#include "body_jacobian.h"
-#include "newton_solver.h"
+#include "multibody/body_jacobian.h"
+#include "solver/newton_solver.h"
 
 namespace superdex::physics {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "collision_geometry.h"
+#include "collision/collision_geometry.h"
 
 namespace superdex::physics::test {
 namespace {

@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "row_block_assembler.h"
+#include "solver/row_block_assembler.h"
 
 namespace superdex::physics {
 namespace {

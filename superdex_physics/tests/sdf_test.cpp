@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <numbers>
 
-#include "collision_geometry.h"
+#include "collision/collision_geometry.h"
 #include "mesh_test_helpers.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_shape.h"

@@ -10,7 +10,7 @@
 
 #include <random>
 
-#include "small_llt.h"
+#include "linalg/small_llt.h"
 
 namespace superdex::physics {
 namespace {

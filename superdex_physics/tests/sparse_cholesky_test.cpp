@@ -11,7 +11,7 @@
 #include <Eigen/SparseCholesky>
 #include <random>
 
-#include "sparse_cholesky.h"
+#include "linalg/sparse_cholesky.h"
 
 namespace superdex::physics {
 namespace {

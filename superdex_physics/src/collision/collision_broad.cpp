@@ -1,0 +1,179 @@
+// Broad phase (sweep and prune on world bounds along x), contact filters, and the loop that
+// turns overlapping pairs into contacts.
+
+#include <algorithm>
+#include <array>
+
+#include "collision/collision_detection.h"
+#include "superdex/physics/engine.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+ContactMaterial combine_materials(const ContactMaterial& a, const ContactMaterial& b) {
+  ContactMaterial m;
+  m.friction = a.friction + b.friction > 0 ? 2 * a.friction * b.friction / (a.friction + b.friction) : 0;
+  // springs in series; a rigid side (0) leaves the other's stiffness
+  if (a.stiffness > 0 && b.stiffness > 0) m.stiffness = a.stiffness * b.stiffness / (a.stiffness + b.stiffness);
+  else m.stiffness = std::max(a.stiffness, b.stiffness);
+  m.dissipation_time = std::max(a.dissipation_time, b.dissipation_time);
+  return m;
+}
+
+Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
+  // the posed centre, and the half extents through the rotation's absolute values
+  const Vec3 centre = X.R * (real(0.5) * (local.min + local.max)) + X.p;
+  const Vec3 half = X.R.cwiseAbs() * (real(0.5) * (local.max - local.min));
+  Aabb out;
+  out.min = centre - half;
+  out.max = centre + half;
+  return out;
+}
+
+bool actor_pair_disabled(const SceneData& s, ActorHandle x, ActorHandle y) {
+  if (s.disabled_actor_pairs.empty()) return false;
+  return s.disabled_actor_pairs.count({std::min(x, y), std::max(x, y)}) > 0;
+}
+
+real collider_sweep(const Articulation& a, const LinkCollider& col, real dt) {
+  const Vec6& V = a.kin.V_L[col.link];
+  if (std::holds_alternative<PlaneShape>(col.shape)) return dt * V.norm() * (a.model.nv > 0);
+  // speed bound of the surface: origin speed plus angular speed times the farthest extent, the
+  // bounds' corner farthest from the link origin (at o_S in the shape frame), axis by axis
+  const Vec3 o_S = -(col.X_LS.R.transpose() * col.X_LS.p);
+  const real reach = (col.aabb_S.min - o_S).cwiseAbs().cwiseMax((col.aabb_S.max - o_S).cwiseAbs()).norm();
+  return dt * (V.head<3>().norm() + V.tail<3>().norm() * reach);
+}
+
+namespace {
+
+ActorHandle link_actor(const Articulation& a, int link) { return a.link_handles[link]; }
+
+// Whether any joint between the world and this link has DOFs (a link welded to the world, like
+// a robot's base, cannot take part in a contact with another immovable one).
+bool link_moves(const ArticulationModel& m, int link) {
+  for (int l = link; l >= 0; l = m.parent[l])
+    if (m.joints[l].nv > 0) return true;
+  return false;
+}
+
+// Whether two colliders may touch: not both immovable (welded to the world), layers, per-actor switches, and
+// within one articulation the joined-links rule and its overrides.
+bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider& ca, const Articulation& B,
+                  const LinkCollider& cb) {
+  if (!link_moves(A.model, ca.link) && !link_moves(B.model, cb.link)) return false;
+  if (!((s.layer_masks[ca.layer] >> cb.layer) & 1)) return false;
+  if (&A == &B) {
+    if (ca.link == cb.link) return false;
+    const auto key = std::make_pair(std::min(ca.link, cb.link), std::max(ca.link, cb.link));
+    auto it = A.model.contact_overrides.find(key);
+    if (it != A.model.contact_overrides.end()) return it->second;
+    if (A.model.parent[ca.link] == cb.link || A.model.parent[cb.link] == ca.link) return false;
+    return !actor_pair_disabled(s, link_actor(A, ca.link), link_actor(B, cb.link));
+  }
+  const ActorHandle la = link_actor(A, ca.link), lb = link_actor(B, cb.link);
+  return !(actor_pair_disabled(s, A.handle, B.handle) || actor_pair_disabled(s, la, lb) ||
+           actor_pair_disabled(s, A.handle, lb) || actor_pair_disabled(s, la, B.handle));
+}
+
+}  // namespace
+
+ContactPairs find_contact_pairs(const SceneData& s, real margin, real dt) {
+  ContactPairs out;
+  find_contact_pairs(s, margin, dt, out);
+  return out;
+}
+
+void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& out) {
+  out.margin = margin;
+  out.posed.clear();
+  out.planes.clear();
+  out.pairs.clear();
+  std::vector<PosedCollider>& posed = out.posed;
+  // posed colliders and their world bounds, grown by the margin
+  for (size_t b = 0; b < s.articulations.size(); ++b) {
+    const Articulation& a = *s.articulations[b];
+    for (size_t c = 0; c < a.model.colliders.size(); ++c) {
+      const LinkCollider& col = a.model.colliders[c];
+      PosedCollider pc{static_cast<int>(b), static_cast<int>(c), col.link, a.kin.X_WL[col.link] * col.X_LS, {}, collider_sweep(a, col, dt)};
+      if (std::holds_alternative<PlaneShape>(col.shape)) {
+        out.planes.push_back(pc);
+        continue;
+      }
+      pc.box = world_bounds(col.aabb_S, pc.X_WS);
+      pc.box.min.array() -= margin + pc.sweep;
+      pc.box.max.array() += margin + pc.sweep;
+      posed.push_back(pc);
+    }
+  }
+  // sweep and prune along x
+  std::vector<int>& order = out.order;
+  order.resize(posed.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if (posed[i].box.min.x() != posed[j].box.min.x()) return posed[i].box.min.x() < posed[j].box.min.x();
+    return i < j;
+  });
+  for (size_t k = 0; k < order.size(); ++k) {
+    const PosedCollider& p = posed[order[k]];
+    for (size_t l = k + 1; l < order.size() && posed[order[l]].box.min.x() <= p.box.max.x(); ++l)
+      if (p.box.overlaps(posed[order[l]].box)) out.pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
+  }
+  for (size_t pl = 0; pl < out.planes.size(); ++pl)
+    for (size_t i = 0; i < posed.size(); ++i) out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+  // in the order of the contacts' links, so that the contact list comes out in that order; sorted
+  // as keys that hold the links, which spares the comparisons the lookups
+  std::vector<std::array<int, 6>>& keys = out.keys;
+  keys.resize(out.pairs.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const auto [i, j] = out.pairs[k];
+    const PosedCollider &a = posed[i], &b = j >= 0 ? posed[j] : out.planes[-1 - j];
+    keys[k] = {a.body, a.link, b.body, b.link, i, j};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t k = 0; k < keys.size(); ++k) out.pairs[k] = {keys[k][4], keys[k][5]};
+}
+
+void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out) {
+  // one pair's points, cleared before each pair; its capacity is kept per thread
+  thread_local std::vector<ContactPoint> points;
+  const size_t end = std::min(pairs.pairs.size(), (chunk + 1) * ContactPairs::kPairsPerChunk);
+  for (size_t k = chunk * ContactPairs::kPairsPerChunk; k < end; ++k) {
+    const auto [i, j] = pairs.pairs[k];
+    const PosedCollider& pa = pairs.posed[i];
+    const PosedCollider& pb = j >= 0 ? pairs.posed[j] : pairs.planes[-1 - j];
+    const Articulation& A = *s.articulations[pa.body];
+    const Articulation& B = *s.articulations[pb.body];
+    const LinkCollider& ca = A.model.colliders[pa.collider];
+    const LinkCollider& cb = B.model.colliders[pb.collider];
+    if (!pair_enabled(s, A, ca, B, cb)) continue;
+    points.clear();
+    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, pairs.margin + pa.sweep + pb.sweep, points);
+    const ContactMaterial m = combine_materials(ca.material, cb.material);
+    for (const ContactPoint& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
+  }
+}
+
+std::vector<Contact> join_contacts(const std::vector<std::vector<Contact>>& chunks) {
+  std::vector<Contact> contacts;
+  join_contacts(chunks, contacts);
+  return contacts;
+}
+
+void join_contacts(const std::vector<std::vector<Contact>>& chunks, std::vector<Contact>& contacts) {
+  size_t total = 0;
+  for (const auto& c : chunks) total += c.size();
+  contacts.clear();
+  contacts.reserve(total);
+  for (const auto& c : chunks) contacts.insert(contacts.end(), c.begin(), c.end());
+}
+
+std::vector<Contact> detect_contacts(const SceneData& s, real margin, real dt) {
+  const ContactPairs pairs = find_contact_pairs(s, margin, dt);
+  std::vector<std::vector<Contact>> chunks(pairs.num_chunks());
+  run_on_worker_threads(chunks.size(), [&](size_t c) { collide_pairs(s, pairs, c, chunks[c]); });
+  return join_contacts(chunks);
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

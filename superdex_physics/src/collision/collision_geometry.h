@@ -1,0 +1,44 @@
+#pragma once
+// Geometric queries every shape answers, in the shape's own frame: signed distance with its
+// gradient, surface sample points, and a bounding box. Contacts are built from these.
+
+#include <vector>
+
+#include "core/spatial.h"
+#include "superdex/physics/shape.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+struct Aabb {
+  Vec3 min = Vec3::Constant(std::numeric_limits<real>::infinity());
+  Vec3 max = Vec3::Constant(-std::numeric_limits<real>::infinity());
+  void extend(const Vec3& p) { min = min.cwiseMin(p), max = max.cwiseMax(p); }
+  bool overlaps(const Aabb& o) const { return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all(); }
+};
+
+// Signed distance (m) from p_S to the surface, negative inside; *grad_S (unit, outward) when non-null.
+real shape_signed_distance(const ShapeGeometry& shape, const Vec3& p_S, Vec3* grad_S);
+
+// A plane shape {x_S : normal . x_S <= distance} (its normal of any length) posed by X_WS, as
+// the world half-space {x : n . x <= d} with n unit: the signed distance of x is n . x - d.
+struct WorldPlane {
+  Vec3 n;
+  real d;
+};
+WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS);
+
+// Points on the surface used as contact candidates against another shape's distance field.
+// Empty for planes (unbounded).
+std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape);
+
+// Bounding box in the shape frame; infinite for planes.
+Aabb shape_local_aabb(const ShapeGeometry& shape);
+
+// Mesh implementations (mesh_geometry.cpp).
+real mesh_signed_distance(const MeshShape& mesh, const Vec3& p_S, Vec3* grad_S);
+std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh);
+Aabb mesh_local_aabb(const MeshShape& mesh);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

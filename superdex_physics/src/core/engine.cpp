@@ -1,0 +1,177 @@
+// Engine lifecycle and the scene and shape registries.
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+#include "multibody/kinematics.h"
+#include "scene/scene_data.h"
+#include "superdex/physics/error.h"
+#include "superdex/physics/recording.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+std::int64_t next_handle() {
+  static std::atomic<std::int64_t> counter{0};
+  return ++counter;
+}
+
+EngineData& engine_data() {
+  static EngineData data;
+  return data;
+}
+
+void initialize(int num_worker_threads) {
+  if (num_worker_threads < -1) throw Error("initialize: num_worker_threads must be -1 (automatic), 0 or positive, got " + std::to_string(num_worker_threads));
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  if (e.initialized) throw Error("initialize: the engine is already initialized; call shutdown() first");
+  int threads = num_worker_threads;
+  if (threads == -1) threads = std::max(1u, std::thread::hardware_concurrency());
+  e.num_threads = std::max(1, threads);
+  e.arena.reset();
+  if (threads > 0) e.arena = std::make_unique<oneapi::tbb::task_arena>(threads);
+  e.initialized = true;
+}
+
+void shutdown() {
+  stop_recording();
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  e.scenes.clear();
+  ++e.scenes_version;
+  e.shapes.clear();
+  e.tet_meshes.clear();
+  e.arena.reset();
+  e.initialized = false;
+}
+
+bool is_initialized() {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.initialized;
+}
+
+int num_worker_threads() {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.num_threads;
+}
+
+namespace {
+void require_initialized(const EngineData& e, const char* what) {
+  if (!e.initialized) throw Error(std::string(what) + ": the engine is not initialized; call initialize() first");
+}
+}  // namespace
+
+Scene create_scene(const std::string& name) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  require_initialized(e, "create_scene");
+  auto scene = std::make_unique<SceneData>();
+  scene->handle = next_handle();
+  scene->name = name;
+  const SceneHandle h = scene->handle;
+  e.scenes.emplace(h, std::move(scene));
+  ++e.scenes_version;
+  return Scene(h);
+}
+
+void destroy_scene(SceneHandle handle) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  if (e.scenes.erase(handle) == 0) throw Error("destroy_scene: scene " + std::to_string(handle) + " does not exist (already destroyed?)");
+  ++e.scenes_version;
+}
+
+bool scene_exists(SceneHandle handle) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.scenes.count(handle) > 0;
+}
+
+SceneData& scene_data(SceneHandle handle) {
+  EngineData& e = engine_data();
+  // this thread's last lookup, valid while no scene was created or destroyed since: the calls of
+  // one scene's step and of its batch row then read only the version, which every thread keeps
+  // in its cache, instead of writing to the lock's cache line (two threads stepping scenes would
+  // pass that line back and forth a dozen times per step)
+  struct LastLookup {
+    SceneHandle handle = 0;
+    std::uint64_t version = 0;
+    SceneData* data = nullptr;
+  };
+  thread_local LastLookup last;
+  if (last.data && last.handle == handle && last.version == e.scenes_version.load(std::memory_order_acquire)) return *last.data;
+  std::shared_lock lock(e.mutex);
+  auto it = e.scenes.find(handle);
+  if (it == e.scenes.end())
+    throw Error("scene " + std::to_string(handle) + " does not exist (it was destroyed, or the engine was shut down)");
+  last = {handle, e.scenes_version.load(std::memory_order_relaxed), it->second.get()};
+  return *it->second;
+}
+
+ShapeHandle create_shape(const ShapeGeometry& geometry) {
+  validate_shape(geometry, "create_shape");
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  require_initialized(e, "create_shape");
+  const ShapeHandle h = next_handle();
+  e.shapes.emplace(h, geometry);
+  return h;
+}
+
+void release_shape(ShapeHandle shape) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  if (e.shapes.erase(shape) == 0 && e.tet_meshes.erase(shape) == 0) throw Error("release_shape: shape " + std::to_string(shape) + " does not exist (already released?)");
+}
+
+ShapeGeometry shape_geometry(ShapeHandle shape) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  auto it = e.shapes.find(shape);
+  if (it == e.shapes.end()) throw Error("shape " + std::to_string(shape) + " does not exist (released, or the engine was shut down)");
+  return it->second;
+}
+
+ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where) {
+  const int n = static_cast<int>(mesh.nodes.size());
+  if (mesh.tets.empty()) throw Error(where + ": the tet mesh has no tetrahedra");
+  for (int i = 0; i < n; ++i)
+    if (!mesh.nodes[i].allFinite()) throw Error(where + ": node " + std::to_string(i) + " has non-finite coordinates");
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& tet = mesh.tets[t];
+    for (int k = 0; k < 4; ++k)
+      if (tet[k] < 0 || tet[k] >= n)
+        throw Error(where + ": tetrahedron " + std::to_string(t) + " refers to node " + std::to_string(tet[k]) + ", out of range (" +
+                    std::to_string(n) + " nodes)");
+    Mat3 D;
+    D << mesh.nodes[tet[1]] - mesh.nodes[tet[0]], mesh.nodes[tet[2]] - mesh.nodes[tet[0]], mesh.nodes[tet[3]] - mesh.nodes[tet[0]];
+    const real volume = D.determinant() / 6;
+    const real scale = std::max({D.col(0).norm(), D.col(1).norm(), D.col(2).norm()});
+    if (volume < 0) throw Error(where + ": tetrahedron " + std::to_string(t) + " is inverted (negative volume)");
+    if (!(volume > real(1e-9) * scale * scale * scale)) throw Error(where + ": tetrahedron " + std::to_string(t) + " is degenerate (volume ~ 0)");
+  }
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  require_initialized(e, "create_tet_mesh_shape");
+  const ShapeHandle h = next_handle();
+  e.tet_meshes.emplace(h, std::make_shared<const TetMesh>(std::move(mesh)));
+  return h;
+}
+
+std::shared_ptr<const TetMesh> tet_mesh_shape(ShapeHandle shape) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  auto it = e.tet_meshes.find(shape);
+  if (it == e.tet_meshes.end()) throw Error("shape " + std::to_string(shape) + " is not a tet mesh (create it with create_tet_mesh_shape)");
+  return it->second;
+}
+
+void refresh_kinematics(Articulation& a) { update_kinematics(a.model, a.state, a.kin); }
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

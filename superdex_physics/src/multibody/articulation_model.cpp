@@ -1,0 +1,379 @@
+// Validation of an ArticulationDesc and construction of its model and initial state.
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "multibody/articulation_model.h"
+#include "multibody/dynamics.h"
+#include "superdex/physics/error.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+const char* joint_type_name(JointType type) {
+  switch (type) {
+    case JointType::Hard: return "Hard";
+    case JointType::Free: return "Free";
+    case JointType::Revolute: return "Revolute";
+    case JointType::Prismatic: return "Prismatic";
+    case JointType::Spherical: return "Spherical";
+  }
+  return "?";
+}
+
+int joint_num_dofs(JointType type) {
+  switch (type) {
+    case JointType::Hard: return 0;
+    case JointType::Free: return 6;
+    case JointType::Revolute:
+    case JointType::Prismatic: return 1;
+    case JointType::Spherical: return 3;
+  }
+  return 0;
+}
+
+namespace {
+
+int joint_num_positions(JointType type) {
+  switch (type) {
+    case JointType::Free: return 7;
+    case JointType::Spherical: return 4;
+    default: return joint_num_dofs(type);
+  }
+}
+
+struct Reporter {
+  const std::string& source;
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw Error(source + ": " + path + ": " + what);
+  }
+};
+
+std::string at(const char* list, size_t i, const char* field = nullptr) {
+  std::ostringstream os;
+  os << list << "[" << i << "]";
+  if (field) os << "." << field;
+  return os.str();
+}
+
+std::string num(real x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+void check_transform(const Transform& X, const Reporter& r, const std::string& path) {
+  if (!X.translation.allFinite()) r.fail(path + ".translation", "must be finite");
+  if (!X.rotation.coeffs().allFinite() || X.rotation.norm() < real(1e-6))
+    r.fail(path + ".rotation", "must be a finite, non-zero quaternion [x, y, z, w]");
+}
+
+// Scales a primitive shape by a per-axis factor; spheres need a uniform scale, capsules x = y.
+ShapeGeometry scaled(const ShapeGeometry& shape, const Vec3& s, const Reporter& r, const std::string& path) {
+  if (!s.allFinite() || (s.array() <= 0).any()) r.fail(path, "shapeScale must be positive and finite");
+  if (auto* sph = std::get_if<SphereShape>(&shape)) {
+    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x() || std::abs(s.x() - s.z()) > real(1e-6) * s.x())
+      r.fail(path, "a sphere needs a uniform shapeScale");
+    return SphereShape{sph->center.cwiseProduct(s), sph->radius * s.x()};
+  }
+  if (auto* box = std::get_if<BoxShape>(&shape)) return BoxShape{box->half_extents.cwiseProduct(s)};
+  if (auto* cap = std::get_if<CapsuleShape>(&shape)) {
+    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x()) r.fail(path, "a capsule needs shapeScale x == y");
+    return CapsuleShape{cap->radius * s.x(), cap->half_length * s.z()};
+  }
+  return shape;
+}
+
+// Checks a rotational inertia: symmetric positive definite and satisfying the triangle
+// inequality of principal moments (a physical mass distribution).
+void check_inertia(const Mat3& I, const Reporter& r, const std::string& path) {
+  if (!I.allFinite()) r.fail(path, "must be finite");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I.cast<double>());
+  const Eigen::Vector3d l = eig.eigenvalues();
+  if (l.minCoeff() <= 0)
+    r.fail(path, "must be positive definite (principal moments " + num(real(l[0])) + ", " + num(real(l[1])) + ", " +
+                     num(real(l[2])) + ")");
+  const double tol = 1e-6 * l.maxCoeff();
+  if (l[0] + l[1] < l[2] - tol)
+    r.fail(path, "is not physically valid: principal moments violate the triangle inequality (" + num(real(l[0])) +
+                     " + " + num(real(l[1])) + " < " + num(real(l[2])) + ")");
+}
+
+void check_nonnegative(real x, const Reporter& r, const std::string& path) {
+  if (!std::isfinite(x) || x < 0) r.fail(path, "must be a finite number >= 0, got " + num(x));
+}
+
+}  // namespace
+
+ArticulationModel build_articulation_model(const ArticulationDesc& desc, const std::string& source) {
+  const Reporter r{source};
+  const int n = static_cast<int>(desc.links.size());
+  if (n == 0) r.fail("links", "an articulation needs at least one link");
+  if (desc.joints.size() != desc.links.size())
+    r.fail("joints", "expected exactly one joint per link (" + std::to_string(n) + " links), got " +
+                         std::to_string(desc.joints.size()));
+  check_transform(desc.world_from_root, r, "worldFromRoot");
+
+  ArticulationModel m;
+  m.name = desc.name;
+  m.num_links = n;
+  m.parent.resize(n);
+  m.joints.resize(n);
+  m.inertia.resize(n);
+  m.has_gravity.resize(n);
+
+  // names unique and non-empty
+  std::set<std::string> link_names, joint_names;
+  for (int i = 0; i < n; ++i) {
+    const auto& L = desc.links[i];
+    const auto& J = desc.joints[i];
+    if (L.name.empty()) r.fail(at("links", i, "name"), "must be a non-empty string");
+    if (!link_names.insert(L.name).second) r.fail(at("links", i, "name"), "duplicate link name '" + L.name + "'");
+    if (J.name.empty()) r.fail(at("joints", i, "name"), "must be a non-empty string");
+    if (!joint_names.insert(J.name).second) r.fail(at("joints", i, "name"), "duplicate joint name '" + J.name + "'");
+    m.link_names.push_back(L.name);
+    m.joint_names.push_back(J.name);
+  }
+
+  // the link tree: link 0 is the root, every other link has a parent, and there is no cycle
+  for (int i = 0; i < n; ++i) {
+    const int p = desc.links[i].parent_link;
+    if (i == 0) {
+      if (p != -1) r.fail(at("links", 0, "parentLink"), "links[0] is the root and must not have a parent");
+    } else {
+      if (p == -1) r.fail(at("links", i, "parentLink"), "missing: only links[0] may be the root");
+      if (p < 0 || p >= n)
+        r.fail(at("links", i, "parentLink"), "refers to link " + std::to_string(p) + ", which does not exist (" +
+                                                 std::to_string(n) + " links)");
+      if (p == i) r.fail(at("links", i, "parentLink"), "a link cannot be its own parent");
+    }
+    m.parent[i] = p;
+  }
+  for (int i = 0; i < n; ++i) {
+    int k = i, steps = 0;
+    while (k != -1 && steps <= n) k = m.parent[k], ++steps;
+    if (k != -1) r.fail(at("links", i, "parentLink"), "the link tree has a cycle through link '" + desc.links[i].name + "'");
+  }
+  // topological order: breadth-first from the root
+  std::vector<std::vector<int>> children(n);
+  for (int i = 1; i < n; ++i) children[m.parent[i]].push_back(i);
+  m.order.push_back(0);
+  for (size_t k = 0; k < m.order.size(); ++k)
+    for (int c : children[m.order[k]]) m.order.push_back(c);
+
+  // joints
+  int q_offset = 0, v_offset = 0;
+  for (int i = 0; i < n; ++i) {
+    const JointDesc& jd = desc.joints[i];
+    JointModel& j = m.joints[i];
+    j.type = jd.type;
+    if (i == 0 && jd.type != JointType::Hard && jd.type != JointType::Free)
+      r.fail(at("joints", 0, "type"), std::string("the root joint must be Hard or Free, got ") + joint_type_name(jd.type));
+    if (i > 0 && jd.type == JointType::Free)
+      r.fail(at("joints", i, "type"), "only the root joint (joints[0]) may be Free");
+    check_transform(jd.parent_link_from_joint, r, at("joints", i, "parentLinkFromJoint"));
+    Transform X_PJ = jd.parent_link_from_joint;
+    X_PJ.rotation.normalize();
+    j.X_PJ = SpatialTransform::from(X_PJ);
+    if (jd.type == JointType::Revolute || jd.type == JointType::Prismatic) {
+      if (!jd.axis.allFinite() || jd.axis.norm() < real(1e-9)) r.fail(at("joints", i, "axis"), "must be a finite, non-zero vector");
+      j.axis = jd.axis.normalized();
+      if (jd.min_limit) {
+        if (!jd.min_limit->allFinite()) r.fail(at("joints", i, "minLimit"), "must be finite");
+        j.has_lower = true;
+        j.lower = j.axis.dot(*jd.min_limit);
+      }
+      if (jd.max_limit) {
+        if (!jd.max_limit->allFinite()) r.fail(at("joints", i, "maxLimit"), "must be finite");
+        j.has_upper = true;
+        j.upper = j.axis.dot(*jd.max_limit);
+      }
+      if (j.has_lower && j.has_upper && j.lower > j.upper)
+        r.fail(at("joints", i, "minLimit"), "the lower limit " + num(j.lower) + " exceeds the upper limit " + num(j.upper));
+    }
+    check_nonnegative(jd.coulomb_friction, r, at("joints", i, "friction.coulomb"));
+    check_nonnegative(jd.viscous_friction, r, at("joints", i, "friction.viscous"));
+    check_nonnegative(jd.armature, r, at("joints", i, "inertia"));
+    check_nonnegative(jd.limit_stiffness, r, at("joints", i, "limitStiffness"));
+    check_nonnegative(jd.limit_damping, r, at("joints", i, "limitDamping"));
+    if (!std::isfinite(jd.effort_limit)) r.fail(at("joints", i, "effortLimit"), "must be finite");
+    j.coulomb = jd.coulomb_friction;
+    j.viscous = jd.viscous_friction;
+    j.armature = jd.armature;
+    j.limit_stiffness = jd.limit_stiffness;
+    j.limit_damping = jd.limit_damping;
+    j.effort_limit = jd.effort_limit;
+    j.nq = joint_num_positions(jd.type);
+    j.nv = joint_num_dofs(jd.type);
+    j.q_offset = q_offset;
+    j.v_offset = v_offset;
+    q_offset += j.nq;
+    v_offset += j.nv;
+    switch (jd.type) {
+      case JointType::Revolute: j.S.col(0).tail<3>() = j.axis; break;
+      case JointType::Prismatic: j.S.col(0).head<3>() = j.axis; break;
+      case JointType::Spherical: j.S.block<3, 3>(3, 0).setIdentity(); break;
+      case JointType::Free: j.S.setIdentity(); break;
+      case JointType::Hard: break;
+    }
+  }
+  m.nq = q_offset;
+  m.nv = v_offset;
+  m.root_nv = m.joints[0].nv;
+
+  // links: mass properties from explicit values, or from the shape and density
+  for (int i = 0; i < n; ++i) {
+    const LinkDesc& L = desc.links[i];
+    std::optional<ShapeGeometry> shape;
+    if (L.shape) {
+      validate_shape(*L.shape, source + ": " + at("links", i, "shape"));
+      shape = scaled(*L.shape, L.shape_scale, r, at("links", i, "shapeScale"));
+    }
+    if (L.center_of_mass && !L.center_of_mass->allFinite()) r.fail(at("links", i, "centerOfMass"), "must be finite");
+    if (!L.link_from_shape.translation.allFinite() || !L.link_from_shape.rotation.coeffs().allFinite())
+      r.fail(at("links", i, "shape"), "center and rotation must be finite");
+    const SpatialTransform X_LS = SpatialTransform::from(Transform{L.link_from_shape.rotation.normalized(), L.link_from_shape.translation});
+    // mass properties of the shape, expressed in the link frame
+    auto shape_props = [&](real density) {
+      MassProperties mp = shape_mass_properties(*shape, density);
+      mp.center_of_mass = X_LS.R * mp.center_of_mass + X_LS.p;
+      mp.inertia_about_com = X_LS.R * mp.inertia_about_com * X_LS.R.transpose();
+      return mp;
+    };
+    SpatialInertia& I = m.inertia[i];
+    if (L.mass) {
+      if (!std::isfinite(*L.mass) || *L.mass <= 0) r.fail(at("links", i, "mass"), "must be a positive finite number, got " + num(*L.mass));
+      I.mass = *L.mass;
+      if (L.moment_of_inertia) {
+        const auto& c = *L.moment_of_inertia;
+        I.inertia_com << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+        I.com = L.center_of_mass.value_or(Vec3::Zero());
+      } else if (shape && !std::holds_alternative<PlaneShape>(*shape)) {
+        MassProperties mp = shape_props(1);
+        I.com = L.center_of_mass.value_or(mp.center_of_mass);
+        I.inertia_com = mp.inertia_about_com * (I.mass / mp.mass);
+      } else {
+        r.fail(at("links", i, "momentOfInertia"), "required when the link has a mass but no bounded shape");
+      }
+    } else {
+      if (L.moment_of_inertia) r.fail(at("links", i, "mass"), "required when momentOfInertia is given");
+      if (!shape || std::holds_alternative<PlaneShape>(*shape))
+        r.fail(at("links", i, "mass"), "required: the link has no bounded shape to compute it from");
+      const real density = L.density.value_or(real(1000));
+      if (!std::isfinite(density) || density <= 0) r.fail(at("links", i, "density"), "must be a positive finite number, got " + num(density));
+      MassProperties mp = shape_props(density);
+      I.mass = mp.mass;
+      I.com = L.center_of_mass.value_or(mp.center_of_mass);
+      I.inertia_com = mp.inertia_about_com;
+    }
+    check_inertia(I.inertia_com, r, at("links", i, "momentOfInertia"));
+    m.has_gravity[i] = L.has_gravity;
+    // contact surface
+    if (L.layer < 0 || L.layer > 63) r.fail(at("links", i, "layer"), "must be between 0 and 63, got " + std::to_string(L.layer));
+    const ContactMaterial& cm = L.contact;
+    if (!std::isfinite(cm.friction) || cm.friction < 0) r.fail(at("links", i, "contact.coulombFrictionCoefficient"), "must be a finite number >= 0");
+    if (!std::isfinite(cm.stiffness) || cm.stiffness < 0) r.fail(at("links", i, "contact.stiffness"), "must be a finite number >= 0 (0: rigid)");
+    if (!std::isfinite(cm.dissipation_time) || cm.dissipation_time < 0)
+      r.fail(at("links", i, "contact.dissipationTimeScale"), "must be a finite number >= 0");
+    if (shape && L.collider_type != "None") {
+      LinkCollider c;
+      c.link = i;
+      c.shape = *shape;
+      c.X_LS = X_LS;
+      c.material = cm;
+      c.layer = L.layer;
+      c.samples_S = shape_surface_samples(*shape);
+      c.aabb_S = shape_local_aabb(*shape);
+      m.colliders.push_back(std::move(c));
+    }
+  }
+
+  for (size_t k = 0; k < desc.contact_overrides.size(); ++k) {
+    const ContactOverride& o = desc.contact_overrides[k];
+    auto index_of = [&](const std::string& name, const char* field) {
+      for (int i = 0; i < n; ++i)
+        if (m.link_names[i] == name) return i;
+      r.fail(at("contactOverrides", k, field), "no link named '" + name + "'");
+    };
+    const int a = index_of(o.link_a, "linkA"), b = index_of(o.link_b, "linkB");
+    m.contact_overrides[{std::min(a, b), std::max(a, b)}] = o.enable;
+  }
+
+  const int pose_size = m.nv - m.root_nv;
+  if (!desc.default_pose.empty() && static_cast<int>(desc.default_pose.size()) != pose_size)
+    r.fail("defaultPose", "expected " + std::to_string(pose_size) + " values (the DOFs after the root joint), got " +
+                              std::to_string(desc.default_pose.size()));
+  for (size_t k = 0; k < desc.default_pose.size(); ++k)
+    if (!std::isfinite(desc.default_pose[k])) r.fail(at("defaultPose", k), "must be finite");
+  m.desc = desc;
+  merge_welded_links(m);
+  return m;
+}
+
+void q_from_pose(const ArticulationModel& model, const real* pose, bool skip_root, VecX& q) {
+  int k = 0;
+  for (int i = 0; i < model.num_links; ++i) {
+    const JointModel& j = model.joints[i];
+    if (i == 0 && skip_root) continue;
+    real* qi = q.data() + j.q_offset;
+    switch (j.type) {
+      case JointType::Hard: break;
+      case JointType::Revolute:
+      case JointType::Prismatic: qi[0] = pose[k]; break;
+      case JointType::Spherical: {
+        Quat quat = quat_exp(Vec3(pose[k], pose[k + 1], pose[k + 2]));
+        map4(qi) = quat.coeffs();
+        break;
+      }
+      case JointType::Free: {
+        map3(qi) = Vec3(pose[k], pose[k + 1], pose[k + 2]);
+        Quat quat = quat_exp(Vec3(pose[k + 3], pose[k + 4], pose[k + 5]));
+        map4(qi + 3) = quat.coeffs();
+        break;
+      }
+    }
+    k += j.nv;
+  }
+}
+
+void pose_from_q(const ArticulationModel& model, const VecX& q, real* pose) {
+  for (int i = 0; i < model.num_links; ++i) {
+    const JointModel& j = model.joints[i];
+    const real* qi = q.data() + j.q_offset;
+    real* out = pose + j.v_offset;
+    switch (j.type) {
+      case JointType::Hard: break;
+      case JointType::Revolute:
+      case JointType::Prismatic: out[0] = qi[0]; break;
+      case JointType::Spherical: map3(out) = quat_log(Quat(qi[3], qi[0], qi[1], qi[2])); break;
+      case JointType::Free:
+        map3(out) = Vec3(qi[0], qi[1], qi[2]);
+        map3(out + 3) = quat_log(Quat(qi[6], qi[3], qi[4], qi[5]));
+        break;
+    }
+  }
+}
+
+ArticulationState initial_state(const ArticulationModel& model) {
+  ArticulationState s;
+  s.q = VecX::Zero(model.nq);
+  s.v = VecX::Zero(model.nv);
+  s.tau_external = VecX::Zero(model.nv);
+  s.drives.assign(model.nv, JointDrive{});
+  s.link_drives.assign(model.num_links, LinkDrive{});
+  Transform X_WR = model.desc.world_from_root;
+  X_WR.rotation.normalize();
+  s.X_W_base = SpatialTransform::from(X_WR);
+  // identity rotations for quaternion coordinates
+  for (const JointModel& j : model.joints) {
+    if (j.type == JointType::Spherical) s.q[j.q_offset + 3] = 1;
+    if (j.type == JointType::Free) s.q[j.q_offset + 6] = 1;
+  }
+  if (!model.desc.default_pose.empty()) q_from_pose(model, model.desc.default_pose.data(), true, s.q);
+  return s;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,187 @@
+// Dynamics terms and joint rows of one articulation for the implicit step.
+
+#include "multibody/articulation_step.h"
+
+#include <numbers>
+
+#include "multibody/dynamics.h"
+#include "multibody/kinematics.h"
+#include "core/spatial.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+real near_rigid_factor(const SolverParams& params) {
+  constexpr real pi = std::numbers::pi_v<real>;
+  return params.near_rigid_beta * params.near_rigid_beta / (4 * pi * pi);
+}
+
+namespace {
+
+// Joint limit, drive and Coulomb friction rows, appended to t.joint_rows from A^-1's diagonal and
+// t.v_free.
+void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const SolverParams& params,
+                ArticulationTerms& t) {
+  std::vector<JointRow>& rows = t.joint_rows;
+  const real near_rigid = near_rigid_factor(params);
+  for (const JointModel& j : model.joints) {
+    if (j.nv != 1) continue;
+    const bool limited = j.has_lower || j.has_upper;
+    if (!limited && j.coulomb <= 0 && !state.drives[j.v_offset].active()) continue;
+    const int k = j.v_offset;
+    const real q = state.q[j.q_offset];
+    if (limited) {
+      // compliant limit (SAP): impulse = dt k (-(phi + dt vc) - tau_d vc), floored at the near-rigid compliance
+      real R_stiffness = 0, tau_d = dt;
+      if (j.limit_stiffness > 0) {
+        tau_d = j.limit_damping / j.limit_stiffness;
+        R_stiffness = 1 / (dt * j.limit_stiffness * (dt + tau_d));
+      }
+      ConstraintBlock b;
+      b.kind = BlockKind::Unilateral;
+      for (const real sign : {real(1), real(-1)}) {
+        if (!(sign > 0 ? j.has_lower : j.has_upper)) continue;
+        b.vhat = -(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d);
+        // acts once sign * v < vhat (< 0 inside the limit): far from it when the free motion
+        // keeps sign * v above vhat / 2
+        JointRow row{k, sign, b};
+        row.deferred = params.defer_inactive_joint_limits && b.vhat < 0 && sign * t.v_free[k] > b.vhat / 2;
+        row.block.R = row.deferred ? R_stiffness : std::max(near_rigid * t.inverse_diagonal(k), R_stiffness);
+        rows.push_back(std::move(row));
+      }
+    }
+    // joint drive: impulse dt (K (q* - q - dt vc) + D (v* - vc)) = (vhat - vc) / R, clamped to dt max_effort
+    const JointDrive& d = state.drives[k];
+    if (d.active()) {
+      ConstraintBlock b;
+      b.kind = BlockKind::Bounded;
+      const real per_velocity = dt * d.stiffness + d.damping;  // effort per unit of next velocity
+      // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
+      b.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * t.inverse_diagonal(k));
+      b.vhat = (d.stiffness * (d.target_position - q) + d.damping * d.target_velocity) / per_velocity;
+      b.bound = d.max_effort >= 0 ? dt * d.max_effort : std::numeric_limits<real>::infinity();
+      rows.push_back({k, 1, b, true});
+    }
+    if (j.coulomb > 0) {
+      ConstraintBlock b;
+      b.kind = BlockKind::Bounded;
+      b.R = params.friction_sigma * t.inverse_diagonal(k);
+      b.bound = dt * j.coulomb;
+      rows.push_back({k, 1, b});
+    }
+  }
+}
+
+// A single free body's gyroscopic torque w x (I w), explicit in the bias forces, lets a tumbling
+// body gain energy. Replace it by backward Euler on Euler's equations in the body frame,
+// I (w2 - w1) + dt w2 x (I w2) = 0 (Newton), whose solution never gains kinetic energy
+// (w2^T I w2 = w2^T I w1): the free motion's angular momentum becomes I w2 - dt (w1 x I w1)
+// is removed from r. Exact for bodies whose centre of mass is the link origin; with an offset
+// centre of mass only the term about the centre of mass is treated implicitly.
+void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState& state, real dt, VecX& r) {
+  if (model.num_links != 1 || model.joints[0].type != JointType::Free) return;
+  const Mat3& I = model.inertia[0].inertia_com;
+  const Vec3 w1 = state.v.segment<3>(3);
+  Vec3 w2 = w1;
+  for (int it = 0; it < 4; ++it) {
+    const Vec3 f = I * (w2 - w1) + dt * w2.cross(I * w2);
+    const Mat3 df = I + dt * (skew(w2) * I - skew(I * w2));
+    const Vec3 step = df.partialPivLu().solve(f);
+    w2 -= step;
+    if (step.norm() <= std::numeric_limits<real>::epsilon() * (1 + w2.norm())) break;
+  }
+  r.segment<3>(3) += I * (w2 - w1) + dt * w1.cross(I * w1);
+}
+
+// Link drive rows: per world axis, a bounded implicit spring-damper on the link origin's velocity
+// (linear) or the link's angular velocity (angular), with the link Jacobian's rows.
+void link_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
+                     const SmallLLT& A_llt, real dt, const SolverParams& params, std::vector<JointRow>& rows) {
+  const real near_rigid = near_rigid_factor(params);
+  for (int link = 0; link < model.num_links; ++link) {
+    const LinkDrive& d = state.link_drives[link];
+    if (!d.active()) continue;
+    MatXR J;
+    link_jacobian_world(model, kin, link, J);
+    const SpatialTransform& X = kin.X_WL[link];
+    const Vec3 position_error = d.target.translation - X.p;
+    const Vec3 rotation_error = quat_log(d.target.rotation * Quat(X.R).conjugate());
+    // the compliance J_i A^-1 J_i^T of each of the link Jacobian's six rows
+    MatX Jt = J.transpose();
+    const VecX w = compliance_diagonal(A_llt, Jt);
+    for (int part = 0; part < 2; ++part) {
+      const real K = part == 0 ? d.linear_stiffness : d.angular_stiffness;
+      const real D = part == 0 ? d.linear_damping : d.angular_damping;
+      if (K <= 0 && D <= 0) continue;
+      const Vec3& error = part == 0 ? position_error : rotation_error;
+      const Vec3& target_velocity = part == 0 ? d.target_linear_velocity : d.target_angular_velocity;
+      const real limit = part == 0 ? d.max_force : d.max_torque;
+      for (int axis = 0; axis < 3; ++axis) {
+        JointRow row;
+        row.J = J.row(3 * part + axis).transpose();
+        if (row.J.squaredNorm() < real(1e-20)) continue;  // the articulation cannot move along it
+        const real per_velocity = dt * K + D;
+        row.block.kind = BlockKind::Bounded;
+        row.block.R = std::max(1 / (dt * per_velocity), real(1e-3) * near_rigid * w[3 * part + axis]);
+        row.block.vhat = (K * error[axis] + D * target_velocity[axis]) / per_velocity;
+        row.block.bound = limit >= 0 ? dt * limit : std::numeric_limits<real>::infinity();
+        rows.push_back(std::move(row));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t) {
+  const ArticulationModel& model = a.model;
+  t.joint_rows.clear();
+  t.have_inverse_diagonal_ = false;
+  if (model.nv == 0) {
+    t.A.resize(0, 0);
+    t.r.resize(0);
+    t.v_free.resize(0);
+    t.A_llt.compute(t.A);
+    return;
+  }
+  mass_matrix(model, a.kin, t.A);
+  bias_forces(model, a.state, a.kin, g_W, t.c);
+  // (M + dt D) v+ = M v + dt (tau - c): viscous joint friction integrated implicitly
+  if (model.nv <= SmallLLT::kSmall) {
+    t.r.noalias() = t.A.lazyProduct(a.state.v);  // (Eigen's blocked kernel costs more to set up)
+  } else {
+    t.r.noalias() = t.A * a.state.v;
+  }
+  t.r.noalias() += dt * (a.state.tau_external - t.c);
+  for (const JointModel& j : model.joints)
+    for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
+  implicit_gyroscopic(model, a.state, dt, t.r);
+  t.A_llt.compute(t.A);
+  t.v_free = t.r;
+  t.A_llt.solve_in_place(t.v_free);
+  joint_rows(model, a.state, dt, params, t);
+  link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
+}
+
+real ArticulationTerms::inverse_diagonal(int k) const {
+  if (!have_inverse_diagonal_) {
+    // diagonal of A^-1 = L^-T L^-1
+    L_inv_.setIdentity(A.rows(), A.cols());
+    A_inv_diagonal_ = compliance_diagonal(A_llt, L_inv_);
+    have_inverse_diagonal_ = true;
+  }
+  return A_inv_diagonal_[k];
+}
+
+real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params) {
+  return std::max(row.block.R, near_rigid_factor(params) * t.inverse_diagonal(row.dof));
+}
+
+ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
+  ArticulationTerms t;
+  articulation_terms(a, g_W, dt, params, t);
+  return t;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,76 @@
+// Recordings of simulation runs as JSON lines (superdex/physics/recording.h,
+// docs/recording_format.md).
+
+#include "superdex/physics/recording.h"
+
+#include <cmath>
+#include <fstream>
+#include <mutex>
+
+#include "output/recording_internal.h"
+#include "output/scene_messages.h"
+#include "superdex/physics/error.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+struct Recording {
+  std::mutex mutex;
+  std::ofstream out;
+  std::string path;
+  double frame_interval = 0;
+  double latest_time = 0;
+  StreamState stream;
+};
+
+std::unique_ptr<Recording>& recording() {
+  static std::unique_ptr<Recording> r;
+  return r;
+}
+
+}  // namespace
+
+void start_recording(const std::string& path, double frame_interval) {
+  auto& r = recording();
+  if (r) throw Error("start_recording: a recording to '" + r->path + "' is already running");
+  if (!(frame_interval >= 0) || !std::isfinite(frame_interval))
+    throw Error("start_recording: frame_interval must be >= 0 seconds");
+  auto rec = std::make_unique<Recording>();
+  rec->out.open(path, std::ios::out | std::ios::trunc);
+  if (!rec->out) throw Error("start_recording: cannot write '" + path + "'");
+  rec->path = path;
+  rec->frame_interval = frame_interval;
+  rec->out << header_line(frame_interval);
+  r = std::move(rec);
+}
+
+void stop_recording() {
+  auto& r = recording();
+  if (!r) return;
+  r->out.flush();
+  r.reset();
+}
+
+bool is_recording() { return recording() != nullptr; }
+
+double recorded_time() { return recording() ? recording()->latest_time : 0; }
+
+std::string recording_path() { return recording() ? recording()->path : std::string(); }
+
+void record_step(const SceneData& s) {
+  auto& r = recording();
+  if (!r) return;
+  std::lock_guard lock(r->mutex);
+  r->latest_time = std::max(r->latest_time, s.time);
+  const auto& last = r->stream.last_frame;
+  // (float builds step by float dt: allow its rounding)
+  if (auto it = last.find(s.handle); it != last.end() && s.time - it->second < r->frame_interval * (1 - 1e-6) - 1e-12) return;
+  std::string lines;
+  append_frame_lines(s, r->stream, lines);
+  r->out << lines;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

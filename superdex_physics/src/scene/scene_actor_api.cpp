@@ -1,0 +1,351 @@
+// Scene methods that read and write one actor: poses, velocities, forces, articulation queries.
+
+#include <cstdint>
+#include <cmath>
+#include <utility>
+
+#include "multibody/dynamics.h"
+#include "multibody/kinematics.h"
+#include "scene/scene_data.h"
+#include "superdex/physics/error.h"
+#include "superdex/physics/scene.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+std::string describe(ActorHandle h) { return "actor " + std::to_string(h); }
+
+ActorRef lookup(SceneData& s, ActorHandle h, const char* what) {
+  auto it = s.actors.find(h);
+  if (it == s.actors.end())
+    throw Error(std::string(what) + ": " + describe(h) + " does not exist in scene '" + s.name + "' (destroyed, or never created here)");
+  return it->second;
+}
+
+bool is_link_actor(const ActorRef& r) { return r.link >= 0 && !r.articulation->is_rigid; }
+
+void refuse_soft(const ActorRef& r, ActorHandle h, const char* what) {
+  if (r.soft) throw Error(std::string(what) + ": " + describe(h) + " is a soft actor ('" + r.soft->model.name + "')");
+}
+
+// The articulation behind a rigid or articulated actor; link and soft actors are refused.
+Articulation& whole(SceneData& s, ActorHandle h, const char* what) {
+  ActorRef r = lookup(s, h, what);
+  refuse_soft(r, h, what);
+  if (is_link_actor(r))
+    throw Error(std::string(what) + ": " + describe(h) + " is a link actor; call it on its articulation (" +
+                describe(r.articulation->handle) + ")");
+  return *r.articulation;
+}
+
+// The articulation and link index of a link actor, or link 0 of a rigid or articulated actor.
+std::pair<Articulation*, int> link_of(SceneData& s, ActorHandle h, const char* what) {
+  ActorRef r = lookup(s, h, what);
+  refuse_soft(r, h, what);
+  return {r.articulation, r.link < 0 ? 0 : r.link};
+}
+
+Transform to_transform(const SpatialTransform& X) { return {Quat(X.R).normalized(), X.p}; }
+
+void check_size(const char* what, const char* arg, Eigen::Index got, Eigen::Index expected) {
+  if (got != expected)
+    throw Error(std::string(what) + ": " + arg + " must have " + std::to_string(expected) + " values, got " + std::to_string(got));
+}
+
+void check_finite(const char* what, const char* arg, const VecX& x) {
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i])) throw Error(std::string(what) + ": " + arg + "[" + std::to_string(i) + "] is not finite (NaN or infinity)");
+}
+
+}  // namespace
+
+ActorType Scene::actor_type(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_type");
+  if (r.soft) return ActorType::Soft;
+  if (r.articulation->is_rigid) return ActorType::Rigid;
+  return r.link >= 0 ? ActorType::Link : ActorType::Articulated;
+}
+
+std::string Scene::actor_name(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_name");
+  if (r.soft) return r.soft->model.name;
+  return r.link >= 0 ? r.articulation->model.link_names[r.link] : r.articulation->model.name;
+}
+
+Transform Scene::root_transform(ActorHandle h) const {
+  auto [a, link] = link_of(scene_data(handle_), h, "get_root_transform");
+  return to_transform(a->kin.X_WL[link]);
+}
+
+void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
+  Articulation& a = whole(scene_data(handle_), h, "set_root_transform");
+  if (!X_WL_in.translation.allFinite() || !X_WL_in.rotation.coeffs().allFinite() || X_WL_in.rotation.norm() < real(1e-6))
+    throw Error("set_root_transform: the transform must be finite with a non-zero quaternion");
+  Transform X_WL = X_WL_in;
+  X_WL.rotation.normalize();
+  const JointModel& root = a.model.joints[0];
+  const SpatialTransform X = SpatialTransform::from(X_WL);
+  if (root.type == JointType::Free) {
+    // X_WL = X_W_base * X_PJ * X_J(q): solve for the free joint's position
+    const SpatialTransform X_J = (a.state.X_W_base * root.X_PJ).inverse() * X;
+    const Quat q(X_J.R);
+    a.state.q.segment<3>(root.q_offset) = X_J.p;
+    a.state.q.segment<4>(root.q_offset + 3) = q.normalized().coeffs();
+  } else {
+    a.state.X_W_base = X * root.X_PJ.inverse();
+  }
+  refresh_kinematics(a);
+}
+
+void Scene::set_velocity(ActorHandle h, const Vec3& v_W, const Vec3& w_W) {
+  Articulation& a = whole(scene_data(handle_), h, "set_velocity");
+  if (a.model.joints[0].type != JointType::Free)
+    throw Error("set_velocity: " + describe(h) + " ('" + a.model.name + "') has no free root: it is static or welded");
+  if (!v_W.allFinite() || !w_W.allFinite()) throw Error("set_velocity: linear and angular velocity must be finite");
+  // linear velocity in the free joint's parent frame, angular velocity in the body frame
+  const Mat3 R_WP = (a.state.X_W_base * a.model.joints[0].X_PJ).R;
+  a.state.v.segment<3>(0) = R_WP.transpose() * v_W;
+  a.state.v.segment<3>(3) = a.kin.X_WL[0].R.transpose() * w_W;
+  refresh_kinematics(a);
+}
+
+Vec6 Scene::velocity(ActorHandle h) const {
+  auto [a, link] = link_of(scene_data(handle_), h, "get_velocity");
+  const Mat3& R = a->kin.X_WL[link].R;
+  Vec6 out;
+  out.head<3>() = R * a->kin.V_L[link].head<3>();
+  out.tail<3>() = R * a->kin.V_L[link].tail<3>();
+  return out;
+}
+
+real Scene::mass(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_mass");
+  if (r.soft) return r.soft->model.total_mass;
+  if (r.link >= 0) return r.articulation->model.inertia[r.link].mass;
+  real m = 0;
+  for (const auto& I : r.articulation->model.inertia) m += I.mass;
+  return m;
+}
+
+int Scene::num_dofs(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_num_dofs");
+  return r.soft ? static_cast<int>(r.soft->state.v.size()) : r.articulation->model.nv;
+}
+
+void Scene::set_external_forces_on_dofs(ActorHandle h, std::span<const int> dofs, std::span<const real> values) {
+  const char* what = "set_external_forces_on_dofs";
+  SceneData& s = scene_data(handle_);
+  ActorRef ref = lookup(s, h, what);
+  Articulation* articulation = ref.soft ? nullptr : &whole(s, h, what);
+  VecX& target = ref.soft ? ref.soft->state.tau_external : articulation->state.tau_external;
+  const int nv = ref.soft ? static_cast<int>(target.size()) : articulation->model.nv;
+  if (dofs.size() != values.size())
+    throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but force_values has " +
+                std::to_string(values.size()));
+  // every entry is checked before anything changes; a repeated DOF is found by a bit mask (a
+  // list when the actor has more than 64 DOFs)
+  std::uint64_t seen_mask = 0;
+  std::vector<char> seen(nv > 64 ? nv : 0, 0);
+  for (size_t i = 0; i < dofs.size(); ++i) {
+    const int d = dofs[i];
+    if (d < 0 || d >= nv)
+      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(d) +
+                  " is out of range: the actor has " + std::to_string(nv) + " DOFs");
+    const bool repeated = nv > 64 ? std::exchange(seen[d], 1) != 0 : (seen_mask >> d) & 1;
+    seen_mask |= nv > 64 ? 0 : std::uint64_t(1) << d;
+    if (repeated)
+      throw Error(std::string(what) + ": dof_indices[" + std::to_string(i) + "] = " + std::to_string(d) + " appears twice");
+    if (!std::isfinite(values[i]))
+      throw Error(std::string(what) + ": force_values[" + std::to_string(i) + "] is not finite (NaN or infinity)");
+  }
+  target.setZero(nv);
+  for (size_t i = 0; i < dofs.size(); ++i) target[dofs[i]] = values[i];
+}
+
+void Scene::clear_external_forces(ActorHandle h) {
+  ActorRef r = lookup(scene_data(handle_), h, "clear_external_forces");
+  if (r.soft) {
+    r.soft->state.tau_external.setZero();
+    return;
+  }
+  whole(scene_data(handle_), h, "clear_external_forces").state.tau_external.setZero();
+}
+
+VecX Scene::external_forces(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_external_forces");
+  if (r.soft) return r.soft->state.tau_external;
+  return whole(scene_data(handle_), h, "get_external_forces").state.tau_external;
+}
+
+std::vector<ActorHandle> Scene::nested_link_actors(ActorHandle h) const {
+  Articulation& a = whole(scene_data(handle_), h, "get_nested_link_actors");
+  if (a.is_rigid) throw Error("get_nested_link_actors: " + describe(h) + " is a rigid actor, not an articulation");
+  return a.link_handles;
+}
+
+ActorHandle Scene::articulated_actor_of_link(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_articulated_actor");
+  if (!is_link_actor(r)) throw Error("get_articulated_actor: " + describe(h) + " is not a link actor");
+  return r.articulation->handle;
+}
+
+int Scene::link_index(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "get_link_index");
+  if (!is_link_actor(r)) throw Error("get_link_index: " + describe(h) + " is not a link actor");
+  return r.link;
+}
+
+ArticulatedShapeInfo Scene::articulated_shape_info(ActorHandle h) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_shape_info");
+  ArticulatedShapeInfo info;
+  info.link_names = a.model.link_names;
+  info.joint_names = a.model.joint_names;
+  info.parents = a.model.parent;
+  for (const JointModel& j : a.model.joints) {
+    info.joint_types.push_back(j.type);
+    info.joint_axes.push_back(j.axis);
+    DofInfo d;
+    d.offset = j.v_offset;
+    switch (j.type) {
+      case JointType::Prismatic: d.trans_size = 1; break;
+      case JointType::Revolute: d.rot_size = 1; break;
+      case JointType::Spherical: d.rot_size = 3; break;
+      case JointType::Free: d.trans_size = 3, d.rot_size = 3; break;
+      case JointType::Hard: break;
+    }
+    info.dof_info.push_back(d);
+  }
+  return info;
+}
+
+std::vector<Transform> Scene::link_transforms(ActorHandle h) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_link_transforms");
+  std::vector<Transform> out;
+  out.reserve(a.kin.X_WL.size());
+  for (const auto& X : a.kin.X_WL) out.push_back(to_transform(X));
+  return out;
+}
+
+Transform Scene::link_transform(ActorHandle h, int link) const {
+  const Articulation& a = whole(scene_data(handle_), h, "link_transform");
+  if (link < 0 || link >= static_cast<int>(a.kin.X_WL.size()))
+    throw Error("link_transform: link " + std::to_string(link) + " is out of range (the articulation has " +
+                std::to_string(a.kin.X_WL.size()) + " links)");
+  return to_transform(a.kin.X_WL[link]);
+}
+
+VecX Scene::pose(ActorHandle h) const {
+  VecX out;
+  pose(h, out);
+  return out;
+}
+
+void Scene::pose(ActorHandle h, VecX& out) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_pose");
+  out.resize(a.model.nv);
+  pose_from_q(a.model, a.state.q, out.data());
+}
+
+void Scene::set_pose(ActorHandle h, const VecX& pose) {
+  const char* what = "set_articulated_pose_from_joints";
+  Articulation& a = whole(scene_data(handle_), h, what);
+  check_size(what, "pose", pose.size(), a.model.nv);
+  check_finite(what, "pose", pose);
+  q_from_pose(a.model, pose.data(), false, a.state.q);
+  refresh_kinematics(a);
+}
+
+VecX Scene::joint_velocities(ActorHandle h) const { return whole(scene_data(handle_), h, "get_articulated_joint_velocities").state.v; }
+
+void Scene::joint_velocities(ActorHandle h, VecX& out) const {
+  out = whole(scene_data(handle_), h, "get_articulated_joint_velocities").state.v;
+}
+
+void Scene::set_joint_velocities(ActorHandle h, const VecX& v) {
+  const char* what = "set_articulated_joint_velocities";
+  Articulation& a = whole(scene_data(handle_), h, what);
+  check_size(what, "velocities", v.size(), a.model.nv);
+  check_finite(what, "velocities", v);
+  a.state.v = v;
+  refresh_kinematics(a);
+}
+
+void Scene::set_joint_drive(ActorHandle h, int dof, const JointDrive& d) {
+  const char* what = "set_joint_drive";
+  Articulation& a = whole(scene_data(handle_), h, what);
+  if (dof < 0 || dof >= a.model.nv)
+    throw Error(std::string(what) + ": dof " + std::to_string(dof) + " is out of range: the actor has " + std::to_string(a.model.nv) + " DOFs");
+  const JointModel* joint = nullptr;
+  for (const JointModel& j : a.model.joints)
+    if (dof >= j.v_offset && dof < j.v_offset + j.nv) joint = &j;
+  if (joint->type != JointType::Revolute && joint->type != JointType::Prismatic)
+    throw Error(std::string(what) + ": dof " + std::to_string(dof) + " belongs to a " + joint_type_name(joint->type) +
+                " joint; drives act on revolute and prismatic joints");
+  for (real x : {d.stiffness, d.damping, d.target_position, d.target_velocity, d.max_effort})
+    if (!std::isfinite(x)) throw Error(std::string(what) + ": the drive's values must be finite");
+  if (d.stiffness < 0 || d.damping < 0) throw Error(std::string(what) + ": stiffness and damping must be >= 0");
+  a.state.drives[dof] = d;
+}
+
+void Scene::clear_joint_drives(ActorHandle h) {
+  Articulation& a = whole(scene_data(handle_), h, "clear_joint_drives");
+  a.state.drives.assign(a.model.nv, JointDrive{});
+  a.state.link_drives.assign(a.model.num_links, LinkDrive{});
+}
+
+void Scene::set_link_drive(ActorHandle h, const LinkDrive& d) {
+  const char* what = "set_link_drive";
+  auto [a, link] = link_of(scene_data(handle_), h, what);
+  if (a->model.nv == 0) throw Error(std::string(what) + ": " + describe(h) + " cannot move (it has no DOFs)");
+  for (real x : {d.linear_stiffness, d.linear_damping, d.angular_stiffness, d.angular_damping})
+    if (!std::isfinite(x) || x < 0) throw Error(std::string(what) + ": stiffness and damping must be finite and >= 0");
+  if (!std::isfinite(d.max_force) || !std::isfinite(d.max_torque)) throw Error(std::string(what) + ": limits must be finite");
+  if (!d.target.translation.allFinite() || !d.target.rotation.coeffs().allFinite() || d.target.rotation.norm() < real(1e-6) ||
+      !d.target_linear_velocity.allFinite() || !d.target_angular_velocity.allFinite())
+    throw Error(std::string(what) + ": the target must be finite with a non-zero quaternion");
+  LinkDrive drive = d;
+  drive.target.rotation.normalize();
+  a->state.link_drives[link] = drive;
+}
+
+VecX Scene::joint_drive_efforts(ActorHandle h) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_joint_drive_efforts");
+  return a.drive_efforts.size() == a.model.nv ? a.drive_efforts : VecX::Zero(a.model.nv);
+}
+
+MatXR Scene::link_jacobian(ActorHandle h) const {
+  MatXR J;
+  link_jacobian(h, J);
+  return J;
+}
+
+void Scene::link_jacobian(ActorHandle h, MatXR& J_WL) const {
+  auto [a, link] = link_of(scene_data(handle_), h, "get_articulated_jacobian");
+  link_jacobian_world(a->model, a->kin, link, J_WL);
+}
+
+MatX Scene::mass_matrix(ActorHandle h) const {
+  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_mass_matrix");
+  return physics::mass_matrix(a.model, a.kin);
+}
+
+VecX Scene::bias_forces(ActorHandle h) const {
+  SceneData& s = scene_data(handle_);
+  const Articulation& a = whole(s, h, "get_articulated_bias_forces");
+  return physics::bias_forces(a.model, a.state, a.kin, s.gravity);
+}
+
+VecX Scene::forward_dynamics(ActorHandle h, const VecX& tau) const {
+  const char* what = "compute_articulated_forward_dynamics";
+  SceneData& s = scene_data(handle_);
+  const Articulation& a = whole(s, h, what);
+  check_size(what, "tau", tau.size(), a.model.nv);
+  check_finite(what, "tau", tau);
+  const MatX M = physics::mass_matrix(a.model, a.kin);
+  return M.llt().solve(tau - physics::bias_forces(a.model, a.state, a.kin, s.gravity));
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

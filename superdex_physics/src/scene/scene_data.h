@@ -1,0 +1,142 @@
+#pragma once
+// Private storage of the engine and its scenes. Scenes own articulations (rigid bodies are
+// one-link articulations); the public API reaches them only through handles.
+
+#include <array>
+#include <map>
+#include <set>
+#include <memory>
+#include <atomic>
+#include <shared_mutex>
+#include <unordered_map>
+
+#include <oneapi/tbb/task_arena.h>
+
+#include "multibody/articulation_model.h"
+#include "soft/soft_body.h"
+#include "superdex/physics/engine.h"
+#include "superdex/physics/scene.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+class SparseNewtonSystem;  // sparse_newton_system.h
+struct IslandWorkspace;    // island_solver.h
+struct StepWorkspace;      // step_workspace.h
+
+struct Articulation {
+  ActorHandle handle = 0;
+  int layer = 0;           // rigid bodies: collision layer
+  bool is_rigid = false;   // created by create_rigid_actor
+  bool is_static = false;  // welded rigid body
+  ShapeHandle shape = 0;   // rigid bodies: the shape they carry
+  ArticulationModel model;
+  ArticulationState state;
+  ArticulationKinematics kin;  // always current with `state`
+  VecX drive_efforts;          // results of the last step: joint drive efforts per DOF
+  std::vector<ActorHandle> link_handles;
+};
+
+// What an actor handle refers to: a whole articulation (link -1) or one of its links.
+struct ActorRef {
+  Articulation* articulation = nullptr;  // null for a soft actor
+  int link = -1;
+  SoftBody* soft = nullptr;              // a soft actor
+};
+
+// One contact of the last step, as reported to queries. Force is applied to actor_a (world).
+struct ContactRecord {
+  ActorHandle actor_a = 0, actor_b = 0;  // link or rigid actors
+  int body_a = -1, body_b = -1;          // articulation indices at the time of the step
+  int link_a = 0, link_b = 0;
+  Vec3 position = Vec3::Zero();          // world (m)
+  Vec3 normal = Vec3::Zero();            // unit, from b towards a
+  real distance = 0;                     // signed gap before the step (m), negative when penetrating
+  Vec3 force = Vec3::Zero();             // force on a (N), world
+};
+
+// A registered query of one actor.
+struct QueryRecord {
+  ActorHandle actor = 0;
+  int type = 0;             // QueryType
+  long long since_step = 0; // results are valid once a step completed after this
+};
+
+struct StepCallbackRecord {
+  bool post = false;
+  int priority = 100;
+  std::shared_ptr<const StepCallback> fn;
+};
+
+// The pre- or post-step callbacks in the order they run (priority, then name): made when first
+// needed after a change, and shared with a step that runs them, so that a callback may register
+// or cancel callbacks while the list it came from runs on.
+using StepCallbackOrder = std::vector<std::shared_ptr<const StepCallback>>;
+// An order, and the value of SceneData::callbacks_version it was built at: outdated when that
+// value has changed since.
+struct CachedCallbackOrder {
+  std::shared_ptr<const StepCallbackOrder> order;
+  std::uint64_t version = 0;
+};
+
+struct SceneData {
+  SceneHandle handle = 0;
+  std::string name;
+  Vec3 gravity = Vec3(0, 0, real(-9.81));
+  double time = 0;
+  SolverParams params;
+  SolverStats stats;
+  NumericalFaultPolicy fault_policy = NumericalFaultPolicy::Raise;
+  std::vector<NumericalFault> last_faults;  // clamped by the last step (WarnAndClamp)
+  std::vector<std::unique_ptr<Articulation>> articulations;  // creation order
+  std::vector<std::unique_ptr<SoftBody>> soft_bodies;        // creation order
+  std::unordered_map<ActorHandle, ActorRef> actors;
+  long long step_count = 0;
+  // contact filtering: disabled actor pairs (smaller handle first) and per-layer masks
+  std::set<std::pair<ActorHandle, ActorHandle>> disabled_actor_pairs;
+  std::array<std::uint64_t, 64> layer_masks = filled_layer_masks();
+  // results of the last step and the queries that read them
+  std::vector<ContactRecord> contacts;
+  std::map<std::int64_t, QueryRecord> queries;
+  std::map<std::string, StepCallbackRecord> callbacks;
+  std::array<CachedCallbackOrder, 2> callback_order;  // pre, post
+  std::uint64_t callbacks_version = 0;                // counts the changes to `callbacks`
+  std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
+  int next_signal_source = 1;
+  // sparse Newton patterns of the last step's large islands, by their sorted body indices
+  // (a cache: reused while an island keeps its structure)
+  std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
+  // working storage of the island solves, by island index (island_solver.h): islands keep their
+  // order and shapes from step to step, so the storage fits without allocating
+  std::vector<std::shared_ptr<IslandWorkspace>> island_workspaces;
+  // the step's working storage (created by the first step)
+  std::shared_ptr<StepWorkspace> step_workspace;
+
+  static std::array<std::uint64_t, 64> filled_layer_masks() {
+    std::array<std::uint64_t, 64> m;
+    m.fill(~std::uint64_t(0));
+    return m;
+  }
+};
+
+struct EngineData {
+  std::shared_mutex mutex;  // guards the registries below
+  bool initialized = false;
+  int num_threads = 1;
+  std::unique_ptr<oneapi::tbb::task_arena> arena;  // null when single-threaded
+  std::map<SceneHandle, std::unique_ptr<SceneData>> scenes;
+  // bumped (under the unique lock) whenever `scenes` changes: scene_data()'s per-thread cache of
+  // its last lookup is valid while this is unchanged
+  std::atomic<std::uint64_t> scenes_version{0};
+  std::map<ShapeHandle, ShapeGeometry> shapes;
+  std::map<ShapeHandle, std::shared_ptr<const TetMesh>> tet_meshes;
+};
+
+EngineData& engine_data();
+// The live scene with this handle; throws superdex::Error if it does not exist.
+SceneData& scene_data(SceneHandle handle);
+// Recomputes kinematics after a state change.
+void refresh_kinematics(Articulation& a);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

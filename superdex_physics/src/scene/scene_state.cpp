@@ -1,0 +1,216 @@
+// Capture and restore of a scene's evolving state as bytes.
+//
+// Layout (little-endian, this machine's representation): "SDXS", u32 version, u8 sizeof(real),
+// i64 step count, f64 time, u32 body count; per body: i64 handle, u32 nq, u32 nv, then nq + 2 nv
+// + 12 reals (q, v, external forces, base rotation row-major and translation), then 5 nv reals of
+// joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
+// 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
+// velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
+// Then u32 soft body count; per soft body: u32 3N, node positions, velocities and forces (3N each),
+// u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
+// velocities (r each) and residual contact displacement (3N).
+
+#include <cstring>
+
+#include "multibody/kinematics.h"
+#include "scene/scene_data.h"
+#include "superdex/physics/error.h"
+#include "superdex/physics/scene.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
+constexpr std::uint32_t kVersion = 4;
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& x) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&x);
+    bytes.insert(bytes.end(), p, p + sizeof(T));
+  }
+  void put_reals(const real* x, size_t n) {
+    const auto* p = reinterpret_cast<const std::uint8_t*>(x);
+    bytes.insert(bytes.end(), p, p + n * sizeof(real));
+  }
+  std::vector<std::uint8_t> bytes;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<std::uint8_t>& b) : bytes_(b) {}
+  template <class T>
+  T get(const char* what) {
+    T x;
+    take(&x, sizeof(T), what);
+    return x;
+  }
+  void get_reals(real* x, size_t n, const char* what) { take(x, n * sizeof(real), what); }
+  bool done() const { return pos_ == bytes_.size(); }
+
+ private:
+  void take(void* dst, size_t n, const char* what) {
+    if (pos_ + n > bytes_.size()) throw Error(std::string("restore_state: the state is truncated (reading ") + what + ")");
+    // an empty vector (a body without DOFs) has no storage: memcpy must not see its null pointer
+    if (n == 0) return;
+    std::memcpy(dst, bytes_.data() + pos_, n);
+    pos_ += n;
+  }
+  const std::vector<std::uint8_t>& bytes_;
+  size_t pos_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::uint8_t> Scene::capture_state() const {
+  const SceneData& s = scene_data(handle_);
+  Writer w;
+  for (char c : kMagic) w.put(c);
+  w.put(kVersion);
+  w.put(static_cast<std::uint8_t>(sizeof(real)));
+  w.put(static_cast<std::int64_t>(s.step_count));
+  w.put(s.time);
+  w.put(static_cast<std::uint32_t>(s.articulations.size()));
+  for (const auto& a : s.articulations) {
+    w.put(static_cast<std::int64_t>(a->handle));
+    w.put(static_cast<std::uint32_t>(a->model.nq));
+    w.put(static_cast<std::uint32_t>(a->model.nv));
+    w.put_reals(a->state.q.data(), a->state.q.size());
+    w.put_reals(a->state.v.data(), a->state.v.size());
+    w.put_reals(a->state.tau_external.data(), a->state.tau_external.size());
+    const Eigen::Matrix<real, 3, 3, Eigen::RowMajor> R = a->state.X_W_base.R;
+    w.put_reals(R.data(), 9);
+    w.put_reals(a->state.X_W_base.p.data(), 3);
+    for (const JointDrive& d : a->state.drives) {
+      const real x[5] = {d.stiffness, d.damping, d.target_position, d.target_velocity, d.max_effort};
+      w.put_reals(x, 5);
+    }
+    for (const LinkDrive& d : a->state.link_drives) {
+      const real x[19] = {d.target.rotation.x(), d.target.rotation.y(), d.target.rotation.z(), d.target.rotation.w(),
+                          d.target.translation.x(), d.target.translation.y(), d.target.translation.z(),
+                          d.target_linear_velocity.x(), d.target_linear_velocity.y(), d.target_linear_velocity.z(),
+                          d.target_angular_velocity.x(), d.target_angular_velocity.y(), d.target_angular_velocity.z(),
+                          d.linear_stiffness, d.linear_damping, d.angular_stiffness, d.angular_damping, d.max_force, d.max_torque};
+      w.put_reals(x, 19);
+    }
+  }
+  w.put(static_cast<std::uint32_t>(s.soft_bodies.size()));
+  for (const auto& b : s.soft_bodies) {
+    w.put(static_cast<std::uint32_t>(b->state.x.size()));
+    w.put_reals(b->state.x.data(), b->state.x.size());
+    w.put_reals(b->state.v.data(), b->state.v.size());
+    w.put_reals(b->state.tau_external.data(), b->state.tau_external.size());
+    w.put(static_cast<std::uint32_t>(b->state.q.size()));
+    if (b->state.q.size() == 0) continue;
+    w.put_reals(b->state.q.data(), b->state.q.size());
+    w.put_reals(b->state.qd.data(), b->state.qd.size());
+    w.put_reals(b->state.u_c.data(), b->state.u_c.size());
+  }
+  return std::move(w.bytes);
+}
+
+void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
+  SceneData& s = scene_data(handle_);
+  Reader r(bytes);
+  for (char c : kMagic)
+    if (r.get<char>("header") != c) throw Error("restore_state: not a SuperDex scene state (bad header)");
+  const auto version = r.get<std::uint32_t>("version");
+  if (version != kVersion) throw Error("restore_state: unsupported state version " + std::to_string(version));
+  const auto real_size = r.get<std::uint8_t>("precision");
+  if (real_size != sizeof(real))
+    throw Error(std::string("restore_state: the state was captured by the ") + (real_size == 8 ? "double" : "float") +
+                " build; this is the " + (kUsesDoublePrecision ? "double" : "float") + " build");
+  const auto step_count = r.get<std::int64_t>("step count");
+  const auto time = r.get<double>("time");
+  const auto count = r.get<std::uint32_t>("body count");
+  if (count != s.articulations.size())
+    throw Error("restore_state: the state has " + std::to_string(count) + " actors but the scene has " +
+                std::to_string(s.articulations.size()));
+  // read everything first so that a bad state changes nothing
+  std::vector<ArticulationState> states(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const Articulation& a = *s.articulations[i];
+    const auto handle = r.get<std::int64_t>("actor handle");
+    const auto nq = r.get<std::uint32_t>("sizes"), nv = r.get<std::uint32_t>("sizes");
+    // actors match by creation order and size, so a state restores into a scene built the same way
+    (void)handle;
+    if (nq != static_cast<std::uint32_t>(a.model.nq) || nv != static_cast<std::uint32_t>(a.model.nv))
+      throw Error("restore_state: actor " + std::to_string(i) + " of the state (" + std::to_string(nq) + " positions, " +
+                  std::to_string(nv) + " velocities) does not match actor '" + a.model.name + "' of the scene (" +
+                  std::to_string(a.model.nq) + ", " + std::to_string(a.model.nv) + ")");
+    ArticulationState& st = states[i];
+    st.q.resize(nq), st.v.resize(nv), st.tau_external.resize(nv);
+    r.get_reals(st.q.data(), nq, "positions");
+    r.get_reals(st.v.data(), nv, "velocities");
+    r.get_reals(st.tau_external.data(), nv, "forces");
+    Eigen::Matrix<real, 3, 3, Eigen::RowMajor> R;
+    r.get_reals(R.data(), 9, "base pose");
+    st.X_W_base.R = R;
+    r.get_reals(st.X_W_base.p.data(), 3, "base pose");
+    st.drives.resize(nv);
+    for (JointDrive& d : st.drives) {
+      real x[5];
+      r.get_reals(x, 5, "joint drives");
+      d = {x[0], x[1], x[2], x[3], x[4]};
+    }
+    st.link_drives.resize(a.model.num_links);
+    for (LinkDrive& d : st.link_drives) {
+      real x[19];
+      r.get_reals(x, 19, "link drives");
+      d.target.rotation = Quat(x[3], x[0], x[1], x[2]);
+      d.target.translation = Vec3(x[4], x[5], x[6]);
+      d.target_linear_velocity = Vec3(x[7], x[8], x[9]);
+      d.target_angular_velocity = Vec3(x[10], x[11], x[12]);
+      d.linear_stiffness = x[13], d.linear_damping = x[14], d.angular_stiffness = x[15], d.angular_damping = x[16];
+      d.max_force = x[17], d.max_torque = x[18];
+    }
+    if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
+      throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");
+  }
+  const auto soft_count = r.get<std::uint32_t>("soft body count");
+  if (soft_count != s.soft_bodies.size())
+    throw Error("restore_state: the state has " + std::to_string(soft_count) + " soft actors but the scene has " +
+                std::to_string(s.soft_bodies.size()));
+  std::vector<SoftState> soft_states(soft_count);
+  for (std::uint32_t i = 0; i < soft_count; ++i) {
+    const auto n = r.get<std::uint32_t>("soft sizes");
+    if (n != s.soft_bodies[i]->state.x.size())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " of the state does not match '" + s.soft_bodies[i]->model.name + "'");
+    SoftState& st = soft_states[i];
+    st.x.resize(n), st.v.resize(n), st.tau_external.resize(n);
+    r.get_reals(st.x.data(), n, "soft positions");
+    r.get_reals(st.v.data(), n, "soft velocities");
+    r.get_reals(st.tau_external.data(), n, "soft forces");
+    const auto modes = r.get<std::uint32_t>("soft modes");
+    if (modes != s.soft_bodies[i]->state.q.size())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " of the state has " + std::to_string(modes) + " reduced modes but '" +
+                  s.soft_bodies[i]->model.name + "' has " + std::to_string(s.soft_bodies[i]->state.q.size()));
+    if (modes > 0) {
+      st.q.resize(modes), st.qd.resize(modes), st.u_c.resize(n);
+      r.get_reals(st.q.data(), modes, "soft modal amplitudes");
+      r.get_reals(st.qd.data(), modes, "soft modal velocities");
+      r.get_reals(st.u_c.data(), n, "soft residual displacements");
+      if (!st.q.allFinite() || !st.qd.allFinite() || !st.u_c.allFinite())
+        throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
+    }
+    if (!st.x.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
+      throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
+  }
+  if (!r.done()) throw Error("restore_state: unexpected bytes after the last actor");
+  for (std::uint32_t i = 0; i < soft_count; ++i) s.soft_bodies[i]->state = std::move(soft_states[i]);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    s.articulations[i]->state = std::move(states[i]);
+    refresh_kinematics(*s.articulations[i]);
+  }
+  s.step_count = step_count;
+  s.time = time;
+  s.contacts.clear();
+  // results need a step after the restore
+  for (auto& [id, q] : s.queries) q.since_step = s.step_count;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
