@@ -2,19 +2,12 @@
 
 #include <algorithm>
 #include <set>
-#include <chrono>
-#include <functional>
-#include <tuple>
 #include <cmath>
 
-#include "island/island_solver.h"
-#include "solver/sparse_newton_system.h"
 #include "output/debug_link.h"
 #include "output/recording_internal.h"
-#include "soft/soft_contact.h"
 #include "soft/soft_body.h"
-#include "scene/step_guard.h"
-#include "scene/step_workspace.h"
+#include "scene/step_stages.h"
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/error.h"
@@ -315,42 +308,6 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
   for (const auto& fn : *put_back.running.order) (*fn)(scene, dt);
 }
 
-// The step's contact results (s.contacts), ordered by their links (body_a, link_a, body_b,
-// link_b): first the soft contacts (side a is the soft body, body index -1 - soft index), then the
-// rigid ones in the contact list's order, which the broad phase made that order.
-void contact_records(SceneData& s, const std::vector<Island>& islands, const std::vector<Contact>& contacts,
-                     const std::vector<SoftContact>& soft_contacts, const std::vector<IslandSolution>& solutions,
-                     StepWorkspace& ws) {
-  std::vector<SoftContactRecordKey>& soft_keys = ws.soft_record_keys;
-  std::vector<std::pair<int, int>>& place = ws.record_places;
-  soft_keys.clear();
-  place.assign(contacts.size(), {-1, -1});
-  for (size_t k = 0; k < islands.size(); ++k) {
-    for (size_t j = 0; j < islands[k].contacts.size(); ++j) place[islands[k].contacts[j]] = {static_cast<int>(k), static_cast<int>(j)};
-    for (size_t j = 0; j < islands[k].soft_contacts.size(); ++j) {
-      const SoftContact& c = soft_contacts[islands[k].soft_contacts[j]];
-      soft_keys.push_back({{-1 - c.soft, c.nodes[0], c.body, c.link}, static_cast<int>(k), static_cast<int>(j)});
-    }
-  }
-  std::sort(soft_keys.begin(), soft_keys.end(), [](const SoftContactRecordKey& x, const SoftContactRecordKey& y) {
-    return std::tie(x.links, x.island, x.index) < std::tie(y.links, y.island, y.index);
-  });
-  s.contacts.clear();
-  s.contacts.reserve(soft_keys.size() + contacts.size());
-  for (const SoftContactRecordKey& key : soft_keys) {
-    const SoftContact& c = soft_contacts[islands[key.island].soft_contacts[key.index]];
-    s.contacts.push_back({s.soft_bodies[c.soft]->handle, s.articulations[c.body]->link_handles[c.link], -1 - c.soft, c.body, c.nodes[0],
-                          c.link, c.p_W, c.n_W, c.phi, solutions[key.island].soft_contact_force[key.index]});
-  }
-  for (size_t i = 0; i < contacts.size(); ++i) {
-    const auto [k, j] = place[i];
-    if (k < 0) continue;
-    const Contact& c = contacts[i];
-    s.contacts.push_back({s.articulations[c.body_a]->link_handles[c.link_a], s.articulations[c.body_b]->link_handles[c.link_b], c.body_a,
-                          c.body_b, c.link_a, c.link_b, c.p_W, c.n_W, c.phi, solutions[k].contact_force[j]});
-  }
-}
-
 }  // namespace
 
 void Scene::step(real dt) {
@@ -365,210 +322,32 @@ void Scene::step(real dt) {
 
 void Scene::step_dynamics(real dt) {
   SceneData& s = scene_data(handle_);
-  // the step's wall time and its parts in time-stamp ticks (step_ticks.h); by steady_clock too
-  // until the ticks' rate is calibrated
-  const double calibrated_tick_seconds = calibrated_seconds_per_tick();
-  const auto t0 = calibrated_tick_seconds > 0 ? std::chrono::steady_clock::time_point{} : std::chrono::steady_clock::now();
-  const Ticks k0 = ticks_now();
-  const size_t n = s.articulations.size();
-  const auto parallel = run_on_worker_threads;
-
+  // the step's wall time, its parts counted by the stages in time-stamp ticks (step_ticks.h)
+  const StepClock clock = StepClock::start();
   if (!s.step_workspace) s.step_workspace = std::make_shared<StepWorkspace>();
-  StepWorkspace& ws = *s.step_workspace;
-
-  // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem
-  // (the costliest items, first), the dynamics terms of every body and the narrow phase
-  ContactPairs& pairs = ws.pairs;
-  find_contact_pairs(s, s.params.contact_margin, dt, pairs);
-  Ticks collision_ticks = ticks_now() - k0;
-  const size_t num_soft = s.soft_bodies.size();
-  std::vector<std::unique_ptr<SoftStep>> soft_steps(num_soft);
-  std::vector<int>& soft_free = ws.soft_free;
-  soft_free.assign(num_soft, 0);
-  for (size_t k = 0; k < num_soft; ++k)
-    for (char pinned : s.soft_bodies[k]->model.pinned) soft_free[k] += pinned ? 0 : 3;
-  std::vector<ArticulationTerms>& terms = ws.terms;
-  terms.resize(n);
-  std::vector<std::vector<Contact>>& chunk_contacts = ws.chunk_contacts;
-  chunk_contacts.resize(pairs.num_chunks());
-  for (auto& chunk : chunk_contacts) chunk.clear();
-  // the articulations by groups of a few (each costs about a microsecond: one item each would
-  // pass the threads' shared item counter back and forth as often)
-  constexpr size_t kBodiesPerItem = 8;
-  const size_t body_items = (n + kBodiesPerItem - 1) / kBodiesPerItem;
-  // each item's time (the soft bodies' are not reported)
-  std::vector<Ticks>& item_ticks = ws.item_ticks;
-  item_ticks.assign(num_soft + body_items + pairs.num_chunks(), 0);
-  const auto prepare = [&](size_t i) {
-    if (i < num_soft) {
-      if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
-      return;
-    }
-    const Ticks t = ticks_now();
-    if (i < num_soft + body_items) {
-      const size_t first = (i - num_soft) * kBodiesPerItem;
-      for (size_t b = first; b < std::min(n, first + kBodiesPerItem); ++b)
-        articulation_terms(*s.articulations[b], s.gravity, dt, s.params, terms[b]);
-    } else {
-      const size_t c = i - num_soft - body_items;
-      collide_pairs(s, pairs, c, chunk_contacts[c]);
-    }
-    item_ticks[i] = ticks_now() - t;
-  };
-  // by reference: a std::function holds a reference without allocating (the lambda is too large)
-  parallel(item_ticks.size(), std::cref(prepare));
-  // 2. the contact list, and soft contacts
-  const Ticks k2 = ticks_now();
-  std::vector<Contact>& contacts = ws.contacts;
-  join_contacts(chunk_contacts, contacts);
-  const std::vector<SoftContact> soft_contacts = detect_soft_contacts(s, s.params.contact_margin, dt);
-  collision_ticks += ticks_now() - k2;
-  Ticks kinematics_ticks = 0;
-  for (size_t i = num_soft; i < item_ticks.size(); ++i) (i < num_soft + body_items ? kinematics_ticks : collision_ticks) += item_ticks[i];
-  // 3. islands, each one implicit solve; a non-finite result throws before anything is committed
-  std::vector<int>& num_dofs = ws.num_dofs;
-  num_dofs.resize(n);
-  for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
-  std::vector<Island>& islands = ws.islands;
-  build_islands(num_dofs, contacts, soft_free, soft_contacts, islands, ws.island_scratch);
-  // each large rigid island gets its slot of the sparse pattern cache (kept for islands that
-  // still exist, by their bodies); the map is complete before the parallel solves
-  std::map<std::vector<int>, std::shared_ptr<SparseNewtonSystem>> sparse_systems;
-  std::vector<SparseNewtonSystem*>& sparse_cache = ws.sparse_cache;
-  sparse_cache.assign(islands.size(), nullptr);
-  for (size_t k = 0; k < islands.size(); ++k) {
-    if (!island_is_sparse(s, islands[k], s.params)) continue;
-    auto previous = s.sparse_systems.find(islands[k].bodies);
-    auto& slot = sparse_systems[islands[k].bodies];
-    if (previous != s.sparse_systems.end()) slot = std::move(previous->second);
-    if (!slot) slot = std::make_shared<SparseNewtonSystem>();
-    sparse_cache[k] = slot.get();
-  }
-  s.sparse_systems = std::move(sparse_systems);
-  // an island's size (contacts and DOFs) estimates its cost: largest first
-  std::vector<double>& island_size = ws.island_size;
-  island_size.resize(islands.size());
-  for (size_t k = 0; k < islands.size(); ++k) {
-    island_size[k] = static_cast<double>(islands[k].contacts.size() + islands[k].soft_contacts.size());
-    for (int b : islands[k].bodies) island_size[k] += num_dofs[b];
-    for (int b : islands[k].soft_bodies) island_size[k] += soft_free[b];
-  }
-  if (s.island_workspaces.size() < islands.size()) s.island_workspaces.resize(islands.size());
-  for (size_t k = 0; k < islands.size(); ++k)
-    if (!s.island_workspaces[k]) s.island_workspaces[k] = std::make_shared<IslandWorkspace>();
-  std::vector<IslandSolution>& solutions = ws.solutions;
-  solutions.resize(islands.size());
-  std::vector<VecX>&q_next = ws.q_next, &v_next = ws.v_next, &efforts_next = ws.efforts_next;
-  std::vector<ArticulationKinematics>& kin_next = ws.kin_next;
-  q_next.resize(n);
-  v_next.resize(n);
-  efforts_next.resize(n);
-  kin_next.resize(n);
-  const auto next_kinematics = [&](size_t b) {
-    const Articulation& a = *s.articulations[b];
-    update_kinematics(a.model, q_next[b], v_next[b], a.state.X_W_base, kin_next[b]);
-  };
-  // the next states of island k's bodies and their kinematics (committed below, once every
-  // island is checked)
-  auto next_states = [&](size_t k) {
-    for (size_t j = 0; j < islands[k].bodies.size(); ++j) {
-      const int b = islands[k].bodies[j];
-      v_next[b] = solutions[k].v[j];
-      efforts_next[b] = solutions[k].drive_efforts[j];
-      q_next[b] = s.articulations[b]->state.q;
-      integrate_positions(s.articulations[b]->model, q_next[b], v_next[b], dt);
-      next_kinematics(b);
-    }
-  };
-  const auto solve = [&](size_t k) {
-    solve_island(s, islands[k], terms, contacts, soft_contacts, soft_steps, dt, s.params, *s.island_workspaces[k], sparse_cache[k],
-                 solutions[k]);
-    next_states(k);
-  };
-  run_on_worker_threads_costliest_first(island_size, std::cref(solve));
-
-  // 4. next states; a fault (non-finite, unconverged) raises before anything is committed, or
+  Step step(s, *s.step_workspace, dt);
+  // 1. broad phase; then, together on the worker threads, the soft bodies' parts of the problem,
+  // the dynamics terms of every body and the narrow phase; then the contact lists
+  find_step_contact_pairs(step);
+  prepare_step_items(step);
+  gather_contacts(step);
+  // 2. islands, each one implicit solve, the costliest first
+  build_step_islands(step);
+  assign_sparse_systems(step);
+  estimate_island_costs(step);
+  solve_islands(step);
+  // 3. next states; a fault (non-finite, unconverged) raises before anything is committed, or
   // is clamped (step_guard.h)
   StepGuard guard(s);
-  for (size_t k = 0; k < islands.size(); ++k)
-    if (guard.check_island(islands[k], solutions[k])) next_states(k);  // clamped
-  for (size_t b = 0; b < n; ++b)
-    if (num_dofs[b] > 0 && guard.check_articulation(static_cast<int>(b), q_next[b], v_next[b])) next_kinematics(b);  // clamped
-  // soft bodies: next positions and node contact forces
-  std::vector<SoftState> soft_next(s.soft_bodies.size());
-  std::vector<VecX> node_forces(s.soft_bodies.size());
-  for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
-    soft_next[k] = s.soft_bodies[k]->state;
-    node_forces[k] = VecX::Zero(soft_next[k].x.size());
-  }
-  for (size_t i = 0; i < islands.size(); ++i) {
-    for (size_t j = 0; j < islands[i].soft_bodies.size(); ++j) {
-      const int k = islands[i].soft_bodies[j];
-      if (s.soft_bodies[k]->reduced) {
-        // the solve's positions and reduced state; a clamped island keeps the last ones, at rest
-        if (solutions[i].soft_reduced[j].q.size() > 0) soft_next[k] = std::move(solutions[i].soft_reduced[j]);
-        else soft_next[k].v.setZero(), soft_next[k].qd.setZero();
-      } else {
-        soft_next[k].v = solutions[i].soft_v[j];
-        soft_next[k].x += dt * soft_next[k].v;
-      }
-      guard.check_soft(k, soft_next[k]);
-    }
-    for (size_t j = 0; j < islands[i].soft_contacts.size(); ++j) {
-      const SoftContact& c = soft_contacts[islands[i].soft_contacts[j]];
-      for (int v = 0; v < 3; ++v)
-        if (c.nodes[v] >= 0) node_forces[c.soft].segment<3>(3 * c.nodes[v]) += c.weights[v] * solutions[i].soft_contact_force[j];
-    }
-  }
+  guard_rigid_states(step, guard);
+  next_soft_states(step, guard);
   guard.finish();
-  for (size_t b = 0; b < n; ++b) {
-    if (num_dofs[b] == 0) continue;
-    Articulation& a = *s.articulations[b];
-    // swapped: the old state's storage serves the next step's
-    a.drive_efforts.swap(efforts_next[b]);
-    a.state.q.swap(q_next[b]);
-    a.state.v.swap(v_next[b]);
-    std::swap(a.kin, kin_next[b]);
-  }
-
-  for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
-    s.soft_bodies[k]->state = std::move(soft_next[k]);
-    s.soft_bodies[k]->node_contact_forces = std::move(node_forces[k]);
-  }
-
-  // 5. contact results for queries
-  contact_records(s, islands, contacts, soft_contacts, solutions, ws);
-  SolverStats stats;
-  stats.num_islands = static_cast<int>(islands.size());
-  stats.num_contacts = static_cast<int>(contacts.size());
-  Ticks solve_ticks = 0;
-  for (const auto& st : soft_steps)
-    if (st) {
-      stats.soft_element_hessians += st->element_hessians();
-      stats.soft_factorizations += st->factorizations();
-    }
-  for (const IslandSolution& sol : solutions) {
-    stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
-    stats.total_newton_iterations += sol.iterations;
-    stats.residual = std::max(stats.residual, sol.residual);
-    stats.converged = stats.converged && sol.converged;
-    stats.num_constraints += sol.active_rows;
-    solve_ticks += sol.ticks;
-  }
+  commit_next_states(step);
+  // 4. contact results for queries, the scene's time, statistics
+  contact_records(step);
   s.time += dt;
   s.step_count += 1;
-  const Ticks total_ticks = ticks_now() - k0;
-  double tick_seconds = calibrated_tick_seconds;
-  if (tick_seconds > 0) {
-    stats.time_total = tick_seconds * static_cast<double>(total_ticks);
-  } else {
-    stats.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    tick_seconds = seconds_per_tick(stats.time_total, total_ticks);
-  }
-  stats.time_kinematics = tick_seconds * static_cast<double>(kinematics_ticks);
-  stats.time_collision = tick_seconds * static_cast<double>(collision_ticks);
-  stats.time_solve = tick_seconds * static_cast<double>(solve_ticks);
-  s.stats = stats;
+  step_stats(step, clock);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
