@@ -1,7 +1,6 @@
 // The Actor class: one class for every actor kind; methods that do not apply raise Error.
 
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include <climits>
 
@@ -97,7 +96,7 @@ void export_actor(nb::module_& m) {
       .def("get_name", [](const Actor& a) { return a.scene.actor_name(a.handle); })
       .def("get_type", [](const Actor& a) { return a.scene.actor_type(a.handle); })
       .def("get_scene", [](const Actor& a) { return a.scene; })
-      .def("get_root_transform", [](const Actor& a) { return TransformRT::from(a.scene.root_transform(a.handle)); },
+      .def("get_root_transform", [](const Actor& a) { return a.scene.root_transform(a.handle); },
            "World-from-actor transform (a link's own pose for a link actor).")
       .def("set_root_transform", [](Actor& a, nb::handle t) {
              a.scene.set_root_transform(a.handle, read_transform(t, "set_root_transform: transform"));
@@ -105,9 +104,9 @@ void export_actor(nb::module_& m) {
       .def("set_velocity", [](Actor& a, nb::handle linear, nb::handle angular) {
              a.scene.set_velocity(a.handle, read_vec3(linear, "set_velocity: linear"), read_vec3(angular, "set_velocity: angular"));
            }, "linear"_a, "angular"_a, "Velocity of the actor origin (m/s) and angular velocity (rad/s), world frame.")
-      .def("get_linear_velocity", [](const Actor& a) { const Vec6 v = a.scene.velocity(a.handle); return numpy_copy(v.data(), {3}); },
+      .def("get_linear_velocity", [](const Actor& a) { return Real3(a.scene.velocity(a.handle).head<3>()); },
            "Velocity of the actor origin (m/s), world frame.")
-      .def("get_angular_velocity", [](const Actor& a) { const Vec6 v = a.scene.velocity(a.handle); return numpy_copy(v.data() + 3, {3}); },
+      .def("get_angular_velocity", [](const Actor& a) { return Real3(a.scene.velocity(a.handle).tail<3>()); },
            "Angular velocity (rad/s), world frame.")
       .def("get_mass", [](const Actor& a) { return a.scene.mass(a.handle); })
       .def("get_num_dofs", [](const Actor& a) { return a.scene.num_dofs(a.handle); })
@@ -130,17 +129,13 @@ void export_actor(nb::module_& m) {
       .def("get_articulated_shape_info", [](const Actor& a) { return a.scene.articulated_shape_info(a.handle); })
       .def("get_articulated_link_transforms", [](const Actor& a, nb::handle out) -> nb::object {
              const std::vector<Transform> X = a.scene.link_transforms(a.handle);
-             if (out.is_none()) {
-               DynamicArrayTransformRT arr;
-               for (const Transform& x : X) arr.items.push_back(TransformRT::from(x));
-               return nb::cast(arr);
-             }
-             DynamicArrayTransformRT* arr = nullptr;
+             if (out.is_none()) return nb::cast(X);
+             std::vector<TransformRT>* arr = nullptr;
              if (!nb::try_cast(out, arr) || !arr) throw Error("get_articulated_link_transforms: out must be a DynamicArrayTransformRT");
-             if (arr->items.size() != X.size())
+             if (arr->size() != X.size())
                throw Error("get_articulated_link_transforms: out must have one entry per link (" + std::to_string(X.size()) +
-                           "), got " + std::to_string(arr->items.size()));
-             for (size_t i = 0; i < X.size(); ++i) arr->items[i] = TransformRT::from(X[i]);
+                           "), got " + std::to_string(arr->size()));
+             for (size_t i = 0; i < X.size(); ++i) (*arr)[i] = X[i];
              return nb::borrow(out);
            }, "out"_a.none() = nb::none(), "Fills `out` with world-from-link transforms in link order.")
       .def("get_articulated_pose", [](const Actor& a, nb::handle out) { return fill_out(out, a.scene.pose(a.handle), "get_articulated_pose: out"); },
@@ -249,9 +244,9 @@ void export_actor(nb::module_& m) {
            }, "query_type"_a,
            "Registers a query; its results are valid after the next scene.step(). Returns the query handle.")
       .def("cancel_query", [](Actor& a, std::int64_t q) { a.scene.cancel_query(a.handle, q); }, "query_handle"_a)
-      .def("get_contact_force_world", [](const Actor& a) { const Vec3 f = a.scene.contact_force(a.handle); return numpy_copy(f.data(), {3}); },
+      .def("get_contact_force_world", [](const Actor& a) { return a.scene.contact_force(a.handle); },
            "Total contact force applied TO this actor by everything touching it (N, world). Needs TOTAL_CONTACT_FORCE.")
-      .def("get_contact_torque_world", [](const Actor& a) { const Vec3 t = a.scene.contact_torque(a.handle); return numpy_copy(t.data(), {3}); },
+      .def("get_contact_torque_world", [](const Actor& a) { return a.scene.contact_torque(a.handle); },
            "Total contact torque about the actor's origin (N m, world). Needs TOTAL_CONTACT_FORCE.")
       .def("get_contact_force_from_actor_world", [](const Actor& a, nb::handle other) {
              const Vec3 f = a.scene.contact_force_from(a.handle, actor_handle_of(other, "get_contact_force_from_actor_world: other"));

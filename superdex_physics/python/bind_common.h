@@ -14,6 +14,7 @@
 #include "superdex/physics/real.h"
 #include "superdex/physics/scene.h"
 #include "superdex/physics/transform.h"
+#include "superdex/physics/types.h"
 
 namespace superdex::python {
 
@@ -42,26 +43,6 @@ Vec3 read_vec3(nb::handle obj, std::string_view arg);
 // the build's dtype or a DynamicArrayReal. Raises superdex.physics.Error otherwise.
 real* out_buffer(nb::handle out, std::string_view arg, size_t n);
 
-// Python-facing rotation and transform values.
-struct Quaternion {
-  real x = 0, y = 0, z = 0, w = 1;
-  Quat to_eigen() const { return Quat(w, x, y, z); }
-  static Quaternion from_eigen(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
-};
-struct TransformRT {
-  Quaternion rotation;
-  Vec3 translation = Vec3::Zero();
-  Transform to_transform() const { return {rotation.to_eigen().normalized(), translation}; }
-  static TransformRT from(const Transform& X) { return {Quaternion::from_eigen(X.rotation), X.translation}; }
-};
-// A fixed-size array that the engine fills in place.
-struct DynamicArrayTransformRT {
-  std::vector<TransformRT> items;
-};
-struct DynamicArrayReal {
-  std::vector<real> values;
-};
-
 // An actor as seen from Python: its scene and handle.
 struct Actor {
   Scene scene;
@@ -77,6 +58,14 @@ nlohmann::json to_json(nb::handle obj, const std::string& path);
 struct SceneState {
   std::vector<std::uint8_t> bytes;
 };
+
+// A Python list of the elements of `items` (for vectors of types without a DynamicArray).
+template <class T>
+nb::list to_list(const std::vector<T>& items) {
+  nb::list l;
+  for (const T& x : items) l.append(nb::cast(x));
+  return l;
+}
 
 // The handle of an Actor object or an integer handle (bind_scene.cpp).
 ActorHandle actor_handle_of(nb::handle obj, const std::string& arg);
@@ -100,6 +89,8 @@ nb::object shape_object(ShapeHandle handle);
 Transform read_transform(nb::handle obj, const std::string& arg);
 
 void export_types(nb::module_& m);
+void export_values(nb::module_& m);
+void export_containers(nb::module_& m);
 void export_engine(nb::module_& m);
 void export_debug_server(nb::module_& m);
 void export_scene(nb::module_& m);

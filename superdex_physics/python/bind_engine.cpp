@@ -1,7 +1,6 @@
 // Module functions: engine lifecycle, scenes and primitive shapes.
 
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "superdex/physics/engine.h"

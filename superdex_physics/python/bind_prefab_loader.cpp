@@ -2,7 +2,6 @@
 
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "superdex/physics/prefab.h"

@@ -2,7 +2,6 @@
 
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include <nlohmann/json.hpp>
 
@@ -133,7 +132,7 @@ void export_scene(nb::module_& m) {
       .def("get_handle", &Scene::handle)
       .def("set_gravity", [](Scene& s, nb::handle g) { s.set_gravity(read_vec3(g, "set_gravity: gravity")); }, "gravity"_a,
            "Gravity in m/s^2, world frame (Z up).")
-      .def("get_gravity", [](const Scene& s) { const Vec3 g = s.gravity(); return numpy_copy(g.data(), {3}); })
+      .def("get_gravity", [](const Scene& s) { return s.gravity(); })
       .def("step", [](Scene& s, nb::handle dt) {
              double x;
              if (!nb::try_cast(dt, x)) throw Error(std::string("step: dt: expected a number of seconds, got ") + nb::inst_name(dt).c_str());

@@ -1,4 +1,4 @@
-// Value types: Error, Quaternion, TransformRT, the dynamic arrays, enums, and array helpers.
+// Error, enums, and the array helpers shared by the binding files.
 
 #include <cstring>
 
@@ -87,11 +87,11 @@ real* out_buffer(nb::handle out, std::string_view arg, size_t n) {
   // the common case first: a writable contiguous array of the right dtype and length
   nb::ndarray<real, nb::ndim<1>, nb::c_contig> fast;
   if (nb::try_cast(out, fast, false) && fast.shape(0) == n) return fast.data();
-  if (nb::isinstance<DynamicArrayReal>(out)) {
-    auto& d = nb::cast<DynamicArrayReal&>(out);
-    if (d.values.size() != n)
-      throw Error(std::string(arg) + ": expected a DynamicArrayReal of length " + std::to_string(n) + ", got length " + std::to_string(d.values.size()));
-    return d.values.data();
+  if (nb::isinstance<std::vector<real>>(out)) {
+    auto& d = nb::cast<std::vector<real>&>(out);
+    if (d.size() != n)
+      throw Error(std::string(arg) + ": expected a DynamicArrayReal of length " + std::to_string(n) + ", got length " + std::to_string(d.size()));
+    return d.data();
   }
   const std::string expect = "a writable, contiguous numpy array of dtype " + std::string(real_dtype_name()) +
                              " and shape (" + std::to_string(n) + ",)";
@@ -114,28 +114,10 @@ Transform read_transform(nb::handle obj, const std::string& arg) {
   TransformRT t;
   if (!nb::try_cast(obj, t)) throw Error(arg + ": expected a TransformRT");
   if (!t.translation.allFinite()) throw Error(arg + ".translation: must be finite");
-  const Quat q = t.rotation.to_eigen();
+  const Quat q = t.rotation;
   if (!q.coeffs().allFinite() || q.norm() < real(1e-6)) throw Error(arg + ".rotation: must be a finite, non-zero quaternion");
-  return t.to_transform();
+  return Transform{q.normalized(), t.translation};
 }
-
-namespace {
-
-Quaternion read_quaternion(nb::handle obj, const std::string& arg) {
-  Quaternion q;
-  if (nb::try_cast(obj, q)) return q;
-  const VecX v = read_vector(obj, arg, 4);
-  return {v[0], v[1], v[2], v[3]};
-}
-
-template <class T>
-size_t wrap_index(long i, size_t n) {
-  if (i < 0) i += static_cast<long>(n);
-  if (i < 0 || static_cast<size_t>(i) >= n) throw nb::index_error("index out of range");
-  return static_cast<size_t>(i);
-}
-
-}  // namespace
 
 void export_types(nb::module_& m) {
   nb::exception<superdex::Error> error_type(m, "Error", PyExc_RuntimeError);
@@ -154,70 +136,6 @@ void export_types(nb::module_& m) {
         }
       },
       error_type.ptr());
-
-  nb::class_<Quaternion>(m, "Quaternion", "A rotation as a unit quaternion, stored x, y, z, w.")
-      .def(nb::init<>())
-      .def("__init__", [](Quaternion* self, real x, real y, real z, real w) { new (self) Quaternion{x, y, z, w}; },
-           "x"_a, "y"_a, "z"_a, "w"_a)
-      .def_static("from_axis_angle", [](nb::handle axis, real angle) {
-            const Vec3 a = read_vec3(axis, "from_axis_angle: axis");
-            if (a.norm() < real(1e-12) || !a.allFinite()) throw Error("from_axis_angle: axis must be a finite, non-zero vector");
-            if (!std::isfinite(angle)) throw Error("from_axis_angle: angle must be finite");
-            return Quaternion::from_eigen(Quat(Eigen::AngleAxis<real>(angle, a.normalized())));
-          }, "axis"_a, "angle"_a, "Rotation of `angle` radians about `axis`.")
-      .def_rw("x", &Quaternion::x).def_rw("y", &Quaternion::y).def_rw("z", &Quaternion::z).def_rw("w", &Quaternion::w)
-      .def("__len__", [](const Quaternion&) { return 4; })
-      .def("__getitem__", [](const Quaternion& q, long i) {
-            const real v[4] = {q.x, q.y, q.z, q.w};
-            return v[wrap_index<real>(i, 4)];
-          })
-      .def("__array__", [](const Quaternion& q, nb::handle, nb::handle) {
-            const real v[4] = {q.x, q.y, q.z, q.w};
-            return numpy_copy(v, {4});
-          }, "dtype"_a.none() = nb::none(), "copy"_a.none() = nb::none())
-      .def("__repr__", [](const Quaternion& q) {
-            return "Quaternion(" + std::to_string(q.x) + ", " + std::to_string(q.y) + ", " + std::to_string(q.z) + ", " + std::to_string(q.w) + ")";
-          });
-
-  nb::class_<TransformRT>(m, "TransformRT", "A rigid transform: rotation (Quaternion) then translation (m).")
-      .def("__init__", [](TransformRT* self, nb::handle rotation, nb::handle translation) {
-            new (self) TransformRT{};
-            if (!rotation.is_none()) self->rotation = read_quaternion(rotation, "TransformRT: rotation");
-            if (!translation.is_none()) self->translation = read_vec3(translation, "TransformRT: translation");
-          }, "rotation"_a.none() = nb::none(), "translation"_a.none() = nb::none())
-      .def_prop_rw("rotation", [](const TransformRT& t) { return t.rotation; },
-                   [](TransformRT& t, nb::handle q) { t.rotation = read_quaternion(q, "TransformRT.rotation"); })
-      .def_prop_rw("translation", [](const TransformRT& t) { return numpy_copy(t.translation.data(), {3}); },
-                   [](TransformRT& t, nb::handle v) { t.translation = read_vec3(v, "TransformRT.translation"); },
-                   nb::rv_policy::automatic)
-      .def("__repr__", [](const TransformRT& t) {
-            return "TransformRT(rotation=[" + std::to_string(t.rotation.x) + ", " + std::to_string(t.rotation.y) + ", " +
-                   std::to_string(t.rotation.z) + ", " + std::to_string(t.rotation.w) + "], translation=[" +
-                   std::to_string(t.translation.x()) + ", " + std::to_string(t.translation.y()) + ", " + std::to_string(t.translation.z()) + "])";
-          });
-
-  nb::class_<DynamicArrayTransformRT>(m, "DynamicArrayTransformRT", "A fixed-size array of TransformRT filled in place by the engine.")
-      .def("__init__", [](DynamicArrayTransformRT* self, long n) {
-            if (n < 0) throw Error("DynamicArrayTransformRT: size must be >= 0, got " + std::to_string(n));
-            new (self) DynamicArrayTransformRT{std::vector<TransformRT>(static_cast<size_t>(n))};
-          }, "size"_a)
-      .def("__len__", [](const DynamicArrayTransformRT& a) { return a.items.size(); })
-      .def("__getitem__", [](const DynamicArrayTransformRT& a, long i) { return a.items[wrap_index<TransformRT>(i, a.items.size())]; })
-      .def("__setitem__", [](DynamicArrayTransformRT& a, long i, const TransformRT& t) { a.items[wrap_index<TransformRT>(i, a.items.size())] = t; });
-
-  nb::class_<DynamicArrayReal>(m, "DynamicArrayReal", "A fixed-size array of reals filled in place; np.asarray() gives a view.")
-      .def("__init__", [](DynamicArrayReal* self, long n) {
-            if (n < 0) throw Error("DynamicArrayReal: size must be >= 0, got " + std::to_string(n));
-            new (self) DynamicArrayReal{std::vector<real>(static_cast<size_t>(n), 0)};
-          }, "size"_a)
-      .def("__len__", [](const DynamicArrayReal& a) { return a.values.size(); })
-      .def("__getitem__", [](const DynamicArrayReal& a, long i) { return a.values[wrap_index<real>(i, a.values.size())]; })
-      .def("__setitem__", [](DynamicArrayReal& a, long i, real v) { a.values[wrap_index<real>(i, a.values.size())] = v; })
-      .def("__array__", [](nb::handle self, nb::handle, nb::handle) {
-            auto& a = nb::cast<DynamicArrayReal&>(self);
-            const size_t shape[1] = {a.values.size()};
-            return NumpyArray(a.values.data(), 1, shape, self);
-          }, "dtype"_a.none() = nb::none(), "copy"_a.none() = nb::none());
 
   nb::enum_<ActorType>(m, "ActorType")
       .value("RIGID", ActorType::Rigid).value("SOFT", ActorType::Soft)

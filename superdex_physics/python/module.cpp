@@ -6,6 +6,8 @@
 NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   m.doc() = "SuperDex native engine";
   superdex::python::export_types(m);
+  superdex::python::export_values(m);
+  superdex::python::export_containers(m);
   superdex::python::export_engine(m);
   superdex::python::export_debug_server(m);
   superdex::python::export_scene(m);

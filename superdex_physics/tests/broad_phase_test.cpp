@@ -17,7 +17,7 @@ namespace superdex::physics::test {
 namespace {
 
 // The eight corners of local bounds.
-std::array<Vec3, 8> corners(const Aabb& box) {
+std::array<Vec3, 8> corners(const Bounds& box) {
   std::array<Vec3, 8> out;
   for (int k = 0; k < 8; ++k)
     out[k] = Vec3(k & 1 ? box.max.x() : box.min.x(), k & 2 ? box.max.y() : box.min.y(), k & 4 ? box.max.z() : box.min.z());
@@ -30,9 +30,9 @@ SpatialTransform random_pose(std::mt19937& rng) {
   return {Quat(Eigen::AngleAxis<real>(3 * u(rng), axis)).toRotationMatrix(), Vec3(u(rng), u(rng), u(rng))};
 }
 
-Aabb random_bounds(std::mt19937& rng) {
+Bounds random_bounds(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1, 1), size(0.01, 0.5);
-  Aabb box;
+  Bounds box;
   box.min = Vec3(u(rng), u(rng), u(rng));
   box.max = box.min + Vec3(size(rng), size(rng), size(rng));
   return box;
@@ -41,11 +41,11 @@ Aabb random_bounds(std::mt19937& rng) {
 TEST(BroadPhase, WorldBoundsAreTheBoundsOfThePosedCorners) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 50; ++trial) {
-    const Aabb local = random_bounds(rng);
+    const Bounds local = random_bounds(rng);
     const SpatialTransform X = random_pose(rng);
-    Aabb expected;
+    Bounds expected;
     for (const Vec3& c : corners(local)) expected.extend(X.R * c + X.p);
-    const Aabb bounds = world_bounds(local, X);
+    const Bounds bounds = world_bounds(local, X);
     EXPECT_LT((bounds.min - expected.min).norm(), 1e-12) << "trial " << trial;
     EXPECT_LT((bounds.max - expected.max).norm(), 1e-12) << "trial " << trial;
   }

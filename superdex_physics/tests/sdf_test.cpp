@@ -196,7 +196,7 @@ TEST(MeshGeometry, SurfaceSamplesCoverTheSurface) {
     for (const Vec3& s : samples) nearest = std::min(nearest, (s.cast<double>() - p).norm());
     EXPECT_LT(nearest, 0.04) << p.transpose();
   }
-  const Aabb box = mesh_local_aabb(shape);
+  const Bounds box = mesh_local_aabb(shape);
   EXPECT_TRUE(box.min.isApprox(Vec3::Constant(-0.5)));
   EXPECT_TRUE(box.max.isApprox(Vec3::Constant(0.5)));
 }

@@ -13,7 +13,6 @@ NB_MAKE_OPAQUE(std::vector<superdex::physics::JointDesc>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::ComponentDecl>)
 NB_MAKE_OPAQUE(std::vector<std::vector<superdex::robotics::ComponentDecl>>)
 
-#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 
@@ -77,7 +76,7 @@ void export_prefab(nb::module_& m) {
       .def_rw("type", &JointDesc::type)
       .def_prop_rw("axis", [](const JointDesc& j) { return numpy_copy(j.axis.data(), {3}); },
                    [](JointDesc& j, nb::handle v) { j.axis = read_vec3(v, "axis"); }, nb::rv_policy::automatic)
-      .def_prop_rw("parent_link_from_joint", [](const JointDesc& j) { return TransformRT::from(j.parent_link_from_joint); },
+      .def_prop_rw("parent_link_from_joint", [](const JointDesc& j) { return j.parent_link_from_joint; },
                    [](JointDesc& j, nb::handle t) { j.parent_link_from_joint = read_transform(t, "parent_link_from_joint"); })
       .def_prop_rw("min_limit", [](const JointDesc& j) { return optional_vec3(j.min_limit); },
                    [](JointDesc& j, nb::handle v) { j.min_limit = read_optional_vec3(v, "min_limit"); })
@@ -111,7 +110,7 @@ void export_prefab(nb::module_& m) {
                      const VecX x = read_vector(v, "default_pose");
                      p.articulation.default_pose.assign(x.data(), x.data() + x.size());
                    }, "joint positions in DOF order after the root joint's DOFs")
-      .def_prop_rw("world_from_root", [](const BotPrefab& p) { return TransformRT::from(p.articulation.world_from_root); },
+      .def_prop_rw("world_from_root", [](const BotPrefab& p) { return p.articulation.world_from_root; },
                    [](BotPrefab& p, nb::handle t) { p.articulation.world_from_root = read_transform(t, "world_from_root"); })
       .def_prop_ro("sensors", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.sensors; },
                    nb::rv_policy::reference_internal, "per link: the sensors declared on it")

@@ -2,7 +2,6 @@
 // (python_component.h), typed component handles, bots and their pipelines, the bot loaders.
 
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "python_component.h"

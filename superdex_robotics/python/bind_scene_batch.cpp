@@ -4,7 +4,6 @@
 
 #include <nanobind/stl/array.h>
 #include <nanobind/stl/string.h>
-#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "superdex/robotics/scene_batch.h"

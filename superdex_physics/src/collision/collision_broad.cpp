@@ -20,11 +20,11 @@ ContactMaterial combine_materials(const ContactMaterial& a, const ContactMateria
   return m;
 }
 
-Aabb world_bounds(const Aabb& local, const SpatialTransform& X) {
+Bounds world_bounds(const Bounds& local, const SpatialTransform& X) {
   // the posed centre, and the half extents through the rotation's absolute values
   const Vec3 centre = X.R * (real(0.5) * (local.min + local.max)) + X.p;
   const Vec3 half = X.R.cwiseAbs() * (real(0.5) * (local.max - local.min));
-  Aabb out;
+  Bounds out;
   out.min = centre - half;
   out.max = centre + half;
   return out;

@@ -27,7 +27,7 @@ struct PosedCollider {
   int body = 0, collider = 0;  // SceneData::articulations index; index in its model's colliders
   int link = 0;                // the collider's link
   SpatialTransform X_WS;
-  Aabb box;
+  Bounds box;
   real sweep = 0;  // how far its surface can move within the step (m)
 };
 
@@ -61,7 +61,7 @@ void join_contacts(const std::vector<std::vector<Contact>>& chunks, std::vector<
 std::vector<Contact> detect_contacts(const SceneData& scene, real margin, real dt);
 
 // World bounds of local bounds posed by X.
-Aabb world_bounds(const Aabb& local, const SpatialTransform& X);
+Bounds world_bounds(const Bounds& local, const SpatialTransform& X);
 // Whether contact between these two actors was switched off.
 bool actor_pair_disabled(const SceneData& scene, ActorHandle x, ActorHandle y);
 // How far a collider's surface can move within dt at its link's current velocity (m).

@@ -113,20 +113,20 @@ std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape) {
       shape);
 }
 
-Aabb shape_local_aabb(const ShapeGeometry& shape) {
+Bounds shape_local_aabb(const ShapeGeometry& shape) {
   return std::visit(Overloaded{[](const PlaneShape&) {
-                                 Aabb b;
+                                 Bounds b;
                                  b.min = Vec3::Constant(-std::numeric_limits<real>::infinity());
                                  b.max = Vec3::Constant(std::numeric_limits<real>::infinity());
                                  return b;
                                },
                                [](const SphereShape& s) {
-                                 return Aabb{s.center - Vec3::Constant(s.radius), s.center + Vec3::Constant(s.radius)};
+                                 return Bounds{s.center - Vec3::Constant(s.radius), s.center + Vec3::Constant(s.radius)};
                                },
-                               [](const BoxShape& s) { return Aabb{-s.half_extents, s.half_extents}; },
+                               [](const BoxShape& s) { return Bounds{-s.half_extents, s.half_extents}; },
                                [](const CapsuleShape& s) {
                                  const Vec3 e(s.radius, s.radius, s.radius + s.half_length);
-                                 return Aabb{-e, e};
+                                 return Bounds{-e, e};
                                },
                                [](const MeshShape& s) { return mesh_local_aabb(s); }},
                     shape);

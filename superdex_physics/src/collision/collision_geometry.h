@@ -10,11 +10,11 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-struct Aabb {
+struct Bounds {
   Vec3 min = Vec3::Constant(std::numeric_limits<real>::infinity());
   Vec3 max = Vec3::Constant(-std::numeric_limits<real>::infinity());
   void extend(const Vec3& p) { min = min.cwiseMin(p), max = max.cwiseMax(p); }
-  bool overlaps(const Aabb& o) const { return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all(); }
+  bool overlaps(const Bounds& o) const { return (min.array() <= o.max.array()).all() && (o.min.array() <= max.array()).all(); }
 };
 
 // Signed distance (m) from p_S to the surface, negative inside; *grad_S (unit, outward) when non-null.
@@ -33,12 +33,12 @@ WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS);
 std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape);
 
 // Bounding box in the shape frame; infinite for planes.
-Aabb shape_local_aabb(const ShapeGeometry& shape);
+Bounds shape_local_aabb(const ShapeGeometry& shape);
 
 // Mesh implementations (mesh_geometry.cpp).
 real mesh_signed_distance(const MeshShape& mesh, const Vec3& p_S, Vec3* grad_S);
 std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh);
-Aabb mesh_local_aabb(const MeshShape& mesh);
+Bounds mesh_local_aabb(const MeshShape& mesh);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -7,20 +7,17 @@
 
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
+#include "shape/tet_mesh_surface.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/recording.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-std::int64_t next_handle() {
-  static std::atomic<std::int64_t> counter{0};
-  return ++counter;
-}
-
 EngineData& engine_data() {
-  static EngineData data;
-  return data;
+  // never destroyed: shape handles held by Python objects may be released while the process exits
+  static EngineData* data = new EngineData();
+  return *data;
 }
 
 void initialize(int num_worker_threads) {
@@ -43,7 +40,6 @@ void shutdown() {
   e.scenes.clear();
   ++e.scenes_version;
   e.shapes.clear();
-  e.tet_meshes.clear();
   e.arena.reset();
   e.initialized = false;
 }
@@ -113,28 +109,86 @@ SceneData& scene_data(SceneHandle handle) {
   return *it->second;
 }
 
+namespace {
+
+ShapeHandle register_shape(std::shared_ptr<const ShapeData> data, const char* what) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  require_initialized(e, what);
+  const std::int64_t id = next_handle();
+  e.shapes.emplace(id, ShapeEntry{std::move(data), 1});
+  return ShapeHandle::adopt(id);
+}
+
+// Adds `delta` references to a live shape; the shape is released when none remain.
+void add_shape_references(std::int64_t id, int delta) {
+  if (id == 0) return;
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  auto it = e.shapes.find(id);
+  if (it == e.shapes.end()) return;
+  it->second.references += delta;
+  if (it->second.references <= 0) e.shapes.erase(it);
+}
+
+}  // namespace
+
+ShapeHandle::ShapeHandle(std::int64_t value) : value_(value) { add_shape_references(value_, 1); }
+ShapeHandle::ShapeHandle(const ShapeHandle& other) : value_(other.value_) { add_shape_references(value_, 1); }
+ShapeHandle& ShapeHandle::operator=(const ShapeHandle& other) {
+  if (this != &other) set_value(other.value_);
+  return *this;
+}
+ShapeHandle& ShapeHandle::operator=(ShapeHandle&& other) noexcept {
+  if (this != &other) {
+    add_shape_references(value_, -1);
+    value_ = other.value_;
+    other.value_ = 0;
+  }
+  return *this;
+}
+ShapeHandle::~ShapeHandle() { add_shape_references(value_, -1); }
+void ShapeHandle::set_value(std::int64_t value) {
+  add_shape_references(value, 1);
+  add_shape_references(value_, -1);
+  value_ = value;
+}
+
 ShapeHandle create_shape(const ShapeGeometry& geometry) {
   validate_shape(geometry, "create_shape");
-  EngineData& e = engine_data();
-  std::unique_lock lock(e.mutex);
-  require_initialized(e, "create_shape");
-  const ShapeHandle h = next_handle();
-  e.shapes.emplace(h, geometry);
-  return h;
+  auto data = std::make_shared<ShapeData>();
+  data->geometry = geometry;
+  return register_shape(std::move(data), "create_shape");
 }
 
-void release_shape(ShapeHandle shape) {
+void release_shape(const ShapeHandle& shape) {
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
-  if (e.shapes.erase(shape) == 0 && e.tet_meshes.erase(shape) == 0) throw Error("release_shape: shape " + std::to_string(shape) + " does not exist (already released?)");
+  e.shapes.erase(shape.value());
 }
 
-ShapeGeometry shape_geometry(ShapeHandle shape) {
+int num_shapes() {
   EngineData& e = engine_data();
   std::shared_lock lock(e.mutex);
-  auto it = e.shapes.find(shape);
-  if (it == e.shapes.end()) throw Error("shape " + std::to_string(shape) + " does not exist (released, or the engine was shut down)");
-  return it->second;
+  return static_cast<int>(e.shapes.size());
+}
+
+std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std::string& where) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  auto it = e.shapes.find(shape.value());
+  if (it == e.shapes.end())
+    throw Error(where + ": shape " + std::to_string(shape.value()) +
+                (shape.value() == 0 ? " is not set (an invalid ShapeHandle)" : " does not exist (released, or the engine was shut down)"));
+  return it->second.data;
+}
+
+ShapeHandle add_shape_reference_to(std::shared_ptr<const ShapeData> data) { return register_shape(std::move(data), "get_reference_shape"); }
+
+ShapeGeometry shape_geometry(const ShapeHandle& shape) {
+  const auto data = shape_data(shape, "shape_geometry");
+  if (!data->geometry) throw Error("shape " + std::to_string(shape.value()) + " has no geometry a rigid body can carry");
+  return *data->geometry;
 }
 
 ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where) {
@@ -155,20 +209,16 @@ ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where) {
     if (volume < 0) throw Error(where + ": tetrahedron " + std::to_string(t) + " is inverted (negative volume)");
     if (!(volume > real(1e-9) * scale * scale * scale)) throw Error(where + ": tetrahedron " + std::to_string(t) + " is degenerate (volume ~ 0)");
   }
-  EngineData& e = engine_data();
-  std::unique_lock lock(e.mutex);
-  require_initialized(e, "create_tet_mesh_shape");
-  const ShapeHandle h = next_handle();
-  e.tet_meshes.emplace(h, std::make_shared<const TetMesh>(std::move(mesh)));
-  return h;
+  auto data = std::make_shared<ShapeData>();
+  data->tet_mesh = std::make_shared<const TetMesh>(std::move(mesh));
+  data->geometry = tet_mesh_boundary_shape(*data->tet_mesh, where);
+  return register_shape(std::move(data), "create_tet_mesh_shape");
 }
 
-std::shared_ptr<const TetMesh> tet_mesh_shape(ShapeHandle shape) {
-  EngineData& e = engine_data();
-  std::shared_lock lock(e.mutex);
-  auto it = e.tet_meshes.find(shape);
-  if (it == e.tet_meshes.end()) throw Error("shape " + std::to_string(shape) + " is not a tet mesh (create it with create_tet_mesh_shape)");
-  return it->second;
+std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape) {
+  const auto data = shape_data(shape, "tet_mesh_shape");
+  if (!data->tet_mesh) throw Error("shape " + std::to_string(shape.value()) + " is not a tet mesh (create it with create_tet_mesh_shape)");
+  return data->tet_mesh;
 }
 
 void refresh_kinematics(Articulation& a) { update_kinematics(a.model, a.state, a.kin); }

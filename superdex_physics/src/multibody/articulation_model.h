@@ -37,7 +37,7 @@ struct LinkCollider {
   ContactMaterial material;
   int layer = 0;
   std::vector<Vec3> samples_S;     // surface samples in the shape frame
-  Aabb aabb_S;                     // bounds in the shape frame
+  Bounds aabb_S;                     // bounds in the shape frame
 };
 
 struct ArticulationModel {

@@ -52,7 +52,7 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
   a->state = initial_state(a->model);
   refresh_kinematics(*a);
   for (int i = 0; i < a->model.num_links; ++i) {
-    const ActorHandle link = a->is_rigid ? a->handle : next_handle();
+    const ActorHandle link = a->is_rigid ? a->handle : ActorHandle(next_handle());
     a->link_handles.push_back(link);
     if (!a->is_rigid) s.actors[link] = {a.get(), i};
   }
@@ -64,12 +64,14 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
 
 }  // namespace
 
-ActorHandle Scene::create_rigid_actor(const std::string& name, ShapeHandle shape, bool is_static, const Transform& X_WL,
+ActorHandle Scene::create_rigid_actor(const std::string& name, const ShapeHandle& shape, bool is_static, const Transform& X_WL,
                                       std::optional<real> density, std::optional<real> mass, const ContactMaterial& contact,
                                       int layer, ColliderType collider_type) {
   SceneData& s = scene_data(handle_);
-  const ShapeGeometry geometry = shape_geometry(shape);
   const std::string source = "create_rigid_actor('" + name + "')";
+  std::shared_ptr<const ShapeData> data = shape_data(shape, source + ": shape");
+  if (!data->geometry) throw Error(source + ": shape: it has no geometry a rigid body can carry");
+  const ShapeGeometry& geometry = *data->geometry;
   if (!is_static && std::holds_alternative<PlaneShape>(geometry))
     throw Error(source + ": shape: a plane is unbounded and can only be static (pass is_static=True)");
   if (mass && density) throw Error(source + ": give mass or density, not both");
@@ -98,7 +100,7 @@ ActorHandle Scene::create_rigid_actor(const std::string& name, ShapeHandle shape
   auto a = std::make_unique<Articulation>();
   a->is_rigid = true;
   a->is_static = is_static;
-  a->shape = shape;
+  a->shape = std::move(data);
   a->model = build_articulation_model(desc, source);
   return add_articulation(s, std::move(a));
 }
@@ -110,7 +112,7 @@ ActorHandle Scene::create_articulated_actor(const ArticulationDesc& desc, const 
   return add_articulation(s, std::move(a));
 }
 
-ActorHandle Scene::create_soft_actor(const std::string& name, ShapeHandle tet_mesh, const SoftMaterial& material,
+ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle& tet_mesh, const SoftMaterial& material,
                                      const Transform& X_WL, const std::vector<int>& fixed_nodes) {
   SceneData& s = scene_data(handle_);
   if (!X_WL.translation.allFinite() || !X_WL.rotation.coeffs().allFinite() || X_WL.rotation.norm() < real(1e-6))

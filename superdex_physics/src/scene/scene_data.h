@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <atomic>
 #include <shared_mutex>
 #include <unordered_map>
@@ -24,12 +25,23 @@ class SparseNewtonSystem;  // sparse_newton_system.h
 struct IslandWorkspace;    // island_solver.h
 struct StepWorkspace;      // step_workspace.h
 
+// What a registered shape holds: its geometry as a rigid body carries it (primitives, or a
+// triangle mesh: a tet mesh's boundary) and, for tet meshes, the volume mesh soft bodies use.
+struct ShapeData {
+  std::optional<ShapeGeometry> geometry;
+  std::shared_ptr<const TetMesh> tet_mesh;
+};
+struct ShapeEntry {
+  std::shared_ptr<const ShapeData> data;
+  int references = 1;  // the ShapeHandles that name it
+};
+
 struct Articulation {
   ActorHandle handle = 0;
   int layer = 0;           // rigid bodies: collision layer
   bool is_rigid = false;   // created by create_rigid_actor
   bool is_static = false;  // welded rigid body
-  ShapeHandle shape = 0;   // rigid bodies: the shape they carry
+  std::shared_ptr<const ShapeData> shape;  // rigid bodies: the shape they carry
   ArticulationModel model;
   ArticulationState state;
   ArticulationKinematics kin;  // always current with `state`
@@ -128,11 +140,14 @@ struct EngineData {
   // bumped (under the unique lock) whenever `scenes` changes: scene_data()'s per-thread cache of
   // its last lookup is valid while this is unchanged
   std::atomic<std::uint64_t> scenes_version{0};
-  std::map<ShapeHandle, ShapeGeometry> shapes;
-  std::map<ShapeHandle, std::shared_ptr<const TetMesh>> tet_meshes;
+  std::unordered_map<std::int64_t, ShapeEntry> shapes;
 };
 
 EngineData& engine_data();
+// The data of a live shape; throws superdex::Error "<where>: ..." for an invalid or released handle.
+std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std::string& where);
+// A new handle (one reference) to existing shape data.
+ShapeHandle add_shape_reference_to(std::shared_ptr<const ShapeData> data);
 // The live scene with this handle; throws superdex::Error if it does not exist.
 SceneData& scene_data(SceneHandle handle);
 // Recomputes kinematics after a state change.

@@ -88,7 +88,7 @@ std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh) {
   if (!mesh.mesh) return samples;
   const TriangleMesh& m = *mesh.mesh;
   samples = m.vertices;
-  const Aabb box = mesh_local_aabb(mesh);
+  const Bounds box = mesh_local_aabb(mesh);
   // spacing: 4% of the longest side of the bounding box
   const real spacing = real(0.04) * (box.max - box.min).maxCoeff();
   if (!(spacing > 0)) return samples;
@@ -112,8 +112,8 @@ std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh) {
   return samples;
 }
 
-Aabb mesh_local_aabb(const MeshShape& mesh) {
-  Aabb box;
+Bounds mesh_local_aabb(const MeshShape& mesh) {
+  Bounds box;
   if (mesh.mesh)
     for (const Vec3& v : mesh.mesh->vertices) box.extend(v);
   return box;

@@ -1,6 +1,7 @@
 // Soft bodies: building from a tet mesh, and the implicit Newton step (soft_body.h).
 
 #include "soft/soft_body.h"
+#include "shape/tet_mesh_surface.h"
 
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -141,24 +142,13 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
   for (int i = 0; i < n; ++i)
     if (m.node_mass[i] <= 0) throw Error(where + ": node " + std::to_string(i) + " belongs to no tetrahedron");
   m.total_mass = m.node_mass.sum();
-  // surface: faces that belong to one tetrahedron only, outward for positively oriented tets
-  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;  // sorted -> (count, oriented)
-  for (const auto& tet : m.tets)
-    for (const auto& f : kFaces) {
-      const std::array<int, 3> oriented{tet[f[0]], tet[f[1]], tet[f[2]]};
-      std::array<int, 3> key = oriented;
-      std::sort(key.begin(), key.end());
-      auto& entry = faces[key];
-      entry.first += 1;
-      entry.second = oriented;
-    }
+  // surface: faces that belong to one tetrahedron only
+  const std::vector<std::array<int, 3>> boundary = tet_boundary_faces(m.tets);
   std::vector<char> on_surface(n, 0);
-  for (const auto& [key, entry] : faces)
-    if (entry.first == 1) {
-      m.surface_faces.push_back(entry.second);
-      for (int i : key) on_surface[i] = 1;
-    }
+  for (const auto& face : boundary) {
+    m.surface_faces.push_back(face);
+    for (int i : face) on_surface[i] = 1;
+  }
   for (int i = 0; i < n; ++i)
     if (on_surface[i]) m.surface_nodes.push_back(i);
   m.pinned.assign(n, 0);

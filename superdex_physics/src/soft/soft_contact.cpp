@@ -21,8 +21,8 @@ constexpr std::array<std::array<real, 3>, 4> kFacePoints = {{{kThird, kThird, kT
                                                              {kOther, kOther, kCentreToCorner}}};
 
 // Bounds of a surface face at node positions x (3N, world).
-Aabb face_bounds(const VecX& x, const std::array<int, 3>& face) {
-  Aabb bounds;
+Bounds face_bounds(const VecX& x, const std::array<int, 3>& face) {
+  Bounds bounds;
   for (int v : face) bounds.extend(x.segment<3>(3 * v));
   return bounds;
 }
@@ -33,7 +33,7 @@ constexpr size_t kSamplesWithoutHierarchy = 32;
 
 // The closest of `faces` to p (double precision) among those whose bounds `boxes` lie within
 // `max_distance`; triangle -1 when none.
-TriangleBvh::Hit closest_face(const Eigen::Vector3d& p, const std::vector<std::array<int, 3>>& faces, const std::vector<Aabb>& boxes,
+TriangleBvh::Hit closest_face(const Eigen::Vector3d& p, const std::vector<std::array<int, 3>>& faces, const std::vector<Bounds>& boxes,
                               const std::vector<Eigen::Vector3d>& vertices, double max_distance) {
   TriangleBvh::Hit best;
   best.distance_squared = max_distance * max_distance;
@@ -57,7 +57,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     const VecX& v = soft.state.v;
     // how far a surface node can move within the step
     real node_sweep = 0;
-    Aabb bounds;
+    Bounds bounds;
     for (int i : soft.model.surface_nodes) {
       if (soft.model.pinned[i]) continue;
       node_sweep = std::max(node_sweep, dt * (v.segment<3>(3 * i).norm() + dt * s.gravity.norm()));
@@ -68,8 +68,8 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     const real max_depth = (bounds.max - bounds.min).minCoeff() / 4;
     std::vector<Eigen::Vector3d> vertices;  // the node positions in double, when a collider with samples comes near
     // the bounds of the surface faces, when a bounded collider comes near
-    std::vector<Aabb> face_box;
-    auto face_boxes = [&]() -> const std::vector<Aabb>& {
+    std::vector<Bounds> face_box;
+    auto face_boxes = [&]() -> const std::vector<Bounds>& {
       if (face_box.empty())
         for (const auto& face : soft.model.surface_faces) face_box.push_back(face_bounds(x, face));
       return face_box;
@@ -104,7 +104,7 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
           continue;
         }
         // a bounded collider's box grown by the reach: no point outside it can touch
-        Aabb box = world_bounds(col.aabb_S, X_WS);
+        Bounds box = world_bounds(col.aabb_S, X_WS);
         box.min.array() -= reach;
         box.max.array() += reach;
         if (!box.overlaps(bounds)) continue;
@@ -131,13 +131,13 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
         // the collider's samples against the deformed surface triangles
         if (col.samples_S.empty()) continue;
         // the faces within reach of the collider, or within the deepest penetration kept
-        Aabb near_box = box;
+        Bounds near_box = box;
         near_box.min.array() -= std::max<real>(0, max_depth - reach);
         near_box.max.array() += std::max<real>(0, max_depth - reach);
         if (vertices.empty())
           for (int i = 0; i < static_cast<int>(x.size() / 3); ++i) vertices.push_back(x.segment<3>(3 * i).cast<double>());
         std::vector<std::array<int, 3>> faces;
-        std::vector<Aabb> boxes;
+        std::vector<Bounds> boxes;
         for (size_t f = 0; f < soft.model.surface_faces.size(); ++f)
           if (face_boxes()[f].overlaps(near_box)) faces.push_back(soft.model.surface_faces[f]), boxes.push_back(face_boxes()[f]);
         if (faces.empty()) continue;

@@ -55,18 +55,23 @@ Scene create_scene(const std::string& name);
 void destroy_scene(SceneHandle scene);
 bool scene_exists(SceneHandle scene);
 
-/// Registers a shape (validated: throws superdex::Error naming the defect).
+/// Registers a shape (validated: throws superdex::Error naming the defect). The handle returned
+/// holds its first reference.
 ShapeHandle create_shape(const ShapeGeometry& geometry);
-void release_shape(ShapeHandle shape);
-/// The geometry of a live shape.
-ShapeGeometry shape_geometry(ShapeHandle shape);
+/// Releases a shape at once, whatever references remain (they then name nothing); no effect for
+/// an invalid or already released handle. Actors made from the shape keep its data.
+void release_shape(const ShapeHandle& shape);
+/// The number of live (unreleased) shapes.
+int num_shapes();
+/// The geometry of a live shape as a rigid body carries it.
+ShapeGeometry shape_geometry(const ShapeHandle& shape);
 
-/// Registers a tetrahedral mesh (for soft actors). Checks indices and that every tetrahedron is
+/// Registers a tetrahedral mesh (for soft actors, or a rigid body bounded by its surface). Checks indices and that every tetrahedron is
 /// positively oriented and not degenerate; throws superdex::Error naming `where`, the tetrahedron
 /// index and the defect.
 ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where);
 /// The tet mesh of a live tet-mesh shape; throws if `shape` is not one.
-std::shared_ptr<const TetMesh> tet_mesh_shape(ShapeHandle shape);
+std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -203,13 +203,13 @@ class Scene {
   /// Mass from `mass`, else from `density` (kg/m^3, default 1000) and the shape's volume.
   /// Its surface has the contact parameters `contact`, collision `layer` (0..63), and no
   /// collider when `collider_type` is None.
-  ActorHandle create_rigid_actor(const std::string& name, ShapeHandle shape, bool is_static, const Transform& X_WL,
+  ActorHandle create_rigid_actor(const std::string& name, const ShapeHandle& shape, bool is_static, const Transform& X_WL,
                                  std::optional<real> density, std::optional<real> mass,
                                  const ContactMaterial& contact = {}, int layer = 0,
                                  ColliderType collider_type = ColliderType::Auto);
   /// A soft body from a tet-mesh shape (create_tet_mesh_shape) placed at X_WL, with pinned
   /// nodes (indices into the mesh). Throws superdex::Error naming the defect.
-  ActorHandle create_soft_actor(const std::string& name, ShapeHandle tet_mesh, const SoftMaterial& material,
+  ActorHandle create_soft_actor(const std::string& name, const ShapeHandle& tet_mesh, const SoftMaterial& material,
                                 const Transform& X_WL, const std::vector<int>& fixed_nodes);
   /// Node positions of a soft actor, world frame (N x 3, row-major).
   std::vector<Vec3> node_positions(ActorHandle soft) const;

@@ -21,6 +21,8 @@ struct Transform {
   }
   /// Maps a point of frame B into frame A.
   Vec3 operator*(const Vec3& p_B) const { return rotation * p_B + translation; }
+  /// Exact equality of the stored rotation coefficients and translation.
+  bool operator==(const Transform& o) const { return rotation.coeffs() == o.rotation.coeffs() && translation == o.translation; }
   /// X_BA from X_AB.
   Transform inverse() const {
     const Quat q_inv = rotation.conjugate();

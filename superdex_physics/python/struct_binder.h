@@ -1,0 +1,119 @@
+#pragma once
+// Binds a plain C++ struct as a Python class in SuperDex's style: every field readable and
+// writable by name, a constructor taking any fields by keyword (or positionally in field order)
+// with the rest at their C++ defaults, `src=` copy construction, exact equality, copy.copy and
+// copy.deepcopy, pickling, and a repr listing the fields. Nested structs and arrays are returned
+// by reference, so `params.contact.penalty_coefficient = x` changes `params`.
+
+#include <nanobind/nanobind.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace superdex::python {
+
+namespace nb = nanobind;
+
+template <class T>
+class StructBinder {
+ public:
+  using Setter = std::function<void(T&, nb::handle)>;
+
+  StructBinder(nb::handle scope, const char* name, const char* doc)
+      : cls_(scope, name, doc), fields_(std::make_shared<Fields>()) {
+    fields_->type_name = name;
+  }
+
+  /// A read-write field. Python values convert as for a function argument (implicitly from
+  /// lists where the field is a Real3, a DynamicArray, ...).
+  template <class F>
+  StructBinder& field(const char* name, F T::*member, const char* doc = "") {
+    cls_.def_rw(name, member, doc);
+    fields_->names.push_back(name);
+    fields_->setters.push_back([member](T& t, nb::handle v) { t.*member = nb::cast<F>(v); });
+    return *this;
+  }
+
+  /// A field read and written through accessors (a validated or derived value).
+  template <class Get, class Set>
+  StructBinder& property(const char* name, Get get, Set set, const char* doc = "") {
+    cls_.def_prop_rw(name, get, set, doc);
+    fields_->names.push_back(name);
+    fields_->setters.push_back([set](T& t, nb::handle v) {
+      using Arg = std::decay_t<typename FirstArgOf<decltype(&Set::operator())>::type>;
+      set(t, nb::cast<Arg>(v));
+    });
+    return *this;
+  }
+
+  nb::class_<T>& cls() { return cls_; }
+
+  /// Adds the constructor, equality (when `comparable`), copies, pickling and repr.
+  nb::class_<T>& done(bool comparable = true) {
+    std::shared_ptr<Fields> f = fields_;
+    cls_.def("__init__", [f](T* self, nb::args args, nb::kwargs kwargs) {
+          new (self) T();
+          if (args.size() > f->names.size())
+            throw nb::type_error((f->type_name + "(): takes at most " + std::to_string(f->names.size()) + " positional arguments").c_str());
+          for (size_t i = 0; i < args.size(); ++i) f->setters[i](*self, args[i]);
+          for (auto [key, value] : kwargs) {
+            const std::string k = nb::cast<std::string>(key);
+            const size_t i = f->index(k);
+            if (i == f->names.size()) throw nb::type_error((f->type_name + "(): unexpected keyword argument '" + k + "'").c_str());
+            f->setters[i](*self, value);
+          }
+        })
+        .def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
+        .def("__copy__", [](const T& t) { return T(t); })
+        .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
+        .def("__getstate__", [f](nb::handle self) {
+          nb::dict state;
+          for (const std::string& n : f->names) state[n.c_str()] = self.attr(n.c_str());
+          return state;
+        })
+        .def("__setstate__", [f](T& self, nb::dict state) {
+          new (&self) T();
+          for (auto [key, value] : state) f->setters[f->index(nb::cast<std::string>(key))](self, value);
+        })
+        .def("__repr__", [f](nb::handle self) {
+          std::string s = f->type_name + "(";
+          for (size_t i = 0; i < f->names.size(); ++i) {
+            if (i) s += ", ";
+            s += f->names[i] + "=" + nb::cast<std::string>(nb::repr(self.attr(f->names[i].c_str())));
+          }
+          return s + ")";
+        });
+    if (comparable) {
+      cls_.def("__eq__", [](const T& a, const T& b) { return a == b; }, nb::is_operator())
+          .def("__ne__", [](const T& a, const T& b) { return !(a == b); }, nb::is_operator());
+    }
+    return cls_;
+  }
+
+ private:
+  template <class M>
+  struct FirstArgOf;
+  template <class C, class R, class A0, class A1>
+  struct FirstArgOf<R (C::*)(A0, A1) const> {
+    using type = A1;
+  };
+
+  struct Fields {
+    std::string type_name;
+    std::vector<std::string> names;
+    std::vector<Setter> setters;
+    size_t index(const std::string& n) const {
+      for (size_t i = 0; i < names.size(); ++i)
+        if (names[i] == n) return i;
+      return names.size();
+    }
+  };
+  nb::class_<T> cls_;
+  std::shared_ptr<Fields> fields_;
+};
+
+}  // namespace superdex::python
