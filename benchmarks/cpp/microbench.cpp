@@ -31,6 +31,7 @@
 #include "superdex/physics/prefab.h"
 #include "superdex/physics/scene.h"
 #include "superdex/physics/sdf.h"
+#include "solver/step_settings.h"
 
 namespace sp = superdex::physics;
 using sp::real;
@@ -191,7 +192,7 @@ struct ContactIsland {
   sp::VecX r;
   sp::ConstraintRows rows;
   sp::BodyJacobian J_bodies;
-  sp::SolverParams params;
+  sp::StepSettings params;
 
   explicit ContactIsland(int bodies) {
     const int n = 6 * bodies, contacts = 4 * bodies;

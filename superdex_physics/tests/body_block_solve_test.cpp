@@ -19,6 +19,7 @@
 #include "multibody/body_jacobian.h"
 #include "solver/newton_solver.h"
 #include "solver/sparse_newton_system.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 namespace {
@@ -233,7 +234,7 @@ TEST(ConvexSolve, ByBodiesAsTheDensePath) {
     ConstraintRows rows;
     rows.J = p.J_dense.sparseView();
     rows.blocks = p.blocks;
-    SolverParams params;
+    StepSettings params;
     params.relative_tolerance = 1e-12;
     const ConvexResult dense = solve_convex(p.A_dense, p.A_dense.llt(), p.r, rows, params);
     const ConvexResult by_bodies = solve_convex(p.A, p.r, p.J, p.blocks, params);

@@ -58,7 +58,7 @@ SpatialTransform random_pose(std::mt19937& rng, real spread) {
 void expect_same(const LinkCollider& capsule, const SpatialTransform& X_WC, const LinkCollider& field,
                  const SpatialTransform& X_WF, real margin, const std::vector<ExpectedContact>& expected, int pose) {
   for (const bool swapped : {false, true}) {
-    std::vector<ContactPoint> got;
+    std::vector<ShapeContact> got;
     if (swapped) collide_shapes(field, X_WF, capsule, X_WC, margin, got);
     else collide_shapes(capsule, X_WC, field, X_WF, margin, got);
     ASSERT_EQ(got.size(), expected.size()) << "pose " << pose << (swapped ? " (swapped)" : "");

@@ -5,6 +5,7 @@
 /// stiffness k deflects by torque / k under a static load.
 
 #include "test_helpers.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics::test {
 namespace {
@@ -118,7 +119,7 @@ ArticulationDesc two_link_arm(real elbow) {
 }
 
 // Limit rows that the free motion keeps far from acting are left out of the solve
-// (SolverParams::defer_inactive_joint_limits). Here the elbow rests, so its free motion leaves
+// (StepSettings::defer_inactive_joint_limits). Here the elbow rests, so its free motion leaves
 // both rows out; a stiff shoulder drive whips the arm, and the elbow's reaction in that solve
 // would cross a limit: the island is solved again with the rows. The elbow must hold within its
 // limits, and every step must equal the one that keeps all rows in the solve.
@@ -129,7 +130,7 @@ TEST_F(JointLimitsTest, DeferredLimitRowsGiveTheSameStepAsKeepingThemAll) {
   for (int run = 0; run < 3; ++run) {
     Scene scene = create_scene("arm_" + std::to_string(run));
     scene.set_gravity(Vec3::Zero());
-    SolverParams params = scene.solver_params();
+    StepSettings params = scene.solver_params();
     params.defer_inactive_joint_limits = run == 1;
     scene.set_solver_params(params);
     ArticulationDesc desc = two_link_arm(elbow);

@@ -13,6 +13,7 @@
 
 #include "multibody/body_jacobian.h"
 #include "solver/newton_solver.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 namespace {
@@ -113,7 +114,7 @@ TEST(ConvexSolve, SatisfiesMomentumBalanceWithContactsAndLimits) {
   lim.vhat = 0.3;
   rows.blocks.push_back(lim);
   const Eigen::LLT<MatX> llt(A);
-  SolverParams params;
+  StepSettings params;
   params.relative_tolerance = 1e-12;
   params.drift_correction_iterations = 0;  // the convex problem as given
   const ConvexResult res = solve_convex(A, llt, r, rows, params);
@@ -199,7 +200,7 @@ TEST(ConvexSolve, DriftCorrectionGivesCoulombsLawWithTheNormalTarget) {
   double normal_error_cone = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const auto [A, r, rows] = sliding_problem(rng, 4, 0.5);
-    SolverParams params;
+    StepSettings params;
     params.relative_tolerance = 1e-12;
     const Eigen::LLT<MatX> llt(A);
     const ConvexResult res = solve_convex(A, llt, r, rows, params);
@@ -233,7 +234,7 @@ LawCheck solve_sliding_problems(int contacts, double mu, int corrections, int pr
   for (int seed = 0; seed < problems; ++seed) {
     std::mt19937 rng(1000 + seed);
     const auto [A, r, rows] = sliding_problem(rng, contacts, mu);
-    SolverParams params;
+    StepSettings params;
     params.relative_tolerance = 1e-12;
     params.drift_correction_iterations = corrections;
     params.max_newton_iterations = corrections + 100;
@@ -258,7 +259,7 @@ LawCheck solve_sliding_problems(int contacts, double mu, int corrections, int pr
 // plain fixed point left 40 of these 360 problems' contacts off it), one contact within 8
 // Newton iterations (the plain fixed point took up to 21).
 TEST(ConvexSolve, DriftCorrectionsReachTheirFixedPointWithinTheDefaultIterations) {
-  const int corrections = SolverParams().drift_correction_iterations;
+  const int corrections = StepSettings().drift_correction_iterations;
   for (int contacts : {1, 2, 4}) {
     for (double mu : {0.3, 0.5, 1.0}) {
       const LawCheck check = solve_sliding_problems(contacts, mu, corrections, 40);

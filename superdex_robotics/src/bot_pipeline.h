@@ -21,6 +21,10 @@ class BotPipeline {
   // names of its scene callbacks
   const std::string& pre_name() const { return pre_name_; }
   const std::string& post_name() const { return post_name_; }
+  // the scene callbacks that run it
+  void set_callbacks(physics::CallbackHandle pre, physics::CallbackHandle post) { pre_callback_ = pre, post_callback_ = post; }
+  physics::CallbackHandle pre_callback() const { return pre_callback_; }
+  physics::CallbackHandle post_callback() const { return post_callback_; }
   // controllers and actuators, then the forces (pre-step callback)
   void pre_step(real dt);
   // sensors (post-step callback)
@@ -72,6 +76,7 @@ class BotPipeline {
   Scene scene_;
   ActorHandle articulation_;
   std::string pre_name_, post_name_;
+  physics::CallbackHandle pre_callback_, post_callback_;
   bool stale_ = true;
   int running_ = 0;
   bool wrote_forces_ = false;

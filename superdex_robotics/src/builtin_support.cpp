@@ -111,26 +111,24 @@ void ComponentParams::apply_rate(Component& component) const {
 
 ActorHandle articulation_of(const Scene& scene, ActorHandle actor, const std::string& where) {
   if (actor == 0) throw Error(where + ": needs an actor (an articulation or one of its links)");
-  switch (scene.actor_type(actor)) {
-    case physics::ActorType::Articulated: return actor;
-    case physics::ActorType::Link: return scene.articulated_actor_of_link(actor);
-    default: throw Error(where + ": actor " + std::to_string(actor) + " is not an articulation or a link of one");
-  }
+  if (scene.is_nested_link_actor(actor)) return scene.articulated_actor_of_link(actor);
+  if (scene.actor_type(actor) == physics::ActorType::Articulated) return actor;
+  throw Error(where + ": actor " + std::to_string(actor) + " is not an articulation or a link of one");
 }
 
 void require_link(const Scene& scene, ActorHandle actor, const std::string& where) {
-  if (actor == 0 || scene.actor_type(actor) != physics::ActorType::Link)
+  if (actor == 0 || !scene.is_nested_link_actor(actor))
     throw Error(where + ": needs a link actor (got " + (actor == 0 ? std::string("none") : "actor " + std::to_string(actor)) + ")");
 }
 
-physics::DofInfo joint_dofs_of_link(const Scene& scene, ActorHandle link, const std::string& where) {
+physics::ArticulatedDofInfo joint_dofs_of_link(const Scene& scene, ActorHandle link, const std::string& where) {
   require_link(scene, link, where);
   const ActorHandle art = scene.articulated_actor_of_link(link);
   return scene.articulated_shape_info(art).dof_info.at(scene.link_index(link));
 }
 
 int single_dof_of_link(const Scene& scene, ActorHandle link, const std::string& where) {
-  const physics::DofInfo d = joint_dofs_of_link(scene, link, where);
+  const physics::ArticulatedDofInfo d = joint_dofs_of_link(scene, link, where);
   if (d.size() != 1) {
     const ActorHandle art = scene.articulated_actor_of_link(link);
     const auto info = scene.articulated_shape_info(art);

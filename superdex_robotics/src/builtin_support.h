@@ -53,7 +53,7 @@ ActorHandle articulation_of(const Scene& scene, ActorHandle actor, const std::st
 // A link actor (throws for other actors).
 void require_link(const Scene& scene, ActorHandle actor, const std::string& where);
 // The DOF slice of a link's joint.
-physics::DofInfo joint_dofs_of_link(const Scene& scene, ActorHandle link, const std::string& where);
+physics::ArticulatedDofInfo joint_dofs_of_link(const Scene& scene, ActorHandle link, const std::string& where);
 // The one DOF of a link's joint; throws unless the joint has exactly one DOF.
 int single_dof_of_link(const Scene& scene, ActorHandle link, const std::string& where);
 // Number of DOFs of the articulation's root joint (6 free, 0 welded).

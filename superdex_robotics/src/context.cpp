@@ -81,7 +81,7 @@ void Context::append_bot_signals(BotHandle handle, std::vector<physics::NamedSig
   for (ComponentHandle h : b.actuators) {
     const ComponentRecord& rec = component(ComponentKind::Actuator, h);
     if (!b.scene.has_actor(rec.actor)) continue;
-    const physics::DofInfo dofs = joint_dofs_of_link(b.scene, rec.actor, rec.name);
+    const physics::ArticulatedDofInfo dofs = joint_dofs_of_link(b.scene, rec.actor, rec.name);
     if (dofs.size() != 1 || dofs.offset >= tau.size()) continue;
     out.push_back({bot_name + "." + rec.name + ".effort", {static_cast<double>(tau[dofs.offset])}, "actuator"});
   }
@@ -313,7 +313,7 @@ void Context::set_pipeline_mode(BotHandle handle, PipelineMode mode) {
 BotHandle Context::bot_of_actor(const Scene& scene, ActorHandle actor) const {
   if (actor == 0 || !physics::scene_exists(scene.handle()) || !scene.has_actor(actor)) return 0;
   const ActorHandle articulation =
-      scene.actor_type(actor) == physics::ActorType::Link ? scene.articulated_actor_of_link(actor) : actor;
+      scene.is_nested_link_actor(actor) ? scene.articulated_actor_of_link(actor) : actor;
   for (const auto& [h, b] : bots_)
     if (b.scene.handle() == scene.handle() && b.articulation == articulation) return h;
   return 0;
@@ -329,8 +329,9 @@ void Context::sync_pipeline(BotHandle handle) {
     if (!physics::scene_exists(b.scene.handle())) return;
     // the callbacks share the pipeline, so that one being run never outlives it
     auto p = std::make_shared<BotPipeline>(*this, handle, b.scene, b.articulation);
-    b.scene.register_pre_step_callback(p->pre_name(), [p](Scene&, real dt) { p->pre_step(dt); }, 1000);
-    b.scene.register_post_step_callback(p->post_name(), [p](Scene&, real dt) { p->post_step(dt); }, -1000);
+    p->set_callbacks(
+        b.scene.register_pre_step_callback(p->pre_name(), [p](const physics::StepInfo& info) { p->pre_step(static_cast<real>(info.time_step_sec)); }, 1000),
+        b.scene.register_post_step_callback(p->post_name(), [p](const physics::StepInfo& info) { p->post_step(static_cast<real>(info.time_step_sec)); }, -1000));
     b.pipeline = std::move(p);
   } else if (!want && b.pipeline) {
     stop_pipeline(b, true);
@@ -344,13 +345,7 @@ void Context::stop_pipeline(BotRecord& b, bool clear_forces) {
   b.pipeline = nullptr;
   p->detach();
   if (!physics::scene_exists(b.scene.handle())) return;
-  for (const std::string& name : {p->pre_name(), p->post_name()}) {
-    try {
-      b.scene.cancel_callback(name);
-    } catch (const Error&) {
-      // already cancelled by name from outside
-    }
-  }
+  for (physics::CallbackHandle h : {p->pre_callback(), p->post_callback()}) b.scene.cancel_callback(h);
   // the forces it applied stop with it
   if (clear_forces && p->wrote_forces() && b.scene.has_actor(b.articulation)) b.scene.clear_external_forces(b.articulation);
 }

@@ -29,9 +29,9 @@ class JointStateSensor final : public SensorComponent {
  public:
   explicit JointStateSensor(const ComponentArgs& args) : scene_(args.scene) {
     if (args.actor == 0) throw Error("JOINT_STATE: needs an actor (a link or an articulation)");
-    if (scene_.actor_type(args.actor) == physics::ActorType::Link) {
+    if (scene_.is_nested_link_actor(args.actor)) {
       articulation_ = scene_.articulated_actor_of_link(args.actor);
-      const physics::DofInfo d = joint_dofs_of_link(scene_, args.actor, "JOINT_STATE");
+      const physics::ArticulatedDofInfo d = joint_dofs_of_link(scene_, args.actor, "JOINT_STATE");
       offset_ = d.offset, count_ = d.size();
     } else {
       articulation_ = articulation_of(scene_, args.actor, "JOINT_STATE");

@@ -151,7 +151,7 @@ TEST_F(Pipeline, ContextDestroyedBeforeTheScene) {
   ctx.reset();
   scene.step(real(0.001));  // no callback into the freed context
   EXPECT_EQ(scene.external_forces(arm).norm(), 0);
-  EXPECT_THROW(scene.cancel_callback("superdex.robotics.bot" + std::to_string(bot) + ".pipeline.pre"), Error);
+  EXPECT_EQ(scene.num_step_callbacks(), 0u);
 }
 
 TEST_F(Pipeline, SceneDestroyedBeforeTheContext) {
@@ -175,7 +175,7 @@ TEST_F(Pipeline, DestroyBotCancelsItsCallbacks) {
   const BotHandle bot = ctx.create_bot(scene, prefab, nullptr);
   ASSERT_TRUE(ctx.is_pipeline_active(bot));
   ctx.destroy_bot(bot);
-  EXPECT_THROW(scene.cancel_callback("superdex.robotics.bot" + std::to_string(bot) + ".pipeline.post"), Error);
+  EXPECT_EQ(scene.num_step_callbacks(), 0u);
   scene.step(real(0.001));
 }
 

@@ -11,7 +11,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-struct Box {
+struct PosedBox {
   Mat3 R;  // axes in world (columns)
   Vec3 c;  // centre in world
   Vec3 h;  // half extents
@@ -22,7 +22,7 @@ struct Box {
 };
 
 // The face of `b` whose outward normal is most aligned with `dir`, as 4 world corners (counter-clockwise).
-std::array<Vec3, 4> face_towards(const Box& b, const Vec3& dir, int& axis, real& sign) {
+std::array<Vec3, 4> face_towards(const PosedBox& b, const Vec3& dir, int& axis, real& sign) {
   axis = 0;
   real best = -1;
   for (int k = 0; k < 3; ++k) {
@@ -51,7 +51,7 @@ std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Vec3& n, real d, rea
 }
 
 // The support edge of `b` in direction `dir` parallel to axis k: its two ends.
-void support_edge(const Box& b, int k, const Vec3& dir, Vec3& e0, Vec3& e1) {
+void support_edge(const PosedBox& b, int k, const Vec3& dir, Vec3& e0, Vec3& e1) {
   Vec3 p = b.c;
   for (int j = 0; j < 3; ++j)
     if (j != k) p += (b.R.col(j).dot(dir) >= 0 ? 1 : -1) * b.h[j] * b.R.col(j);
@@ -73,8 +73,8 @@ void closest_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& 
 }  // namespace
 
 void collide_box_box(const BoxShape& sa, const SpatialTransform& X_WA, const BoxShape& sb, const SpatialTransform& X_WB,
-                     real margin, std::vector<ContactPoint>& out) {
-  const Box A{X_WA.R, X_WA.p, sa.half_extents}, B{X_WB.R, X_WB.p, sb.half_extents};
+                     real margin, std::vector<ShapeContact>& out) {
+  const PosedBox A{X_WA.R, X_WA.p, sa.half_extents}, B{X_WB.R, X_WB.p, sb.half_extents};
   const Vec3 T = A.c - B.c;  // from b to a
   // separating axis with the largest separation; face axes preferred over nearly equal edge axes
   real best_sep = -std::numeric_limits<real>::infinity();
@@ -110,8 +110,8 @@ void collide_box_box(const BoxShape& sa, const SpatialTransform& X_WA, const Box
   }
   // reference face on the box whose axis separates; incident face on the other
   const bool ref_is_b = best_kind == 1;
-  const Box& ref = ref_is_b ? B : A;
-  const Box& inc = ref_is_b ? A : B;
+  const PosedBox& ref = ref_is_b ? B : A;
+  const PosedBox& inc = ref_is_b ? A : B;
   const Vec3 n_ref = ref_is_b ? n : Vec3(-n);  // outward normal of the reference face
   int ref_axis;
   real ref_sign;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "collision/collision_detection.h"
 #include "superdex/physics/engine.h"
@@ -12,7 +13,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 ContactMaterial combine_materials(const ContactMaterial& a, const ContactMaterial& b) {
   ContactMaterial m;
-  m.friction = a.friction + b.friction > 0 ? 2 * a.friction * b.friction / (a.friction + b.friction) : 0;
+  m.friction = std::sqrt(a.friction * b.friction);
   // springs in series; a rigid side (0) leaves the other's stiffness
   if (a.stiffness > 0 && b.stiffness > 0) m.stiffness = a.stiffness * b.stiffness / (a.stiffness + b.stiffness);
   else m.stiffness = std::max(a.stiffness, b.stiffness);
@@ -30,10 +31,33 @@ Bounds world_bounds(const Bounds& local, const SpatialTransform& X) {
   return out;
 }
 
-bool actor_pair_disabled(const SceneData& s, ActorHandle x, ActorHandle y) {
-  if (s.disabled_actor_pairs.empty()) return false;
-  return s.disabled_actor_pairs.count({std::min(x, y), std::max(x, y)}) > 0;
+namespace {
+
+// Whether the actors' contact filter lets `colliding` (a link or actor, with its owner: its
+// articulation, or itself) touch `collider` in that order: the rule set for the exact pair, else
+// one set with IncludeNestedActors::Yes for an owner, else `fallback`.
+bool direction_enabled(const SceneData& s, ActorHandle colliding, ActorHandle colliding_owner, ActorHandle collider,
+                       ActorHandle collider_owner, bool fallback) {
+  auto rule = [&](ActorHandle a, ActorHandle b, bool need_nested) -> int {
+    auto it = s.actor_contact.find({a, b});
+    if (it == s.actor_contact.end() || (need_nested && !it->second.nested)) return -1;
+    return it->second.enabled ? 1 : 0;
+  };
+  int r = rule(colliding, collider, false);
+  if (r < 0 && colliding_owner != colliding) r = rule(colliding_owner, collider, true);
+  if (r < 0 && collider_owner != collider) r = rule(colliding, collider_owner, true);
+  if (r < 0 && (colliding_owner != colliding || collider_owner != collider)) r = rule(colliding_owner, collider_owner, true);
+  return r < 0 ? fallback : r == 1;
 }
+
+}  // namespace
+
+bool actors_may_touch(const SceneData& s, ActorHandle a, ActorHandle a_owner, ActorHandle b, ActorHandle b_owner, bool fallback) {
+  if (s.actor_contact.empty()) return fallback;
+  return direction_enabled(s, a, a_owner, b, b_owner, fallback) || direction_enabled(s, b, b_owner, a, a_owner, fallback);
+}
+
+bool layers_may_touch(const SceneData& s, int a, int b) { return ((s.layer_masks[a] >> b) & 1) || ((s.layer_masks[b] >> a) & 1); }
 
 real collider_sweep(const Articulation& a, const LinkCollider& col, real dt) {
   const Vec6& V = a.kin.V_L[col.link];
@@ -62,18 +86,18 @@ bool link_moves(const ArticulationModel& m, int link) {
 bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider& ca, const Articulation& B,
                   const LinkCollider& cb) {
   if (!link_moves(A.model, ca.link) && !link_moves(B.model, cb.link)) return false;
-  if (!((s.layer_masks[ca.layer] >> cb.layer) & 1)) return false;
+  if (!layers_may_touch(s, ca.layer, cb.layer)) return false;
+  const ActorHandle la = link_actor(A, ca.link), lb = link_actor(B, cb.link);
   if (&A == &B) {
     if (ca.link == cb.link) return false;
     const auto key = std::make_pair(std::min(ca.link, cb.link), std::max(ca.link, cb.link));
     auto it = A.model.contact_overrides.find(key);
     if (it != A.model.contact_overrides.end()) return it->second;
-    if (A.model.parent[ca.link] == cb.link || A.model.parent[cb.link] == ca.link) return false;
-    return !actor_pair_disabled(s, link_actor(A, ca.link), link_actor(B, cb.link));
+    // joined links do not touch unless the filter says so for these links
+    const bool joined = A.model.parent[ca.link] == cb.link || A.model.parent[cb.link] == ca.link;
+    return actors_may_touch(s, la, la, lb, lb, !joined);
   }
-  const ActorHandle la = link_actor(A, ca.link), lb = link_actor(B, cb.link);
-  return !(actor_pair_disabled(s, A.handle, B.handle) || actor_pair_disabled(s, la, lb) ||
-           actor_pair_disabled(s, A.handle, lb) || actor_pair_disabled(s, la, B.handle));
+  return actors_may_touch(s, la, A.handle, lb, B.handle, true);
 }
 
 }  // namespace
@@ -136,7 +160,7 @@ void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& 
 
 void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, std::vector<Contact>& out) {
   // one pair's points, cleared before each pair; its capacity is kept per thread
-  thread_local std::vector<ContactPoint> points;
+  thread_local std::vector<ShapeContact> points;
   const size_t end = std::min(pairs.pairs.size(), (chunk + 1) * ContactPairs::kPairsPerChunk);
   for (size_t k = chunk * ContactPairs::kPairsPerChunk; k < end; ++k) {
     const auto [i, j] = pairs.pairs[k];
@@ -150,7 +174,7 @@ void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, 
     points.clear();
     collide_shapes(ca, pa.X_WS, cb, pb.X_WS, pairs.margin + pa.sweep + pb.sweep, points);
     const ContactMaterial m = combine_materials(ca.material, cb.material);
-    for (const ContactPoint& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
+    for (const ShapeContact& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
   }
 }
 

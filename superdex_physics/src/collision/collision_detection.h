@@ -63,7 +63,11 @@ std::vector<Contact> detect_contacts(const SceneData& scene, real margin, real d
 // World bounds of local bounds posed by X.
 Bounds world_bounds(const Bounds& local, const SpatialTransform& X);
 // Whether contact between these two actors was switched off.
-bool actor_pair_disabled(const SceneData& scene, ActorHandle x, ActorHandle y);
+// Whether the actor contact filter lets actors a and b touch (a and b links or actors, each with its
+// owner: its articulation, or itself); `fallback` when no rule applies to them.
+bool actors_may_touch(const SceneData& scene, ActorHandle a, ActorHandle a_owner, ActorHandle b, ActorHandle b_owner, bool fallback);
+// Whether the layer filter lets colliders of layers a and b touch (in either order).
+bool layers_may_touch(const SceneData& scene, int a, int b);
 // How far a collider's surface can move within dt at its link's current velocity (m).
 real collider_sweep(const Articulation& a, const LinkCollider& col, real dt);
 
@@ -71,16 +75,16 @@ real collider_sweep(const Articulation& a, const LinkCollider& col, real dt);
 ContactMaterial combine_materials(const ContactMaterial& a, const ContactMaterial& b);
 
 // Narrow phase of one shape pair posed in the world: appends contacts (normal from b to a).
-struct ContactPoint {
+struct ShapeContact {
   Vec3 p_W, n_W;
   real phi;
 };
 void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const LinkCollider& b,
-                    const SpatialTransform& X_WB, real margin, std::vector<ContactPoint>& out);
+                    const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 
 // Box-box manifold (collision_box_box.cpp); boxes centred on their frames.
 void collide_box_box(const BoxShape& a, const SpatialTransform& X_WA, const BoxShape& b, const SpatialTransform& X_WB,
-                     real margin, std::vector<ContactPoint>& out);
+                     real margin, std::vector<ShapeContact>& out);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -16,7 +16,7 @@ namespace {
 // A ball (centre c, radius r) against a point-queryable field; normal from the field towards the
 // ball. Returns the ball's signed gap (m).
 real ball_vs_field(const Vec3& c_W, real r, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
-                   std::vector<ContactPoint>& out) {
+                   std::vector<ShapeContact>& out) {
   Vec3 g_F;
   const Vec3 c_F = X_WF.R.transpose() * (c_W - X_WF.p);
   const real phi = shape_signed_distance(field.shape, c_F, &g_F) - r;
@@ -26,7 +26,7 @@ real ball_vs_field(const Vec3& c_W, real r, const LinkCollider& field, const Spa
   return phi;
 }
 
-void ball_vs_ball(const Vec3& ca, real ra, const Vec3& cb, real rb, real margin, std::vector<ContactPoint>& out) {
+void ball_vs_ball(const Vec3& ca, real ra, const Vec3& cb, real rb, real margin, std::vector<ShapeContact>& out) {
   const Vec3 d = ca - cb;
   const real dist = d.norm();
   const real phi = dist - ra - rb;
@@ -108,7 +108,7 @@ bool rounded_balls(const LinkCollider& c, const SpatialTransform& X_WS, RoundedB
 // within phi - margin of it along the line of centres out of contact: those are skipped without
 // a query (sphere tracing along the capsule's core).
 void balls_vs_field(const RoundedBalls& balls, const LinkCollider& field, const SpatialTransform& X_WF, real margin,
-                    std::vector<ContactPoint>& out) {
+                    std::vector<ShapeContact>& out) {
   const bool exact = !std::holds_alternative<MeshShape>(field.shape);
   for (int k = 0; k < balls.count;) {
     const Vec3 c_W = balls.centre(k);
@@ -128,7 +128,7 @@ bool has_field(const LinkCollider& c) {
 }
 
 void points_vs_field(const LinkCollider& a, const SpatialTransform& X_WA, const LinkCollider& field,
-                     const SpatialTransform& X_WF, real margin, std::vector<ContactPoint>& out) {
+                     const SpatialTransform& X_WF, real margin, std::vector<ShapeContact>& out) {
   if (!has_field(field)) return;
   const SpatialTransform X_FA = X_WF.inverse() * X_WA;
   for (const Vec3& s_A : a.samples_S) {
@@ -142,18 +142,18 @@ void points_vs_field(const LinkCollider& a, const SpatialTransform& X_WA, const 
 }
 
 // Contacts with the normal flipped: from the caller's b towards a.
-void flip_into(std::vector<ContactPoint>& tmp, std::vector<ContactPoint>& out) {
-  for (ContactPoint& c : tmp) out.push_back({c.p_W, -c.n_W, c.phi});
+void flip_into(std::vector<ShapeContact>& tmp, std::vector<ShapeContact>& out) {
+  for (ShapeContact& c : tmp) out.push_back({c.p_W, -c.n_W, c.phi});
   tmp.clear();
 }
 
 }  // namespace
 
 void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const LinkCollider& b,
-                    const SpatialTransform& X_WB, real margin, std::vector<ContactPoint>& out) {
+                    const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out) {
   const bool a_plane = std::holds_alternative<PlaneShape>(a.shape), b_plane = std::holds_alternative<PlaneShape>(b.shape);
   if (a_plane && b_plane) return;
-  std::vector<ContactPoint> tmp;
+  std::vector<ShapeContact> tmp;
   if (a_plane) {
     collide_shapes(b, X_WB, a, X_WA, margin, tmp);
     flip_into(tmp, out);

@@ -1,5 +1,5 @@
 #pragma once
-// Timestamps for the step's timing statistics (SolverStats::time_*), taken several times per body,
+// Timestamps for the step's timing statistics (StepStats::time_*), taken several times per body,
 // contact chunk and island in every step: the processor's time-stamp counter on x86-64 (some
 // 10 ns a read, against some 25 ns for steady_clock; constant-rate on the processors of the last
 // decade), steady_clock's count elsewhere. A count of ticks becomes seconds by the ratio of one
@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "superdex/physics/real.h"
+#include "solver/step_settings.h"
 
 #if defined(__x86_64__)
 #include <x86intrin.h>

@@ -29,6 +29,16 @@ const char* type_name(const json& j) {
   }
 }
 
+// "penalty_coefficient" -> "penaltyCoefficient": a params field as files name it.
+std::string snake_to_camel(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '_' && i + 1 < s.size()) out += static_cast<char>(std::toupper(static_cast<unsigned char>(s[++i])));
+    else out += s[i];
+  }
+  return out;
+}
+
 // Reads fields of one JSON object, naming the source and path in every error.
 class Reader {
  public:
@@ -105,6 +115,7 @@ class Reader {
     }
   }
   const std::string& path() const { return path_; }
+  std::vector<std::string>* warnings() const { return warnings_; }
 
  private:
   const json& j_;
@@ -159,7 +170,7 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
   }
   if (r.has("renderModel")) L.render_model = r.string("renderModel");
   if (r.has("renderModelScale")) L.render_model_scale = r.vec<3>("renderModelScale");
-  if (r.has("contact")) L.contact = contact_material_from_json(r.at("contact"), "", r.field_path("contact"));
+  if (r.has("contact")) L.contact = contact_params_from_json(r.at("contact"), "", r.field_path("contact"), r.warnings());
   if (r.has("layer")) L.layer = r.integer("layer");
   if (r.has("hasGravity")) L.has_gravity = r.boolean("hasGravity");
   r.check_unknown({"name", "parentLink", "mass", "centerOfMass", "momentOfInertia", "density", "shape", "shapeScale",
@@ -281,17 +292,44 @@ Transform shape_pose_from_json(const json& j, const std::string& source, const s
   });
 }
 
-ContactMaterial contact_material_from_json(const json& j, const std::string& source, const std::string& path) {
+ContactParams contact_params_from_json(const json& j, const std::string& source, const std::string& path,
+                                       std::vector<std::string>* warnings) {
   return with_source(source, [&] {
-    Reader c(j, source, path, nullptr);
-    ContactMaterial m;
-    if (c.has("coulombFrictionCoefficient")) m.friction = c.number("coulombFrictionCoefficient");
-    if (c.has("stiffness")) m.stiffness = c.number("stiffness");
-    if (c.has("dissipationTimeScale")) m.dissipation_time = c.number("dissipationTimeScale");
-    if (m.friction < 0) c.fail(c.field_path("coulombFrictionCoefficient"), "must be >= 0");
-    if (m.stiffness < 0) c.fail(c.field_path("stiffness"), "must be >= 0 (0 means rigid)");
-    if (m.dissipation_time < 0) c.fail(c.field_path("dissipationTimeScale"), "must be >= 0");
-    return m;
+    Reader c(j, source, path, warnings);
+    ContactParams p;
+    auto number = [&](const char* key, real& field) {
+      if (c.has(key)) field = c.number(key);
+    };
+    number("penaltyCoefficient", p.penalty_coefficient);
+    number("penaltySmoothingHalfDistance", p.penalty_smoothing_half_distance);
+    number("penaltyThresholdDefault", p.penalty_threshold_default);
+    number("penaltyThresholdExtraPadding", p.penalty_threshold_extra_padding);
+    if (c.has("frictionWithColliderNormal")) p.friction_with_collider_normal = c.boolean("frictionWithColliderNormal");
+    number("maxAlignmentNormals", p.max_alignment_normals);
+    number("viscousFrictionCoefficient", p.viscous_friction_coefficient);
+    number("coulombFrictionCoefficient", p.coulomb_friction_coefficient);
+    number("frictionFalloffVel", p.friction_falloff_vel);
+    number("normalViscousDampingCoefficient", p.normal_viscous_damping_coefficient);
+    number("distanceErrorBound", p.distance_error_bound);
+    number("objScale", p.obj_scale);
+    number("collidingPenaltyLengthScale", p.colliding_penalty_length_scale);
+    number("contactStiffness", p.contact_stiffness);
+    number("dissipationTimeScale", p.dissipation_time_scale);
+    c.check_unknown({"penaltyCoefficient", "penaltySmoothingHalfDistance", "penaltyThresholdDefault", "penaltyThresholdExtraPadding",
+                     "frictionWithColliderNormal", "maxAlignmentNormals", "viscousFrictionCoefficient", "coulombFrictionCoefficient",
+                     "frictionFalloffVel", "normalViscousDampingCoefficient", "distanceErrorBound", "objScale",
+                     "collidingPenaltyLengthScale", "contactStiffness", "dissipationTimeScale"},
+                    {});
+    try {
+      validate(p, "contact");
+    } catch (const Error& e) {
+      // name the file and the JSON path of the field
+      std::string what = e.what();
+      const std::string prefix = "contact.";
+      std::string field = what.substr(prefix.size(), what.find(':') - prefix.size());
+      c.fail(c.field_path(snake_to_camel(field).c_str()), what.substr(what.find(':') + 2));
+    }
+    return p;
   });
 }
 
@@ -348,6 +386,9 @@ ArticulationDesc articulation_desc_from_json(const json& doc, const std::string&
     for (size_t i = 0; i < links.size(); ++i) d.links.push_back(link_from(Reader(links[i], source, index_path("links", i), warnings), extra));
     const json& joints = top.at("joints");
     for (size_t i = 0; i < joints.size(); ++i) d.joints.push_back(joint_from(Reader(joints[i], source, index_path("joints", i), warnings), extra));
+    // a bot is fixed to the world or floating: its root joint is Hard or Free
+    if (!d.joints.empty() && d.joints[0].type != JointType::Hard && d.joints[0].type != JointType::Free)
+      top.fail("joints[0].type", std::string("the root joint must be Hard or Free, got ") + joint_type_name(d.joints[0].type));
     if (top.has("defaultPose")) {
       const json& p = top.at("defaultPose");
       if (!p.is_array()) top.fail("defaultPose", std::string("expected an array of numbers, got ") + type_name(p));

@@ -12,6 +12,7 @@
 #include "superdex/physics/file_path.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/prefab.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -114,8 +115,8 @@ struct Loader {
       if (sc.contains("solver")) {
         SolverParams p = scene.solver_params();
         const json& so = sc.at("solver");
-        p.max_newton_iterations = opt_int(so, "maxNewtonIterations", p.max_newton_iterations, file, "scene.solver");
-        p.contact_margin = opt_number(so, "contactMargin", file, "scene.solver").value_or(p.contact_margin);
+        p.non_linear_solver.max_iter = opt_int(so, "maxNewtonIterations", p.non_linear_solver.max_iter, file, "scene.solver");
+        p.implicit_step.contact_margin = opt_number(so, "contactMargin", file, "scene.solver").value_or(p.implicit_step.contact_margin);
         try {
           scene.set_solver_params(p);
         } catch (const Error& err) {
@@ -181,9 +182,9 @@ struct Loader {
     } else {
       geometry = scaled_primitive(shape_from_json(sh, file, path + ".shape"), s);
     }
-    const bool is_static = opt_bool(e, "isStatic", false, file, path);
-    ContactMaterial material;
-    if (e.contains("contact")) material = contact_material_from_json(e.at("contact"), file, path + ".contact");
+    RigidActorParams params;
+    params.is_static = opt_bool(e, "isStatic", false, file, path);
+    if (e.contains("contact")) params.contact = contact_params_from_json(e.at("contact"), file, path + ".contact");
     ColliderType collider = ColliderType::Auto;
     if (e.contains("colliderType")) {
       static const std::vector<std::string> kNames = {"Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf"};
@@ -192,19 +193,24 @@ struct Loader {
         fail(file, path + ".colliderType", "unknown collider type " + c.dump() + " (expected Auto, None, Sphere, Box, Plane, Mesh or Sdf)");
       if (c == "None") collider = ColliderType::None;
     }
-    const int layer = opt_int(e, "layer", 0, file, path);
-    if (layer < 0 || layer > 63) fail(file, path + ".layer", "must be between 0 and 63, got " + std::to_string(layer));
+    if (e.contains("layer")) {
+      if (!e.at("layer").is_string()) fail(file, path + ".layer", "expected a contact layer name (a string), got " + e.at("layer").dump());
+      params.layer = e.at("layer").get<std::string>();
+    }
     const Transform X_WL = place(local_pose(e, file, path));
     const std::optional<real> density = opt_number(e, "density", file, path), mass = opt_number(e, "mass", file, path);
     for (const auto& [key, value] : {std::pair{"mass", mass}, std::pair{"density", density}})
       if (value && !(std::isfinite(*value) && *value > 0))
         fail(file, path + "." + key, "must be a positive finite number, got " + json(*value).dump());
     validate_shape(geometry, file + ": " + path + ".shape");
-    const ShapeHandle shape = create_shape(geometry);
-    shapes.push_back(shape);
+    params.name = prefixed(e.at("name").get<std::string>());
+    params.shape = create_shape(geometry);
+    params.world_from_local = X_WL;
+    params.density = density;
+    params.mass = mass;
+    params.collider_type = collider;
     try {
-      result.actors.push_back(scene.create_rigid_actor(prefixed(e.at("name").get<std::string>()), shape, is_static, X_WL,
-                                                       density, mass, material, layer, collider));
+      result.actors.push_back(scene.create_rigid_actor(params));
     } catch (const Error& err) {
       fail(file, path, err.what());
     }
@@ -312,15 +318,15 @@ struct Loader {
         const json& p = f.at("disabledPairs")[i];
         const std::string path = "contactFilter.disabledPairs[" + std::to_string(i) + "]";
         if (!p.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string()) fail(file, path, "expected two actor names");
-        scene.enable_actor_contact(handle_of(p[0], path), handle_of(p[1], path), false);
+        scene.enable_actor_contact_symmetric(handle_of(p[0], path), handle_of(p[1], path), false, IncludeNestedActors::Yes);
       }
     if (f.contains("disabledLayers"))
       for (size_t i = 0; i < f.at("disabledLayers").size(); ++i) {
         const json& p = f.at("disabledLayers")[i];
         const std::string path = "contactFilter.disabledLayers[" + std::to_string(i) + "]";
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer()) fail(file, path, "expected two layers");
+        if (!p.is_array() || p.size() != 2 || !p[0].is_string() || !p[1].is_string()) fail(file, path, "expected two layer names");
         try {
-          scene.enable_layer_contact(p[0].get<int>(), p[1].get<int>(), false);
+          scene.enable_layer_contact_symmetric(p[0].get<std::string>(), p[1].get<std::string>(), false);
         } catch (const Error& err) {
           fail(file, path, err.what());
         }

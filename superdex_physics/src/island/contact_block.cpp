@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "multibody/articulation_step.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -20,7 +21,7 @@ Mat3 contact_frame(const Vec3& n) {
 }
 
 ConstraintBlock frictional_contact_block(const ContactMaterial& material, real phi, real w, real w_nn, real vn_free,
-                                         real dt, const SolverParams& params) {
+                                         real dt, const StepSettings& params) {
   const real near_rigid = near_rigid_factor(params);
   ConstraintBlock blk;
   blk.kind = BlockKind::FrictionalContact;

@@ -4,6 +4,7 @@
 
 #include "solver/newton_solver.h"
 #include "superdex/physics/shape.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -18,7 +19,7 @@ Mat3 contact_frame(const Vec3& n);
 // compensated for the regularisation (for an isolated contact vn = vhat exactly), so that an
 // impact does not overshoot into the surface and resting bodies do not sag.
 ConstraintBlock frictional_contact_block(const ContactMaterial& material, real phi, real w, real w_nn, real vn_free,
-                                         real dt, const SolverParams& params);
+                                         real dt, const StepSettings& params);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -16,6 +16,8 @@ void pack_solution(const IslandInputs& in, const IslandLayout& layout, const Con
   out.iterations = sol.iterations;
   out.residual = sol.residual;
   out.converged = sol.converged;
+  out.status = sol.status;
+  out.line_search_iterations = sol.line_search_iterations;
   out.active_rows = 0;
   for (int i = 0; i < joint_rows; ++i) out.active_rows += sol.gamma[i] != 0;
   // the result vectors keep their storage from the last step (the same island, mostly)

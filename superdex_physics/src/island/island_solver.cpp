@@ -12,11 +12,12 @@
 #include "island/link_jacobians.h"
 #include "soft/soft_island_solver.h"
 #include "solver/sparse_newton_system.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-bool island_is_sparse(const SceneData& s, const Island& island, const SolverParams& params) {
+bool island_is_sparse(const SceneData& s, const Island& island, const StepSettings& params) {
   if (!island.soft_bodies.empty()) return false;
   int dofs = 0;
   for (int b : island.bodies) dofs += s.articulations[b]->model.nv;
@@ -110,7 +111,7 @@ int admit_closing_soft_contacts(const SceneData& s, const Island& island, const 
 
 void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const StepSettings& params,
                   IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out) {
   const Ticks t0 = ticks_now();
   const IslandInputs in{s, island, terms, contacts, soft_contacts, soft_steps, dt, params};

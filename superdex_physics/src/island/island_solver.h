@@ -10,6 +10,7 @@
 #include "solver/row_block_assembler.h"
 #include "soft/soft_body.h"
 #include "core/step_ticks.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -24,6 +25,8 @@ struct IslandSolution {
   int iterations = 0;
   real residual = 0;
   bool converged = true;
+  ConvergenceStatus status = ConvergenceStatus::None;
+  int line_search_iterations = 0;
   int active_rows = 0;              // joint rows with a non-zero impulse
   Ticks ticks = 0;                  // time spent solving (step_ticks.h)
 };
@@ -78,7 +81,7 @@ struct IslandWorkspace {
 
 // Whether the island is solved on the sparse path: rigid only, with more than
 // params.dense_island_max_dofs DOFs. Such islands keep their Newton pattern across steps.
-bool island_is_sparse(const SceneData& scene, const Island& island, const SolverParams& params);
+bool island_is_sparse(const SceneData& scene, const Island& island, const StepSettings& params);
 
 // Solves one island into `out`, whose vectors keep their storage across calls.
 // `soft_steps` holds one problem per scene soft body (null for those without free DOFs); `w` is
@@ -88,7 +91,7 @@ bool island_is_sparse(const SceneData& scene, const Island& island, const Solver
 // the other islands.
 void solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const SolverParams& params,
+                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const StepSettings& params,
                   IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

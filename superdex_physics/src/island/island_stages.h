@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "island/island_solver.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -24,7 +25,7 @@ struct IslandInputs {
   const std::vector<SoftContact>& soft_contacts;
   const std::vector<std::unique_ptr<SoftStep>>& soft_steps;  // per soft body
   real dt;
-  const SolverParams& params;
+  const StepSettings& params;
 };
 
 // The sizes of one solve's problem; the layout itself (variable offsets, the rows that take part)

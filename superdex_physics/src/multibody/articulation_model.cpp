@@ -12,16 +12,7 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-const char* joint_type_name(JointType type) {
-  switch (type) {
-    case JointType::Hard: return "Hard";
-    case JointType::Free: return "Free";
-    case JointType::Revolute: return "Revolute";
-    case JointType::Prismatic: return "Prismatic";
-    case JointType::Spherical: return "Spherical";
-  }
-  return "?";
-}
+const char* joint_type_name(JointType type) { return articulated_joint_type_name(type); }
 
 int joint_num_dofs(JointType type) {
   switch (type) {
@@ -30,8 +21,8 @@ int joint_num_dofs(JointType type) {
     case JointType::Revolute:
     case JointType::Prismatic: return 1;
     case JointType::Spherical: return 3;
+    default: return 0;
   }
-  return 0;
 }
 
 namespace {
@@ -169,8 +160,8 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     const JointDesc& jd = desc.joints[i];
     JointModel& j = m.joints[i];
     j.type = jd.type;
-    if (i == 0 && jd.type != JointType::Hard && jd.type != JointType::Free)
-      r.fail(at("joints", 0, "type"), std::string("the root joint must be Hard or Free, got ") + joint_type_name(jd.type));
+    if (jd.type == JointType::Cycle || jd.type == JointType::Invalid)
+      r.fail(at("joints", i, "type"), std::string("must be Hard, Free, Revolute, Prismatic or Spherical, got ") + joint_type_name(jd.type));
     if (i > 0 && jd.type == JointType::Free)
       r.fail(at("joints", i, "type"), "only the root joint (joints[0]) may be Free");
     check_transform(jd.parent_link_from_joint, r, at("joints", i, "parentLinkFromJoint"));
@@ -216,7 +207,8 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       case JointType::Prismatic: j.S.col(0).head<3>() = j.axis; break;
       case JointType::Spherical: j.S.block<3, 3>(3, 0).setIdentity(); break;
       case JointType::Free: j.S.setIdentity(); break;
-      case JointType::Hard: break;
+      case JointType::Hard:
+      default: break;
     }
   }
   m.nq = q_offset;
@@ -272,11 +264,8 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     m.has_gravity[i] = L.has_gravity;
     // contact surface
     if (L.layer < 0 || L.layer > 63) r.fail(at("links", i, "layer"), "must be between 0 and 63, got " + std::to_string(L.layer));
-    const ContactMaterial& cm = L.contact;
-    if (!std::isfinite(cm.friction) || cm.friction < 0) r.fail(at("links", i, "contact.coulombFrictionCoefficient"), "must be a finite number >= 0");
-    if (!std::isfinite(cm.stiffness) || cm.stiffness < 0) r.fail(at("links", i, "contact.stiffness"), "must be a finite number >= 0 (0: rigid)");
-    if (!std::isfinite(cm.dissipation_time) || cm.dissipation_time < 0)
-      r.fail(at("links", i, "contact.dissipationTimeScale"), "must be a finite number >= 0");
+    validate(L.contact, source + ": " + at("links", i, "contact"));
+    const ContactMaterial cm = contact_material(L.contact);
     if (shape && L.collider_type != "None") {
       LinkCollider c;
       c.link = i;
@@ -319,7 +308,8 @@ void q_from_pose(const ArticulationModel& model, const real* pose, bool skip_roo
     if (i == 0 && skip_root) continue;
     real* qi = q.data() + j.q_offset;
     switch (j.type) {
-      case JointType::Hard: break;
+      case JointType::Hard:
+      default: break;
       case JointType::Revolute:
       case JointType::Prismatic: qi[0] = pose[k]; break;
       case JointType::Spherical: {
@@ -344,7 +334,8 @@ void pose_from_q(const ArticulationModel& model, const VecX& q, real* pose) {
     const real* qi = q.data() + j.q_offset;
     real* out = pose + j.v_offset;
     switch (j.type) {
-      case JointType::Hard: break;
+      case JointType::Hard:
+      default: break;
       case JointType::Revolute:
       case JointType::Prismatic: out[0] = qi[0]; break;
       case JointType::Spherical: map3(out) = quat_log(Quat(qi[3], qi[0], qi[1], qi[2])); break;

@@ -7,11 +7,12 @@
 #include "multibody/dynamics.h"
 #include "multibody/kinematics.h"
 #include "core/spatial.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-real near_rigid_factor(const SolverParams& params) {
+real near_rigid_factor(const StepSettings& params) {
   constexpr real pi = std::numbers::pi_v<real>;
   return params.near_rigid_beta * params.near_rigid_beta / (4 * pi * pi);
 }
@@ -20,7 +21,7 @@ namespace {
 
 // Joint limit, drive and Coulomb friction rows, appended to t.joint_rows from A^-1's diagonal and
 // t.v_free.
-void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const SolverParams& params,
+void joint_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const StepSettings& params,
                 ArticulationTerms& t) {
   std::vector<JointRow>& rows = t.joint_rows;
   const real near_rigid = near_rigid_factor(params);
@@ -96,7 +97,7 @@ void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState
 // Link drive rows: per world axis, a bounded implicit spring-damper on the link origin's velocity
 // (linear) or the link's angular velocity (angular), with the link Jacobian's rows.
 void link_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
-                     const SmallLLT& A_llt, real dt, const SolverParams& params, std::vector<JointRow>& rows) {
+                     const SmallLLT& A_llt, real dt, const StepSettings& params, std::vector<JointRow>& rows) {
   const real near_rigid = near_rigid_factor(params);
   for (int link = 0; link < model.num_links; ++link) {
     const LinkDrive& d = state.link_drives[link];
@@ -133,7 +134,7 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
 
 }  // namespace
 
-void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t) {
+void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const StepSettings& params, ArticulationTerms& t) {
   const ArticulationModel& model = a.model;
   t.joint_rows.clear();
   t.have_inverse_diagonal_ = false;
@@ -173,11 +174,11 @@ real ArticulationTerms::inverse_diagonal(int k) const {
   return A_inv_diagonal_[k];
 }
 
-real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params) {
+real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const StepSettings& params) {
   return std::max(row.block.R, near_rigid_factor(params) * t.inverse_diagonal(row.dof));
 }
 
-ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params) {
+ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const StepSettings& params) {
   ArticulationTerms t;
   articulation_terms(a, g_W, dt, params, t);
   return t;

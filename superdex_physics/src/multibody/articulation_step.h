@@ -6,6 +6,7 @@
 #include "solver/newton_solver.h"
 #include "linalg/small_llt.h"
 #include "scene/scene_data.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -18,7 +19,7 @@ struct JointRow {
   ConstraintBlock block;
   bool drive = false;  // a joint drive: its impulse is reported as the drive's effort
   // a joint-limit row that the free motion keeps well inside its limit
-  // (SolverParams::defer_inactive_joint_limits): left out of the solve, and inactive as long as
+  // (StepSettings::defer_inactive_joint_limits): left out of the solve, and inactive as long as
   // sign * v[dof] >= block.vhat. Its block.R lacks the near-rigid floor, which needs (A^-1)_kk:
   // deferred_compliance() completes it.
   bool deferred = false;
@@ -50,24 +51,24 @@ struct ArticulationTerms {
   real inverse_diagonal(int k) const;
 
  private:
-  friend void articulation_terms(const Articulation&, const Vec3&, real, const SolverParams&, ArticulationTerms&);
+  friend void articulation_terms(const Articulation&, const Vec3&, real, const StepSettings&, ArticulationTerms&);
   // cache of inverse_diagonal(): A's inverse Cholesky factor and the diagonal of A^-1
   mutable MatX L_inv_;
   mutable VecX A_inv_diagonal_;
   mutable bool have_inverse_diagonal_ = false;
 };
 
-ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params);
+ArticulationTerms articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const StepSettings& params);
 // The same into `t`, whose matrices and row list keep their storage (no allocation when the
 // articulation's terms had the same sizes last time).
-void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const SolverParams& params, ArticulationTerms& t);
+void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const StepSettings& params, ArticulationTerms& t);
 
 // The compliance of a deferred joint-limit row of t once it joins a solve: its R floored at the
 // near-rigid compliance of its DOF.
-real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const SolverParams& params);
+real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const StepSettings& params);
 
 // Near-rigid compliance factor beta^2 / (4 pi^2).
-real near_rigid_factor(const SolverParams& params);
+real near_rigid_factor(const StepSettings& params);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -11,7 +11,8 @@ Quat quat_at(const real* q) { return Quat(q[3], q[0], q[1], q[2]); }  // stored 
 
 SpatialTransform joint_transform(const JointModel& j, const real* q) {
   switch (j.type) {
-    case JointType::Hard: return {};
+    case JointType::Hard:
+    default: return {};
     case JointType::Revolute: return {Eigen::AngleAxis<real>(q[0], j.axis).toRotationMatrix(), Vec3::Zero()};
     case JointType::Prismatic: return {Mat3::Identity(), j.axis * q[0]};
     case JointType::Spherical: return {quat_at(q).normalized().toRotationMatrix(), Vec3::Zero()};
@@ -76,7 +77,8 @@ void integrate_positions(const ArticulationModel& model, VecX& q, const VecX& v,
     real* qj = q.data() + j.q_offset;
     const real* vj = v.data() + j.v_offset;
     switch (j.type) {
-      case JointType::Hard: break;
+      case JointType::Hard:
+      default: break;
       case JointType::Revolute:
       case JointType::Prismatic: qj[0] += dt * vj[0]; break;
       case JointType::Spherical: {

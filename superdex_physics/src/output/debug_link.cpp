@@ -62,13 +62,13 @@ void debug_before_step(Scene& scene) {
     auto& entry = state.scenes[scene.handle()];
     if (!entry) {
       entry = std::make_shared<SceneLink>();
-      entry->initial_state = scene.capture_state();
+      entry->initial_state = state_bytes(scene_data(scene.handle()));
     }
     link = entry;
   }
   server.gate_step(link->restores_seen, [&] {
     try {
-      scene.restore_state(link->initial_state);
+      restore_state_bytes(scene_data(scene.handle()), link->initial_state);
     } catch (const Error& e) {
       // actors were added or removed since: the first state no longer fits this scene
       std::cerr << "superdex.debugger: cannot restore scene '" << scene.name() << "': " << e.what() << '\n';

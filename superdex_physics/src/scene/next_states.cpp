@@ -88,6 +88,7 @@ void commit_next_states(Step& step) {
   for (size_t k = 0; k < s.soft_bodies.size(); ++k) {
     s.soft_bodies[k]->state = std::move(step.soft_next[k]);
     s.soft_bodies[k]->node_contact_forces = std::move(step.node_forces[k]);
+    recenter_soft_body(*s.soft_bodies[k]);
   }
 }
 

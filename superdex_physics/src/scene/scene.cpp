@@ -10,8 +10,10 @@
 #include "scene/step_stages.h"
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
+#include "scene/step_clock.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/scene.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -30,27 +32,57 @@ NumericalFaultPolicy Scene::numerical_fault_policy() const { return scene_data(h
 std::vector<NumericalFault> Scene::last_numerical_faults() const { return scene_data(handle_).last_faults; }
 
 void Scene::set_solver_params(const SolverParams& p) {
-  if (p.max_newton_iterations < 1) throw Error("set_solver_params: max_newton_iterations must be >= 1");
-  if (p.max_line_search_iterations < 1) throw Error("set_solver_params: max_line_search_iterations must be >= 1");
-  if (!(p.absolute_tolerance >= 0) || !(p.relative_tolerance >= 0)) throw Error("set_solver_params: tolerances must be >= 0");
-  if (!(p.near_rigid_beta > 0)) throw Error("set_solver_params: near_rigid_beta must be > 0");
-  if (!(p.friction_sigma > 0)) throw Error("set_solver_params: friction_sigma must be > 0");
-  if (!(p.contact_margin >= 0) || !std::isfinite(p.contact_margin)) throw Error("set_solver_params: contact_margin must be >= 0");
-  if (p.drift_correction_iterations < 0) throw Error("set_solver_params: drift_correction_iterations must be >= 0");
-  if (!(p.soft_hessian_reuse_strain >= 0) || !std::isfinite(p.soft_hessian_reuse_strain))
-    throw Error("set_solver_params: soft_hessian_reuse_strain must be finite and >= 0");
-  if (p.dense_island_max_dofs < 0) throw Error("set_solver_params: dense_island_max_dofs must be >= 0");
-  scene_data(handle_).params = p;
+  SceneData& s = scene_data(handle_);
+  validate(p, "set_solver_params: params");
+  s.solver_params = p;
+  s.params = step_settings_from(p);
 }
-SolverParams Scene::solver_params() const { return scene_data(handle_).params; }
-SolverStats Scene::solver_stats() const { return scene_data(handle_).stats; }
+SolverParams Scene::solver_params() const { return scene_data(handle_).solver_params; }
 
-namespace {
+SolverStats Scene::solver_stats() const {
+  const StepStats& st = scene_data(handle_).stats;
+  SolverStats out;
+  out.max_non_linear_iters = st.newton_iterations;
+  out.residual_norm = st.residual;
+  out.max_line_search_iters = st.line_search_iterations;
+  out.convergence_status = st.status;
+  out.total_non_linear_iters = st.total_newton_iterations;
+  out.num_islands = st.num_islands;
+  out.num_constraints = st.num_constraints;
+  out.num_contacts = st.num_contacts;
+  out.soft_element_hessians = st.soft_element_hessians;
+  out.soft_factorizations = st.soft_factorizations;
+  return out;
+}
+
+PerformanceStats Scene::performance_stats() const {
+  const SceneData& s = scene_data(handle_);
+  PerformanceStats out = s.performance;
+  out.kinematics_duration_sec = s.stats.time_kinematics;
+  out.collision_duration_sec = s.stats.time_collision;
+  out.island_solve_duration_sec = s.stats.time_solve;
+  return out;
+}
 
 ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
   a->handle = next_handle();
   a->state = initial_state(a->model);
   refresh_kinematics(*a);
+  // links created from a description rather than params: their contact friction and layer
+  for (int i = static_cast<int>(a->links.size()); i < a->model.num_links; ++i) {
+    LinkRecord r;
+    r.contact = a->model.desc.links[i].contact;
+    const int layer = a->model.desc.links[i].layer;
+    r.layer = layer < static_cast<int>(s.layer_names.size()) ? s.layer_names[layer] : "";
+    r.density = a->model.desc.links[i].density.value_or(0);
+    a->links.push_back(std::move(r));
+  }
+  for (int i = static_cast<int>(a->joint_friction.size()); i < a->model.num_links; ++i) {
+    ArticulatedJointFrictionParams f;
+    f.coulomb = a->model.desc.joints[i].coulomb_friction;
+    f.viscous = a->model.desc.joints[i].viscous_friction;
+    a->joint_friction.push_back(f);
+  }
   for (int i = 0; i < a->model.num_links; ++i) {
     const ActorHandle link = a->is_rigid ? a->handle : ActorHandle(next_handle());
     a->link_handles.push_back(link);
@@ -60,49 +92,6 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
   const ActorHandle h = a->handle;
   s.articulations.push_back(std::move(a));
   return h;
-}
-
-}  // namespace
-
-ActorHandle Scene::create_rigid_actor(const std::string& name, const ShapeHandle& shape, bool is_static, const Transform& X_WL,
-                                      std::optional<real> density, std::optional<real> mass, const ContactMaterial& contact,
-                                      int layer, ColliderType collider_type) {
-  SceneData& s = scene_data(handle_);
-  const std::string source = "create_rigid_actor('" + name + "')";
-  std::shared_ptr<const ShapeData> data = shape_data(shape, source + ": shape");
-  if (!data->geometry) throw Error(source + ": shape: it has no geometry a rigid body can carry");
-  const ShapeGeometry& geometry = *data->geometry;
-  if (!is_static && std::holds_alternative<PlaneShape>(geometry))
-    throw Error(source + ": shape: a plane is unbounded and can only be static (pass is_static=True)");
-  if (mass && density) throw Error(source + ": give mass or density, not both");
-  ArticulationDesc desc;
-  desc.name = name;
-  desc.world_from_root = X_WL;
-  LinkDesc link;
-  link.name = name;
-  link.shape = geometry;
-  link.contact = contact;
-  link.layer = layer;
-  if (collider_type == ColliderType::None) link.collider_type = "None";
-  if (is_static) {
-    // welded bodies never move: their inertia only needs to be valid
-    link.mass = 1;
-    link.moment_of_inertia = std::array<real, 6>{1, 0, 0, 1, 0, 1};
-  } else {
-    link.mass = mass;
-    link.density = density;
-  }
-  JointDesc joint;
-  joint.name = name + "_root";
-  joint.type = is_static ? JointType::Hard : JointType::Free;
-  desc.links = {link};
-  desc.joints = {joint};
-  auto a = std::make_unique<Articulation>();
-  a->is_rigid = true;
-  a->is_static = is_static;
-  a->shape = std::move(data);
-  a->model = build_articulation_model(desc, source);
-  return add_articulation(s, std::move(a));
 }
 
 ActorHandle Scene::create_articulated_actor(const ArticulationDesc& desc, const std::string& source) {
@@ -119,7 +108,21 @@ ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle&
     throw Error("create_soft_actor('" + name + "'): world_from_local must be finite with a non-zero quaternion");
   Transform X = X_WL;
   X.rotation.normalize();
-  auto body = build_soft_body(name, tet_mesh_shape(tet_mesh), material, X, fixed_nodes, "create_soft_actor('" + name + "')");
+  const std::string where = "create_soft_actor('" + name + "')";
+  auto shape = shape_data(tet_mesh, where + ": shape");
+  if (!shape->tet_mesh) throw Error(where + ": shape is not a tetrahedral mesh");
+  auto body = build_soft_body(name, shape->tet_mesh, material, X, fixed_nodes, where);
+  body->X_WL = X;
+  body->base_pinned = body->model.pinned;
+  body->base_pin_target = body->model.pin_target;
+  body->shape = std::move(shape);
+  body->contact_params.coulomb_friction_coefficient = body->model.contact.friction;
+  body->contact_params.contact_stiffness = body->model.contact.stiffness;
+  body->contact_params.dissipation_time_scale = body->model.contact.dissipation_time;
+  return add_soft_body(s, std::move(body));
+}
+
+ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body) {
   body->handle = next_handle();
   const ActorHandle h = body->handle;
   s.actors[h] = ActorRef{nullptr, -1, body.get()};
@@ -148,62 +151,8 @@ std::vector<Vec3> Scene::node_positions(ActorHandle h) const {
 
 real Scene::elastic_energy(ActorHandle h) const {
   const SoftBody& b = soft_actor(scene_data(handle_), h, "get_elastic_energy");
+  require_query(scene_data(handle_), h, QueryType::ElasticEnergy, "get_elastic_energy");
   return soft_elastic_energy(b, b.state.x);
-}
-
-namespace {
-
-void check_nodes(const SoftBody& b, const std::vector<int>& nodes, const char* what) {
-  const int n = static_cast<int>(b.model.pinned.size());
-  for (size_t k = 0; k < nodes.size(); ++k)
-    if (nodes[k] < 0 || nodes[k] >= n)
-      throw Error(std::string(what) + ": node_indices[" + std::to_string(k) + "] = " + std::to_string(nodes[k]) +
-                  " is out of range (" + std::to_string(n) + " nodes)");
-}
-
-// A reduced body's modes hold for its pinned nodes at rest: they cannot change.
-void refuse_reduced(const SoftBody& b, const char* what) {
-  if (b.reduced)
-    throw Error(std::string(what) + ": soft actor '" + b.model.name +
-                "' is reduced (material.reducedModes): its modes are those of its pinned nodes held at rest, which cannot change");
-}
-
-}  // namespace
-
-void Scene::set_boundary_nodes(ActorHandle h, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W) {
-  const char* what = "add_boundary_condition_nodes_world";
-  SoftBody& b = soft_actor(scene_data(handle_), h, what);
-  check_nodes(b, nodes, what);
-  refuse_reduced(b, what);
-  if (positions_W.size() != nodes.size())
-    throw Error(std::string(what) + ": " + std::to_string(nodes.size()) + " node indices but " + std::to_string(positions_W.size()) +
-                " positions");
-  for (size_t k = 0; k < positions_W.size(); ++k)
-    if (!positions_W[k].allFinite()) throw Error(std::string(what) + ": positions[" + std::to_string(k) + "] is not finite");
-  for (size_t k = 0; k < nodes.size(); ++k) {
-    if (!b.model.pinned[nodes[k]]) b.pattern.reset();  // the free DOFs change
-    b.model.pinned[nodes[k]] = 1;
-    b.model.pin_target.segment<3>(3 * nodes[k]) = positions_W[k];
-  }
-}
-
-void Scene::release_boundary_nodes(ActorHandle h, const std::vector<int>& nodes) {
-  const char* what = "remove_boundary_condition_nodes";
-  SoftBody& b = soft_actor(scene_data(handle_), h, what);
-  check_nodes(b, nodes, what);
-  refuse_reduced(b, what);
-  for (int i : nodes) {
-    if (b.model.pinned[i]) b.pattern.reset();
-    b.model.pinned[i] = 0;
-  }
-}
-
-std::vector<int> Scene::boundary_nodes(ActorHandle h) const {
-  const SoftBody& b = soft_actor(scene_data(handle_), h, "get_boundary_condition_nodes");
-  std::vector<int> nodes;
-  for (size_t i = 0; i < b.model.pinned.size(); ++i)
-    if (b.model.pinned[i]) nodes.push_back(static_cast<int>(i));
-  return nodes;
 }
 
 void Scene::destroy_actor(ActorHandle actor) {
@@ -230,7 +179,7 @@ void Scene::destroy_actor(ActorHandle actor) {
   gone.insert(a->handle);
   for (ActorHandle h : gone) s.actors.erase(h);
   std::erase_if(s.queries, [&](const auto& q) { return gone.count(q.second.actor) > 0; });
-  std::erase_if(s.disabled_actor_pairs, [&](const auto& p) { return gone.count(p.first) || gone.count(p.second); });
+  std::erase_if(s.actor_contact, [&](const auto& p) { return gone.count(p.first.first) || gone.count(p.first.second); });
   // contact records refer to bodies by index: drop this body's and renumber the rest
   const int index = static_cast<int>(std::find_if(s.articulations.begin(), s.articulations.end(),
                                                   [&](const auto& p) { return p.get() == a; }) - s.articulations.begin());
@@ -251,25 +200,32 @@ std::vector<ActorHandle> Scene::actors() const {
   return out;
 }
 
-void Scene::register_pre_step_callback(const std::string& name, StepCallback fn, int priority) {
-  if (!fn) throw Error("register_pre_step_callback('" + name + "'): no function given");
-  SceneData& s = scene_data(handle_);
-  s.callbacks[name] = {false, priority, std::make_shared<const StepCallback>(std::move(fn))};
+namespace {
+
+CallbackHandle add_callback(SceneData& s, const std::string& debug_name, StepCallback fn, int priority, bool post) {
+  if (!fn) throw Error(std::string(post ? "register_post_step_callback" : "register_pre_step_callback") + "('" + debug_name + "'): no function given");
+  const CallbackHandle h = next_handle();
+  s.callbacks[h] = {debug_name, post, priority, std::make_shared<const StepCallback>(std::move(fn))};
   ++s.callbacks_version;
+  return h;
 }
 
-void Scene::register_post_step_callback(const std::string& name, StepCallback fn, int priority) {
-  if (!fn) throw Error("register_post_step_callback('" + name + "'): no function given");
-  SceneData& s = scene_data(handle_);
-  s.callbacks[name] = {true, priority, std::make_shared<const StepCallback>(std::move(fn))};
-  ++s.callbacks_version;
+}  // namespace
+
+CallbackHandle Scene::register_pre_step_callback(const std::string& debug_name, StepCallback fn, int priority) {
+  return add_callback(scene_data(handle_), debug_name, std::move(fn), priority, false);
 }
 
-void Scene::cancel_callback(const std::string& name) {
-  SceneData& s = scene_data(handle_);
-  if (s.callbacks.erase(name) == 0) throw Error("cancel_callback: no callback named '" + name + "'");
-  ++s.callbacks_version;
+CallbackHandle Scene::register_post_step_callback(const std::string& debug_name, StepCallback fn, int priority) {
+  return add_callback(scene_data(handle_), debug_name, std::move(fn), priority, true);
 }
+
+void Scene::cancel_callback(CallbackHandle handle) {
+  SceneData& s = scene_data(handle_);
+  if (s.callbacks.erase(handle) > 0) ++s.callbacks_version;
+}
+
+std::size_t Scene::num_step_callbacks() const { return scene_data(handle_).callbacks.size(); }
 
 int Scene::add_signal_source(SignalSource source) {
   if (!source) throw Error("add_signal_source: no function given");
@@ -283,13 +239,13 @@ void Scene::remove_signal_source(int id) { scene_data(handle_).signal_sources.er
 
 namespace {
 
-// Runs the pre- or post-step callbacks by priority, then name: those registered when the
+// Runs the pre- or post-step callbacks by priority, then registration: those registered when the
 // step began, also when a callback registers or cancels callbacks.
-void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
+void run_callbacks(Scene& scene, SceneData& s, bool post, double dt) {
   CachedCallbackOrder& cached = s.callback_order[post];
   if (!cached.order || cached.version != s.callbacks_version) {
-    std::vector<std::pair<int, const StepCallbackRecord*>> by_priority;  // the map is ordered by name
-    for (const auto& [name, cb] : s.callbacks)
+    std::vector<std::pair<int, const StepCallbackRecord*>> by_priority;  // the map is ordered by registration
+    for (const auto& [handle, cb] : s.callbacks)
       if (cb.post == post) by_priority.push_back({cb.priority, &cb});
     std::stable_sort(by_priority.begin(), by_priority.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     auto made = std::make_shared<StepCallbackOrder>();
@@ -307,20 +263,43 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, real dt) {
       if (!slot.order) slot = std::move(running);
     }
   } put_back{cached, std::move(cached)};
-  for (const auto& fn : *put_back.running.order) (*fn)(scene, dt);
+  const StepInfo info{scene, dt};
+  for (const auto& fn : *put_back.running.order) (*fn)(info);
 }
 
 }  // namespace
 
-void Scene::step(real dt) {
-  if (!std::isfinite(dt) || dt <= 0) throw Error("step: dt must be a positive finite number of seconds, got " + std::to_string(dt));
+void Scene::step(double dt) {
+  if (!std::isfinite(dt) || dt < 0) throw Error("step: time_step_sec must be a finite number of seconds >= 0, got " + std::to_string(dt));
+  // the step's wall time and its parts (PerformanceStats), in time-stamp ticks
+  const StepClock clock = StepClock::start();
   debug_before_step(*this);
   run_callbacks(*this, scene_data(handle_), false, dt);
-  step_dynamics(dt);
+  const Ticks after_pre = ticks_now();
+  if (dt > 0) {
+    step_dynamics(static_cast<real>(dt));
+    scene_data(handle_).last_time_step = dt;
+  } else {
+    // a zero step changes no state: queries registered before it become readable
+    SceneData& s = scene_data(handle_);
+    s.stats = StepStats{};
+    s.step_count += 1;
+  }
+  const Ticks after_solve = ticks_now();
   run_callbacks(*this, scene_data(handle_), true, dt);
+  const Ticks after_post = ticks_now();
   record_step(scene_data(handle_));
   debug_after_step(*this, scene_data(handle_));
+  double tick_seconds = 0;
+  PerformanceStats& perf = scene_data(handle_).performance;
+  perf.total_step_duration_sec = clock.seconds(tick_seconds);
+  perf.pre_step_callbacks_duration_sec = tick_seconds * static_cast<double>(after_pre - clock.k0);
+  perf.solve_step_duration_sec = tick_seconds * static_cast<double>(after_solve - after_pre);
+  perf.post_step_callbacks_duration_sec = tick_seconds * static_cast<double>(after_post - after_solve);
+  perf.recording_step_duration_sec = std::max(0.0, perf.total_step_duration_sec - tick_seconds * static_cast<double>(after_post - clock.k0));
 }
+
+double Scene::last_time_step() const { return scene_data(handle_).last_time_step; }
 
 void Scene::step_dynamics(real dt) {
   SceneData& s = scene_data(handle_);

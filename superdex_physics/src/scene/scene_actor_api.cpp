@@ -6,6 +6,7 @@
 
 #include "multibody/dynamics.h"
 #include "multibody/kinematics.h"
+#include "scene/actor_lookup.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/scene.h"
@@ -14,38 +15,6 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
-
-std::string describe(ActorHandle h) { return "actor " + std::to_string(h); }
-
-ActorRef lookup(SceneData& s, ActorHandle h, const char* what) {
-  auto it = s.actors.find(h);
-  if (it == s.actors.end())
-    throw Error(std::string(what) + ": " + describe(h) + " does not exist in scene '" + s.name + "' (destroyed, or never created here)");
-  return it->second;
-}
-
-bool is_link_actor(const ActorRef& r) { return r.link >= 0 && !r.articulation->is_rigid; }
-
-void refuse_soft(const ActorRef& r, ActorHandle h, const char* what) {
-  if (r.soft) throw Error(std::string(what) + ": " + describe(h) + " is a soft actor ('" + r.soft->model.name + "')");
-}
-
-// The articulation behind a rigid or articulated actor; link and soft actors are refused.
-Articulation& whole(SceneData& s, ActorHandle h, const char* what) {
-  ActorRef r = lookup(s, h, what);
-  refuse_soft(r, h, what);
-  if (is_link_actor(r))
-    throw Error(std::string(what) + ": " + describe(h) + " is a link actor; call it on its articulation (" +
-                describe(r.articulation->handle) + ")");
-  return *r.articulation;
-}
-
-// The articulation and link index of a link actor, or link 0 of a rigid or articulated actor.
-std::pair<Articulation*, int> link_of(SceneData& s, ActorHandle h, const char* what) {
-  ActorRef r = lookup(s, h, what);
-  refuse_soft(r, h, what);
-  return {r.articulation, r.link < 0 ? 0 : r.link};
-}
 
 Transform to_transform(const SpatialTransform& X) { return {Quat(X.R).normalized(), X.p}; }
 
@@ -64,27 +33,48 @@ void check_finite(const char* what, const char* arg, const VecX& x) {
 ActorType Scene::actor_type(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_type");
   if (r.soft) return ActorType::Soft;
-  if (r.articulation->is_rigid) return ActorType::Rigid;
-  return r.link >= 0 ? ActorType::Link : ActorType::Articulated;
+  if (r.articulation->is_rigid || r.link >= 0) return ActorType::Rigid;
+  return ActorType::Articulated;
+}
+
+bool Scene::is_nested_link_actor(ActorHandle h) const {
+  ActorRef r = lookup(scene_data(handle_), h, "is_nested_link_actor");
+  return !r.soft && r.link >= 0 && !r.articulation->is_rigid;
 }
 
 std::string Scene::actor_name(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_name");
   if (r.soft) return r.soft->model.name;
-  return r.link >= 0 ? r.articulation->model.link_names[r.link] : r.articulation->model.name;
+  if (r.link < 0 || r.articulation->is_rigid) return r.articulation->model.name;
+  // a link actor: "<articulation>/<link>"
+  const std::string& owner = r.articulation->model.name;
+  return (owner.empty() ? std::string("unnamed_articulation") : owner) + "/" + r.articulation->model.link_names[r.link];
 }
 
 Transform Scene::root_transform(ActorHandle h) const {
-  auto [a, link] = link_of(scene_data(handle_), h, "get_root_transform");
+  SceneData& s = scene_data(handle_);
+  if (ActorRef r = lookup(s, h, "get_root_transform"); r.soft) return r.soft->X_WL;
+  auto [a, link] = link_of(s, h, "get_root_transform");
   return to_transform(a->kin.X_WL[link]);
 }
 
 void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
-  Articulation& a = whole(scene_data(handle_), h, "set_root_transform");
+  SceneData& s = scene_data(handle_);
   if (!X_WL_in.translation.allFinite() || !X_WL_in.rotation.coeffs().allFinite() || X_WL_in.rotation.norm() < real(1e-6))
     throw Error("set_root_transform: the transform must be finite with a non-zero quaternion");
   Transform X_WL = X_WL_in;
   X_WL.rotation.normalize();
+  if (ActorRef r = lookup(s, h, "set_root_transform"); r.soft) {
+    // the whole body moves rigidly with its frame; its velocities are unchanged
+    SoftBody& b = *r.soft;
+    const Transform X_new_old = compose(X_WL, b.X_WL.inverse());
+    for (Eigen::Index i = 0; i + 2 < b.state.x.size(); i += 3) b.state.x.segment<3>(i) = X_new_old * Vec3(b.state.x.segment<3>(i));
+    for (Eigen::Index i = 0; i + 2 < b.model.pin_target.size(); i += 3)
+      b.model.pin_target.segment<3>(i) = X_new_old * Vec3(b.model.pin_target.segment<3>(i));
+    b.X_WL = X_WL;
+    return;
+  }
+  Articulation& a = whole(s, h, "set_root_transform");
   const JointModel& root = a.model.joints[0];
   const SpatialTransform X = SpatialTransform::from(X_WL);
   if (root.type == JointType::Free) {
@@ -100,23 +90,54 @@ void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
 }
 
 void Scene::set_velocity(ActorHandle h, const Vec3& v_W, const Vec3& w_W) {
-  Articulation& a = whole(scene_data(handle_), h, "set_velocity");
+  SceneData& s = scene_data(handle_);
+  if (!v_W.allFinite() || !w_W.allFinite()) throw Error("set_velocity: linear and angular velocity must be finite");
+  if (ActorRef r = lookup(s, h, "set_velocity"); r.soft) {
+    if (!w_W.isZero(0)) throw Error("set_velocity: a soft actor takes a linear velocity only (angular_vel must be zero)");
+    for (Eigen::Index i = 0; i + 2 < r.soft->state.v.size(); i += 3) r.soft->state.v.segment<3>(i) = v_W;
+    return;
+  }
+  Articulation& a = whole(s, h, "set_velocity");
   if (a.model.joints[0].type != JointType::Free)
     throw Error("set_velocity: " + describe(h) + " ('" + a.model.name + "') has no free root: it is static or welded");
-  if (!v_W.allFinite() || !w_W.allFinite()) throw Error("set_velocity: linear and angular velocity must be finite");
-  // linear velocity in the free joint's parent frame, angular velocity in the body frame
+  // v_W is the centre of mass's velocity: the origin's is v_W - w x (com - origin); linear
+  // velocity in the free joint's parent frame, angular velocity in the body frame
   const Mat3 R_WP = (a.state.X_W_base * a.model.joints[0].X_PJ).R;
-  a.state.v.segment<3>(0) = R_WP.transpose() * v_W;
+  const Vec3 r_W = a.kin.X_WL[0].R * a.model.inertia[0].com;
+  a.state.v.segment<3>(0) = R_WP.transpose() * (v_W - w_W.cross(r_W));
   a.state.v.segment<3>(3) = a.kin.X_WL[0].R.transpose() * w_W;
   refresh_kinematics(a);
 }
 
 Vec6 Scene::velocity(ActorHandle h) const {
-  auto [a, link] = link_of(scene_data(handle_), h, "get_velocity");
-  const Mat3& R = a->kin.X_WL[link].R;
+  SceneData& s = scene_data(handle_);
   Vec6 out;
-  out.head<3>() = R * a->kin.V_L[link].head<3>();
-  out.tail<3>() = R * a->kin.V_L[link].tail<3>();
+  if (ActorRef r = lookup(s, h, "get_velocity"); r.soft) {
+    // the rigid motion of the nodes: momentum over mass, and the angular momentum about the
+    // centre of mass through the inertia there
+    const SoftBody& b = *r.soft;
+    const int n = static_cast<int>(b.model.node_mass.size());
+    Vec3 c = Vec3::Zero(), p = Vec3::Zero();
+    for (int i = 0; i < n; ++i) c += b.model.node_mass[i] * b.state.x.segment<3>(3 * i), p += b.model.node_mass[i] * b.state.v.segment<3>(3 * i);
+    c /= b.model.total_mass;
+    const Vec3 v = p / b.model.total_mass;
+    Vec3 L = Vec3::Zero();
+    Mat3 I = Mat3::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 d = b.state.x.segment<3>(3 * i) - c;
+      L += b.model.node_mass[i] * d.cross(b.state.v.segment<3>(3 * i) - v);
+      I += b.model.node_mass[i] * (d.squaredNorm() * Mat3::Identity() - d * d.transpose());
+    }
+    out.head<3>() = v;
+    out.tail<3>() = I.determinant() > 0 ? Vec3(I.ldlt().solve(L)) : Vec3::Zero();
+    return out;
+  }
+  auto [a, link] = link_of(s, h, "get_velocity");
+  const Mat3& R = a->kin.X_WL[link].R;
+  // the centre of mass's velocity, and the angular velocity (world)
+  const Vec3 w_W = R * a->kin.V_L[link].tail<3>();
+  out.head<3>() = R * a->kin.V_L[link].head<3>() + w_W.cross(R * a->model.inertia[link].com);
+  out.tail<3>() = w_W;
   return out;
 }
 
@@ -203,19 +224,36 @@ ArticulatedShapeInfo Scene::articulated_shape_info(ActorHandle h) const {
   info.link_names = a.model.link_names;
   info.joint_names = a.model.joint_names;
   info.parents = a.model.parent;
-  for (const JointModel& j : a.model.joints) {
+  const real inf = std::numeric_limits<real>::infinity();
+  for (int i = 0; i < a.model.num_links; ++i) {
+    const JointModel& j = a.model.joints[i];
+    const JointDesc& jd = a.model.desc.joints[i];
     info.joint_types.push_back(j.type);
     info.joint_axes.push_back(j.axis);
-    DofInfo d;
+    ArticulatedDofInfo d;
     d.offset = j.v_offset;
     switch (j.type) {
       case JointType::Prismatic: d.trans_size = 1; break;
       case JointType::Revolute: d.rot_size = 1; break;
       case JointType::Spherical: d.rot_size = 3; break;
       case JointType::Free: d.trans_size = 3, d.rot_size = 3; break;
-      case JointType::Hard: break;
+      default: break;
     }
     info.dof_info.push_back(d);
+    // the link frame coincides with its joint frame at rest; root-from-link composes the
+    // parent-from-joint transforms down the tree
+    Transform X_PJ = jd.parent_link_from_joint;
+    X_PJ.rotation.normalize();
+    info.parent_link_from_joint.push_back(X_PJ);
+    info.joint_from_child_link.push_back(Transform{});
+    info.joint_min_limits.push_back(j.has_lower ? Real3(j.lower * j.axis) : Real3::Constant(-inf));
+    info.joint_max_limits.push_back(j.has_upper ? Real3(j.upper * j.axis) : Real3::Constant(inf));
+  }
+  info.root_from_links_at_rest.resize(a.model.num_links);
+  for (int i : a.model.order) {
+    const int parent = a.model.parent[i];
+    info.root_from_links_at_rest[i] =
+        parent < 0 ? info.parent_link_from_joint[i] : compose(info.root_from_links_at_rest[parent], info.parent_link_from_joint[i]);
   }
   return info;
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <memory>
 #include <optional>
+#include <span>
 #include <atomic>
 #include <shared_mutex>
 #include <unordered_map>
@@ -14,9 +15,11 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "multibody/articulation_model.h"
+#include "scene/actor_records.h"
 #include "soft/soft_body.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/scene.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -38,10 +41,10 @@ struct ShapeEntry {
 
 struct Articulation {
   ActorHandle handle = 0;
-  int layer = 0;           // rigid bodies: collision layer
   bool is_rigid = false;   // created by create_rigid_actor
   bool is_static = false;  // welded rigid body
-  std::shared_ptr<const ShapeData> shape;  // rigid bodies: the shape they carry
+  std::vector<LinkRecord> links;  // per link: what it was created with
+  std::vector<ArticulatedJointFrictionParams> joint_friction;  // per joint, as given
   ArticulationModel model;
   ArticulationState state;
   ArticulationKinematics kin;  // always current with `state`
@@ -75,12 +78,13 @@ struct QueryRecord {
 };
 
 struct StepCallbackRecord {
+  std::string debug_name;
   bool post = false;
   int priority = 100;
   std::shared_ptr<const StepCallback> fn;
 };
 
-// The pre- or post-step callbacks in the order they run (priority, then name): made when first
+// The pre- or post-step callbacks in the order they run (priority, then registration): made when first
 // needed after a change, and shared with a step that runs them, so that a callback may register
 // or cancel callbacks while the list it came from runs on.
 using StepCallbackOrder = std::vector<std::shared_ptr<const StepCallback>>;
@@ -96,8 +100,11 @@ struct SceneData {
   std::string name;
   Vec3 gravity = Vec3(0, 0, real(-9.81));
   double time = 0;
-  SolverParams params;
-  SolverStats stats;
+  double last_time_step = 0;  // s, of the last step with a positive time step
+  SolverParams solver_params = default_scene_solver_params();  // as set (Scene::set_solver_params)
+  StepSettings params = step_settings_from(solver_params);      // what the solvers read
+  StepStats stats;
+  PerformanceStats performance;  // the last step's durations (step_stats and Scene::step)
   NumericalFaultPolicy fault_policy = NumericalFaultPolicy::Raise;
   std::vector<NumericalFault> last_faults;  // clamped by the last step (WarnAndClamp)
   std::vector<std::unique_ptr<Articulation>> articulations;  // creation order
@@ -105,12 +112,22 @@ struct SceneData {
   std::unordered_map<ActorHandle, ActorRef> actors;
   long long step_count = 0;
   // contact filtering: disabled actor pairs (smaller handle first) and per-layer masks
-  std::set<std::pair<ActorHandle, ActorHandle>> disabled_actor_pairs;
+  // the actor contact filter: rules for ordered pairs (colliding, collider), which apply to the
+  // actors' links too when `nested` (collision_broad.cpp: actors_may_touch)
+  struct ActorContactRule {
+    bool enabled = true;
+    bool nested = false;
+  };
+  std::map<std::pair<ActorHandle, ActorHandle>, ActorContactRule> actor_contact;
+  // layer_masks[a] bit b: contact of a colliding actor of layer a with a collider of layer b; a
+  // pair of actors touches when either order is enabled
   std::array<std::uint64_t, 64> layer_masks = filled_layer_masks();
+  std::vector<std::string> layer_names{""};  // by index; "" is layer 0, the default
+  std::vector<char> layer_registered{0};     // counted by num_contact_layers (0 for "" until used by name)
   // results of the last step and the queries that read them
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
-  std::map<std::string, StepCallbackRecord> callbacks;
+  std::map<CallbackHandle, StepCallbackRecord> callbacks;  // by handle: registration order
   std::array<CachedCallbackOrder, 2> callback_order;  // pre, post
   std::uint64_t callbacks_version = 0;                // counts the changes to `callbacks`
   std::map<int, SignalSource> signal_sources;  // by id (debugger frames and recordings)
@@ -121,6 +138,9 @@ struct SceneData {
   // working storage of the island solves, by island index (island_solver.h): islands keep their
   // order and shapes from step to step, so the storage fits without allocating
   std::vector<std::shared_ptr<IslandWorkspace>> island_workspaces;
+  // captured states (Scene::capture_state), by handle
+  std::map<StateHandle, std::vector<std::uint8_t>> states;
+  bool force_single_island = false;
   // the step's working storage (created by the first step)
   std::shared_ptr<StepWorkspace> step_workspace;
 
@@ -144,6 +164,23 @@ struct EngineData {
 };
 
 EngineData& engine_data();
+// Adds a built articulation to the scene (its handle, link actors, initial state); links without a
+// record get one from the model (the contact friction and layer of their collider).
+ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a);
+// The scene's evolving state as bytes (scene_state.cpp), and its restoration: throws
+// superdex::Error for bytes of another scene or build, changing nothing.
+std::vector<std::uint8_t> state_bytes(const SceneData& s);
+void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes);
+// Throws unless the query `type` is registered on `actor` and has a result (actor_queries.cpp).
+void require_query(const SceneData& s, ActorHandle actor, QueryType type, const char* what);
+// Moves a soft body's frame with the rigid motion of its nodes (soft_actor_api.cpp), as its
+// RecenteringParams say.
+void recenter_soft_body(SoftBody& b);
+// Adds a built soft body to the scene.
+ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body);
+// The index of a contact layer by name, registered on first use; throws naming `where` when the
+// scene has 64 layers already.
+int contact_layer_index(SceneData& s, const std::string& name, const std::string& where);
 // The data of a live shape; throws superdex::Error "<where>: ..." for an invalid or released handle.
 std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std::string& where);
 // A new handle (one reference) to existing shape data.

@@ -1,16 +1,18 @@
 // Capture and restore of a scene's evolving state as bytes.
 //
 // Layout (little-endian, this machine's representation): "SDXS", u32 version, u8 sizeof(real),
-// i64 step count, f64 time, u32 body count; per body: i64 handle, u32 nq, u32 nv, then nq + 2 nv
+// i64 step count, f64 time, f64 last time step, u32 body count; per body: i64 handle, u32 nq, u32 nv, then nq + 2 nv
 // + 12 reals (q, v, external forces, base rotation row-major and translation), then 5 nv reals of
 // joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
 // 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
 // velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
-// Then u32 soft body count; per soft body: u32 3N, node positions, velocities and forces (3N each),
+// Then u32 soft body count; per soft body: its frame X_WL (rotation xyzw, translation: 7 reals),
+// u32 3N, node positions, velocities and forces (3N each),
 // u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
 // velocities (r each) and residual contact displacement (3N).
 
 #include <cstring>
+#include <span>
 
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
@@ -23,7 +25,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 4;
+constexpr std::uint32_t kVersion = 5;
 
 class Writer {
  public:
@@ -41,7 +43,7 @@ class Writer {
 
 class Reader {
  public:
-  explicit Reader(const std::vector<std::uint8_t>& b) : bytes_(b) {}
+  explicit Reader(std::span<const std::uint8_t> b) : bytes_(b) {}
   template <class T>
   T get(const char* what) {
     T x;
@@ -59,20 +61,20 @@ class Reader {
     std::memcpy(dst, bytes_.data() + pos_, n);
     pos_ += n;
   }
-  const std::vector<std::uint8_t>& bytes_;
+  std::span<const std::uint8_t> bytes_;
   size_t pos_ = 0;
 };
 
 }  // namespace
 
-std::vector<std::uint8_t> Scene::capture_state() const {
-  const SceneData& s = scene_data(handle_);
+std::vector<std::uint8_t> state_bytes(const SceneData& s) {
   Writer w;
   for (char c : kMagic) w.put(c);
   w.put(kVersion);
   w.put(static_cast<std::uint8_t>(sizeof(real)));
   w.put(static_cast<std::int64_t>(s.step_count));
   w.put(s.time);
+  w.put(s.last_time_step);
   w.put(static_cast<std::uint32_t>(s.articulations.size()));
   for (const auto& a : s.articulations) {
     w.put(static_cast<std::int64_t>(a->handle));
@@ -99,6 +101,9 @@ std::vector<std::uint8_t> Scene::capture_state() const {
   }
   w.put(static_cast<std::uint32_t>(s.soft_bodies.size()));
   for (const auto& b : s.soft_bodies) {
+    const real X[7] = {b->X_WL.rotation.x(), b->X_WL.rotation.y(), b->X_WL.rotation.z(), b->X_WL.rotation.w(),
+                       b->X_WL.translation.x(), b->X_WL.translation.y(), b->X_WL.translation.z()};
+    w.put_reals(X, 7);
     w.put(static_cast<std::uint32_t>(b->state.x.size()));
     w.put_reals(b->state.x.data(), b->state.x.size());
     w.put_reals(b->state.v.data(), b->state.v.size());
@@ -112,8 +117,7 @@ std::vector<std::uint8_t> Scene::capture_state() const {
   return std::move(w.bytes);
 }
 
-void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
-  SceneData& s = scene_data(handle_);
+void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
   Reader r(bytes);
   for (char c : kMagic)
     if (r.get<char>("header") != c) throw Error("restore_state: not a SuperDex scene state (bad header)");
@@ -125,6 +129,7 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
                 " build; this is the " + (kUsesDoublePrecision ? "double" : "float") + " build");
   const auto step_count = r.get<std::int64_t>("step count");
   const auto time = r.get<double>("time");
+  const auto last_time_step = r.get<double>("last time step");
   const auto count = r.get<std::uint32_t>("body count");
   if (count != s.articulations.size())
     throw Error("restore_state: the state has " + std::to_string(count) + " actors but the scene has " +
@@ -175,7 +180,11 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
     throw Error("restore_state: the state has " + std::to_string(soft_count) + " soft actors but the scene has " +
                 std::to_string(s.soft_bodies.size()));
   std::vector<SoftState> soft_states(soft_count);
+  std::vector<Transform> soft_frames(soft_count);
   for (std::uint32_t i = 0; i < soft_count; ++i) {
+    real X[7];
+    r.get_reals(X, 7, "soft frame");
+    soft_frames[i] = Transform{Quat(X[3], X[0], X[1], X[2]), Vec3(X[4], X[5], X[6])};
     const auto n = r.get<std::uint32_t>("soft sizes");
     if (n != s.soft_bodies[i]->state.x.size())
       throw Error("restore_state: soft actor " + std::to_string(i) + " of the state does not match '" + s.soft_bodies[i]->model.name + "'");
@@ -200,13 +209,17 @@ void Scene::restore_state(const std::vector<std::uint8_t>& bytes) {
       throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
   }
   if (!r.done()) throw Error("restore_state: unexpected bytes after the last actor");
-  for (std::uint32_t i = 0; i < soft_count; ++i) s.soft_bodies[i]->state = std::move(soft_states[i]);
+  for (std::uint32_t i = 0; i < soft_count; ++i) {
+    s.soft_bodies[i]->state = std::move(soft_states[i]);
+    s.soft_bodies[i]->X_WL = soft_frames[i];
+  }
   for (std::uint32_t i = 0; i < count; ++i) {
     s.articulations[i]->state = std::move(states[i]);
     refresh_kinematics(*s.articulations[i]);
   }
   s.step_count = step_count;
   s.time = time;
+  s.last_time_step = last_time_step;
   s.contacts.clear();
   // results need a step after the restore
   for (auto& [id, q] : s.queries) q.since_step = s.step_count;

@@ -42,19 +42,19 @@ bool StepGuard::check_island(const Island& island, IslandSolution& sol) {
   } else if (!finite_f) {
     quantity = "contact forces";
     detail = "contact forces became non-finite (NaN or infinity)";
-  } else if (!sol.converged) {
+  } else if (sol.status == ConvergenceStatus::Diverged) {
     std::ostringstream os;
-    os << "the solver did not converge (scaled residual " << sol.residual << " after " << sol.iterations
-       << " Newton iterations)";
+    os << "the solver diverged (scaled residual " << sol.residual << " after " << sol.iterations
+       << " Newton iterations, beyond the divergence tolerances)";
     quantity = "convergence";
     detail = os.str();
   } else {
     return false;
   }
   const std::string advice = quantity == "convergence"
-                                 ? "; raise max_newton_iterations or reduce dt"
+                                 ? "; reduce dt, or check forces, masses and stiffnesses"
                                  : "; check forces, masses, stiffnesses and dt";
-  const std::string outcome = clamp() ? (quantity == "convergence" ? "; the unconverged result is kept" : "; its island keeps its last good positions with zero velocity")
+  const std::string outcome = clamp() ? "; its island keeps its last good positions with zero velocity"
                                       : "; the scene keeps its last good state";
   for (int b : island.bodies) {
     const Articulation& a = *s_.articulations[b];
@@ -66,7 +66,7 @@ bool StepGuard::check_island(const Island& island, IslandSolution& sol) {
     const std::string soft_quantity = quantity == "velocities" ? "node velocities" : quantity;
     add(body.handle, body.model.name, soft_quantity, (quantity == "velocities" ? "node " : "") + detail + outcome + advice);
   }
-  if (!clamp() || quantity == "convergence") return false;
+  if (!clamp()) return false;
   // clamp: the island's bodies stop where they are; no contact force is reported
   for (size_t j = 0; j < island.bodies.size(); ++j) sol.v[j].setZero(s_.articulations[island.bodies[j]]->model.nv);
   for (VecX& e : sol.drive_efforts) e.setZero();

@@ -1,6 +1,7 @@
 // The step's islands: built from the contacts, given their Newton systems and cost estimates, and
 // solved on the worker threads, each one implicit solve.
 
+#include <algorithm>
 #include <functional>
 #include <map>
 
@@ -20,6 +21,19 @@ void build_step_islands(Step& step) {
   num_dofs.resize(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
   build_islands(num_dofs, ws.contacts, ws.soft_free, step.soft_contacts, ws.islands, ws.island_scratch);
+  // Scene::set_force_single_island: every island's bodies and contacts in the first
+  if (s.force_single_island && ws.islands.size() > 1) {
+    Island& all = ws.islands[0];
+    for (size_t k = 1; k < ws.islands.size(); ++k) {
+      const Island& o = ws.islands[k];
+      all.bodies.insert(all.bodies.end(), o.bodies.begin(), o.bodies.end());
+      all.contacts.insert(all.contacts.end(), o.contacts.begin(), o.contacts.end());
+      all.soft_bodies.insert(all.soft_bodies.end(), o.soft_bodies.begin(), o.soft_bodies.end());
+      all.soft_contacts.insert(all.soft_contacts.end(), o.soft_contacts.begin(), o.soft_contacts.end());
+    }
+    for (auto* list : {&all.bodies, &all.contacts, &all.soft_bodies, &all.soft_contacts}) std::sort(list->begin(), list->end());
+    ws.islands.resize(1);
+  }
 }
 
 void assign_sparse_systems(Step& step) {

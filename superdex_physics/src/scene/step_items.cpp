@@ -40,7 +40,7 @@ void prepare_step_items(Step& step) {
   item_ticks.assign(num_soft + body_items + pairs.num_chunks(), 0);
   const auto prepare = [&](size_t i) {
     if (i < num_soft) {
-      if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.gravity, dt, s.params.soft_hessian_reuse_strain);
+      if (soft_free[i] > 0 && !s.soft_bodies[i]->reduced) soft_steps[i] = std::make_unique<SoftStep>(*s.soft_bodies[i], s.soft_bodies[i]->has_gravity ? s.gravity : Vec3::Zero(), dt, s.params.soft_hessian_reuse_strain);
       return;
     }
     const Ticks t = ticks_now();

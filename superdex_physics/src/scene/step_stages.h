@@ -1,7 +1,7 @@
 #pragma once
 // The stages of one scene step, in the order Scene::step_dynamics runs them (scene.cpp): each
 // reads what the stages before it left in the Step and its workspace, and times itself where the
-// step's statistics count its part (SolverStats::time_*).
+// step's statistics count its part (StepStats::time_*).
 
 #include <memory>
 #include <vector>
@@ -13,6 +13,7 @@
 #include "scene/step_workspace.h"
 #include "soft/soft_body.h"
 #include "soft/soft_contact.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {

@@ -1,14 +1,15 @@
-// The step's statistics (SolverStats): its islands' solves and its wall time by parts.
+// The step's statistics (StepStats): its islands' solves and its wall time by parts.
 
 #include <algorithm>
 
 #include "scene/step_stages.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 void step_stats(Step& step, const StepClock& clock) {
-  SolverStats stats;
+  StepStats stats;
   stats.num_islands = static_cast<int>(step.ws.islands.size());
   stats.num_contacts = static_cast<int>(step.ws.contacts.size());
   Ticks solve_ticks = 0;
@@ -22,6 +23,8 @@ void step_stats(Step& step, const StepClock& clock) {
     stats.total_newton_iterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
     stats.converged = stats.converged && sol.converged;
+    stats.status = std::max(stats.status, sol.status);
+    stats.line_search_iterations = std::max(stats.line_search_iterations, sol.line_search_iterations);
     stats.num_constraints += sol.active_rows;
     solve_ticks += sol.ticks;
   }

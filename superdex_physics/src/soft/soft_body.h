@@ -21,12 +21,15 @@
 #include "core/spatial.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/scene.h"
+#include "superdex/physics/params/actor_params.h"
 #include "superdex/physics/shape.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 struct ReducedSoftModel;
+struct ShapeData;
 
 struct SoftModel {
   std::string name;
@@ -83,6 +86,25 @@ struct SoftBody {
   ActorHandle handle = 0;
   SoftModel model;
   SoftState state;
+  // the actor frame (its root transform): where the mesh's rest nodes were placed, then, with
+  // recentering, following the body's rigid motion (soft_recentering.h)
+  Transform X_WL;
+  RecenteringParams recentering;
+  bool has_gravity = true;
+  // as created (returned by the actor getters)
+  ContactParams contact_params;
+  SoftMaterialParams material_params;
+  std::string layer;
+  int layer_index = 0;  // SceneData::layer_names
+  std::shared_ptr<const ShapeData> shape;
+  // boundary conditions added by DOF (3 per node: the node's world position), in insertion order:
+  // the clearable ones and the permanent ones
+  std::vector<int> bc_dofs, bc_permanent_dofs;
+  std::vector<real> bc_values, bc_permanent_values;
+  // the nodes pinned at creation (a prefab's fixed nodes) and their targets, which the boundary
+  // conditions add to
+  std::vector<char> base_pinned;
+  VecX base_pin_target;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
   std::unique_ptr<SoftPattern> pattern;  // built on first use
   std::shared_ptr<const ReducedSoftModel> reduced;  // the modes of a reduced body (reduced_soft.h), else null
@@ -97,7 +119,7 @@ std::unique_ptr<SoftBody> build_soft_body(const std::string& name, std::shared_p
 // One soft body's part of an island's convex problem for one step, in its free DOFs.
 class SoftStep {
  public:
-  // `reuse_strain`: SolverParams::soft_hessian_reuse_strain.
+  // `reuse_strain`: StepSettings::soft_hessian_reuse_strain.
   SoftStep(SoftBody& body, const Vec3& g_W, real dt, real reuse_strain);
 
   SoftBody& body;

@@ -77,9 +77,8 @@ std::vector<SoftContact> detect_soft_contacts(const SceneData& s, real margin, r
     for (size_t b = 0; b < s.articulations.size(); ++b) {
       const Articulation& a = *s.articulations[b];
       for (const LinkCollider& col : a.model.colliders) {
-        if (!((s.layer_masks[0] >> col.layer) & 1)) continue;
-        if (actor_pair_disabled(s, soft.handle, a.handle) || actor_pair_disabled(s, soft.handle, a.link_handles[col.link]))
-          continue;
+        if (!layers_may_touch(s, soft.layer_index, col.layer)) continue;
+        if (!actors_may_touch(s, soft.handle, soft.handle, a.link_handles[col.link], a.handle, true)) continue;
         const SpatialTransform X_WS = a.kin.X_WL[col.link] * col.X_LS;
         const real sweep = node_sweep + collider_sweep(a, col, dt);
         const real reach = margin + sweep;

@@ -6,6 +6,7 @@
 
 #include "solver/newton_loop.h"
 #include "superdex/physics/error.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -214,7 +215,7 @@ class SoftAlgebra {
 }  // namespace
 
 ConvexResult& solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
-                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params,
+                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const StepSettings& params,
                                     NewtonScratch& scratch) {
   SoftAlgebra alg(A_rigid, rows.J, soft);
   return newton(alg, r, rows.blocks, params, v_start, scratch);

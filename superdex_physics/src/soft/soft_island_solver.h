@@ -12,6 +12,7 @@
 
 #include "solver/newton_solver.h"
 #include "soft/soft_body.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -20,7 +21,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 // initial iterate; the Newton loop's vectors and its result in `scratch`. Throws superdex::Error when a soft
 // block cannot be factored.
 ConvexResult& solve_convex_with_soft(const MatX& A_rigid, const VecX& r, const ConstraintRows& rows,
-                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const SolverParams& params,
+                                    const std::vector<SoftStep*>& soft, const VecX& v_start, const StepSettings& params,
                                     NewtonScratch& scratch);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

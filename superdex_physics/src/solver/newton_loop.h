@@ -1,4 +1,9 @@
 #pragma once
+
+#include <chrono>
+#include <string>
+
+#include "superdex/physics/log.h"
 // Newton's method with exact line search for the convex implicit step (newton_solver.h), on any
 // linear-algebra backend. An Algebra provides:
 //
@@ -20,6 +25,7 @@
 #include <vector>
 
 #include "solver/newton_solver.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -40,7 +46,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 // are not left to their fixed point alone: each Newton step predicts them from the step's
 // linearization (predict_corrections below), which makes the pair converge like Newton's method.
 template <class Algebra>
-ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBlock>& given_blocks, const SolverParams& params,
+ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBlock>& given_blocks, const StepSettings& params,
                      const VecX& v_start, NewtonScratch& w) {
   const int n = alg.n();
   const int m = alg.m();
@@ -51,6 +57,12 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
   out.iterations = 0;
   out.residual = 0;
   out.converged = false;
+  out.status = ConvergenceStatus::Stopped;
+  out.line_search_iterations = 0;
+  // the limits that end a solve before convergence (SolverParams): run time, step size, no
+  // improvement, divergence
+  const auto started = params.max_elapsed_time_seconds > 0 ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
+  real first_residual = -1, previous_residual = std::numeric_limits<real>::infinity();
   // diagonal scaling so that the stopping test is independent of units and masses
   VecX& D = w.D;
   alg.diagonal(D);
@@ -209,13 +221,27 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     }
     out.residual = (D.asDiagonal() * grad).norm();
     out.iterations = it;
+    if (params.verbose)
+      log(LogChannel::Verbose, "newton iteration " + std::to_string(it) + ": scaled residual " + std::to_string(out.residual));
     // the corrections stop near their fixed point, or when their iterations run out
     const real tolerance = params.absolute_tolerance + params.relative_tolerance * scale;
     if (correcting && (it + 1 >= params.drift_correction_iterations || out.residual <= 100 * tolerance)) correcting = false;
     if (out.residual <= tolerance) {
       out.converged = true;
+      out.status = ConvergenceStatus::Converged;
       break;
     }
+    if (first_residual < 0) first_residual = out.residual;
+    if (params.explosion_control && (!(out.residual <= params.absolute_divergence_tolerance) ||
+                                     (it > 0 && out.residual > params.relative_divergence_tolerance * first_residual))) {
+      out.status = ConvergenceStatus::Diverged;
+      break;
+    }
+    if (params.stop_if_no_improvement && out.residual >= previous_residual) break;
+    previous_residual = out.residual;
+    if (params.max_elapsed_time_seconds > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= params.max_elapsed_time_seconds)
+      break;
     if (smooth) {
       // Newton converges quadratically: two iterations in a row that do not halve the residual
       // mean it has reached the round-off floor of the elastic forces (float positions limit the
@@ -224,6 +250,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       best = std::min(best, out.residual);
       if (stalled >= 2) {
         out.converged = true;
+        out.status = ConvergenceStatus::Converged;
         break;
       }
     }
@@ -306,6 +333,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       // safeguarded Newton on phi' over [lo, hi], from alpha = 1
       real lo = 0, hi = 1;
       for (int ls = 0; ls < params.max_line_search_iterations; ++ls) {
+        out.line_search_iterations = std::max(out.line_search_iterations, ls + 1);
         if (ls > 0) d = dphi(alpha, dd, false);
         if (std::abs(d) <= line_search_tolerance * (slope_ref + std::numeric_limits<real>::min())) break;
         (d > 0 ? hi : lo) = alpha;
@@ -329,7 +357,12 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       }
       out.iterations = it + 1;
       out.converged = true;
+      out.status = ConvergenceStatus::Converged;
       break;
+    }
+    if (params.rel_step_tolerance > 0 && alpha * dv.norm() <= params.rel_step_tolerance * out.v.norm()) {
+      out.iterations = it + 1;
+      break;  // Stopped: the step no longer moves the solution
     }
   }
   return out;

@@ -5,6 +5,7 @@
 #include "solver/newton_loop.h"
 #include "multibody/body_jacobian.h"
 #include "solver/sparse_newton_system.h"
+#include "solver/step_settings.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -265,25 +266,25 @@ class BodyBlockAlgebra {
 }  // namespace
 
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
-                          const SolverParams& params) {
+                          const StepSettings& params) {
   NewtonScratch scratch;
   return solve_convex(A, r, rows, params, A_llt.solve(r), scratch);
 }
 
-ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const StepSettings& params,
                            const VecX& v_start, NewtonScratch& scratch) {
   scratch.J = rows.J;
   return solve_convex(A, r, scratch.J, rows.blocks, params, v_start, scratch);
 }
 
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const MatXR& J, const std::vector<ConstraintBlock>& blocks,
-                           const SolverParams& params, const VecX& v_start, NewtonScratch& scratch) {
+                           const StepSettings& params, const VecX& v_start, NewtonScratch& scratch) {
   DenseAlgebra alg(A, J, scratch);
   return newton(alg, r, blocks, params, v_start, scratch);
 }
 
 ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const BodyJacobian& J,
-                          const std::vector<ConstraintBlock>& blocks, const SolverParams& params) {
+                          const std::vector<ConstraintBlock>& blocks, const StepSettings& params) {
   std::vector<const MatX*> A;
   VecX v_free(r.size());
   for (size_t b = 0; b < A_blocks.size(); ++b) {
@@ -297,7 +298,7 @@ ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const B
 }
 
 ConvexResult& solve_convex(std::span<const MatX* const> A_blocks, const VecX& r, const BodyJacobian& J,
-                           const std::vector<ConstraintBlock>& blocks, const SolverParams& params, const VecX& v_start,
+                           const std::vector<ConstraintBlock>& blocks, const StepSettings& params, const VecX& v_start,
                            SparseNewtonSystem& system, NewtonScratch& scratch) {
   BodyBlockAlgebra alg(A_blocks, J, system);
   return newton(alg, r, blocks, params, v_start, scratch);

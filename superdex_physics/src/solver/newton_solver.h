@@ -9,7 +9,7 @@
 // negative gradient is the impulse gamma_b the block applies (Castro et al. 2022, SAP).
 // Stationarity is the momentum balance A v = r + J^T gamma. Newton's method with an exact
 // line search converges in a few iterations, and the reported impulses are exactly those
-// applied. With SolverParams::drift_correction_iterations, the first iterations also correct
+// applied. With StepSettings::drift_correction_iterations, the first iterations also correct
 // contacts' normal targets for the cone model's drift (newton_loop.h): the solution is that of
 // the problem with the corrected targets.
 
@@ -22,6 +22,7 @@
 #include "linalg/small_llt.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/scene.h"
+#include "solver/step_settings.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -62,6 +63,8 @@ struct ConvexResult {
   int iterations = 0;
   real residual = 0; // scaled gradient norm at the solution
   bool converged = false;
+  ConvergenceStatus status = ConvergenceStatus::None;  // how the solve ended
+  int line_search_iterations = 0;  // largest number of line-search trials of one Newton iteration
 };
 
 // Working storage of the Newton loop and of its dense algebra, and its result. Kept by the caller
@@ -84,25 +87,25 @@ struct NewtonScratch {
 // Solves the problem from the unconstrained optimum A^-1 r with dense linear algebra (small
 // problems). `A_llt` is A's Cholesky factor.
 ConvexResult solve_convex(const MatX& A, const Eigen::LLT<MatX>& A_llt, const VecX& r, const ConstraintRows& rows,
-                          const SolverParams& params);
+                          const StepSettings& params);
 // The same from v_start (a warm start: the solution of a nearby problem), in `scratch`; the
 // result is scratch.result.
-ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const SolverParams& params,
+ConvexResult& solve_convex(const MatX& A, const VecX& r, const ConstraintRows& rows, const StepSettings& params,
                            const VecX& v_start, NewtonScratch& scratch);
 // The same with J as a dense matrix (m x n, read in place).
 ConvexResult& solve_convex(const MatX& A, const VecX& r, const MatXR& J, const std::vector<ConstraintBlock>& blocks,
-                           const SolverParams& params, const VecX& v_start, NewtonScratch& scratch);
+                           const StepSettings& params, const VecX& v_start, NewtonScratch& scratch);
 // Large rigid islands, by bodies: A block diagonal, one dense block per body (A_blocks, in the
 // order of J's bodies), and J by bodies (body_jacobian.h); Newton steps factor A + J^T G J by
 // blocks (sparse_newton_system.h). From the unconstrained optimum A^-1 r:
 class BodyJacobian;
 class SparseNewtonSystem;
 ConvexResult solve_convex(std::span<const MatX> A_blocks, const VecX& r, const BodyJacobian& J,
-                          const std::vector<ConstraintBlock>& blocks, const SolverParams& params);
+                          const std::vector<ConstraintBlock>& blocks, const StepSettings& params);
 // and from v_start, in `scratch`, with the Newton matrices in `system` (kept across problems:
 // it keeps its analysis while the island's structure allows).
 ConvexResult& solve_convex(std::span<const MatX* const> A_blocks, const VecX& r, const BodyJacobian& J,
-                           const std::vector<ConstraintBlock>& blocks, const SolverParams& params, const VecX& v_start,
+                           const std::vector<ConstraintBlock>& blocks, const StepSettings& params, const VecX& v_start,
                            SparseNewtonSystem& system, NewtonScratch& scratch);
 
 // J^T G J for the blocks' Hessian blocks G (3 x 3, top-left used for 1-row blocks); Jt = J^T.

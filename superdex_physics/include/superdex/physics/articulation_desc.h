@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "superdex/physics/params/actor_params.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/shape.h"
 #include "superdex/physics/transform.h"
@@ -16,15 +17,10 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-/// How a link moves relative to its parent.
-enum class JointType {
-  Hard,       ///< welded: 0 DOFs
-  Free,       ///< 6 DOFs, root only: velocity of the link origin in the parent (world-aligned) frame,
-              ///< then angular velocity in the link frame
-  Revolute,   ///< 1 DOF: rotation about `axis` (rad)
-  Prismatic,  ///< 1 DOF: translation along `axis` (m)
-  Spherical,  ///< 3 DOFs: angular velocity in the child link frame
-};
+/// How a link moves relative to its parent (actor_params.h): Hard, Free (root only; velocity of
+/// the link origin in the parent (world-aligned) frame, then angular velocity in the link frame),
+/// Revolute (rad), Prismatic (m), Spherical (angular velocity in the child link frame).
+using JointType = ArticulatedJointType;
 
 /// Returns "Hard", "Free", ... as written in files.
 const char* joint_type_name(JointType type);
@@ -108,7 +104,7 @@ struct LinkDesc {
   /// Pose of the shape in the link frame (inline primitives: their "center" and "rotation").
   Transform link_from_shape;
   /// Contact parameters of the link's surface.
-  ContactMaterial contact;
+  ContactParams contact;
   /// Collision layer, 0..63 (see Scene::enable_layer_contact).
   int layer = 0;
   bool has_gravity = true;

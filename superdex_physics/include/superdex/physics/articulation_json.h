@@ -38,8 +38,10 @@ ShapeGeometry shape_from_json(const nlohmann::json& j, const std::string& source
 /// "rotation" [x, y, z, w] fields (identity otherwise).
 Transform shape_pose_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
 
-/// Parses `{coulombFrictionCoefficient, stiffness, dissipationTimeScale}` (all optional).
-ContactMaterial contact_material_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
+/// Parses ContactParams from its JSON form (camelCase field names, all optional; unknown fields go
+/// to `warnings` when given); errors name the file and the field's path.
+ContactParams contact_params_from_json(const nlohmann::json& j, const std::string& source, const std::string& path,
+                                       std::vector<std::string>* warnings = nullptr);
 
 /// Parses a soft material `{type, youngsModulus, poissonRatio, density, damping (stiffness-
 /// proportional Rayleigh, s), dampingAlpha (mass-proportional, 1/s)}`, all optional; unknown

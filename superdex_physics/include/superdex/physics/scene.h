@@ -13,6 +13,8 @@
 
 #include "superdex/physics/articulation_desc.h"
 #include "superdex/physics/handles.h"
+#include "superdex/physics/params/actor_params.h"
+#include "superdex/physics/params/solver_params.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/shape.h"
 #include "superdex/physics/transform.h"
@@ -20,16 +22,15 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-enum class ActorType { Rigid, Soft, Articulated, Link };
-
-/// Results an actor can ask the step to report (register before reading; valid after the next step).
+/// What an actor (or constraint) can be asked to report. Some are computed from the current state
+/// when read (NODE_POSITIONS, ELEMENTS_DEFORMATION_GRADIENT, SURFACE_NODE_*, VISUAL_NODE_*,
+/// ELASTIC_ENERGY); the others are results of a step. Register a query before reading it: results
+/// are valid after the next step (even a zero one), or at once for the first kind when registered
+/// with compute_now.
 enum class QueryType {
-  TotalContactForce,
-  ContactPoints,
-  NodePositions,
-  NodeContactForces,
-  ConstraintForce,
-  ArticulatedControllerForce,
+  NodePositions, ElementsDeformationGradient, SurfaceNodePositions, SurfaceNodeNormals, VisualNodePositions,
+  VisualNodeNormals, ContactPoints, ElasticEnergy, NodeContactForces, ConstraintForce, ArticulatedControllerForce,
+  SdfDistances, TotalContactForce
 };
 const char* query_type_name(QueryType type);
 
@@ -45,75 +46,36 @@ struct NamedSignal {
 /// after the step's post-step callbacks).
 using SignalSource = std::function<void(std::vector<NamedSignal>& out)>;
 
-/// One contact of the last step seen from actor a.
-struct ContactPointInfo {
-  ActorHandle actor_a = 0, actor_b = 0;  ///< link or rigid actors
-  Vec3 position = Vec3::Zero();          ///< world (m)
-  Vec3 normal = Vec3::Zero();            ///< unit, from b towards a
-  real distance = 0;                     ///< signed gap at the start of the step (m), negative when penetrating
-  Vec3 force = Vec3::Zero();             ///< force applied to a (N), world
+/// One contact of the last step, seen from the actor it was asked of (actor_a, or actor_b for the
+/// other side of the same contact when both were asked). World frame, SI units.
+struct ContactPoint {
+  ActorHandle actor_a, actor_b;  ///< rigid, link or soft actors; a == b for self-contact
+  real distance = 0;             ///< signed gap at the start of the step (m), negative when penetrating
+  Real3 pos_a = Real3::Zero();   ///< the contact point on actor a (m)
+  Real3 pos_b = Real3::Zero();   ///< pos_a - normal * distance (m)
+  Real3 normal = Real3::Zero();  ///< unit, pointing away from actor b
+  Real3 force = Real3::Zero();   ///< on actor a from actor b (N)
+  Real3 point_velocity_a = Real3::Zero();  ///< velocity of actor a's material point at pos_a (m/s), after the step
+  Real3 point_velocity_b = Real3::Zero();  ///< velocity of actor b's material point at pos_b (m/s), after the step
+  int sample_index = 0;          ///< the contact's index among the actor's contacts of the step
+  real int_weight = 0;           ///< quadrature weight (m^2); 0: a point contact
+  int element_index = -1;        ///< the surface triangle of a soft actor a (-1 for rigid ones)
+  Real3 parametric_coords = Real3::Zero();  ///< barycentric coordinates of pos_a in that triangle
 };
 
-/// Parameters of the implicit solve.
-struct SolverParams {
-  int max_newton_iterations = 50;
-  /// Stop when the scaled momentum residual is below abs + rel * scale.
-  real absolute_tolerance = real(1e-10);
-  real relative_tolerance = kUsesDoublePrecision ? real(1e-8) : real(1e-5);
-  int max_line_search_iterations = 40;
-  /// Near-rigid regularisation of limits: constraint compliance = beta^2 / (4 pi^2) * w.
-  real near_rigid_beta = 1;
-  /// Regularisation of friction rows relative to their effective compliance w.
-  real friction_sigma = real(1e-3);
-  /// Pairs of shapes closer than this (m) produce contact candidates (speculative contact).
-  real contact_margin = real(0.01);
-  /// Coulomb friction without the cone model's drift: in the convex cone model a contact that
-  /// slides at speed s (m/s, beyond its friction regularisation) moves apart at mu s. During up
-  /// to this many Newton iterations of a solve, each contact's normal target velocity is lowered
-  /// by mu s at the current iterate, to a fixed point (within 100 times the solve's tolerance),
-  /// so that a sliding contact keeps its normal target while its friction stays mu times its
-  /// normal impulse; the remaining iterations converge on the corrected problem. The first
-  /// correction is made at the solve's start (the bodies' last velocities, so the last step's
-  /// slip), which leaves the others little to change; with up to 8 sliding contacts in an
-  /// island, each Newton step also predicts the corrections from its own linearization, which
-  /// reaches the fixed point in a few iterations. 0 keeps the pure cone model.
-  int drift_correction_iterations = 20;
-  /// Islands with more DOFs than this are solved with (block-)sparse linear algebra; up to it,
-  /// dense. Above two free bodies (12 DOFs) the sparse path costs less per Newton iteration: on
-  /// piles of 18 boxes (islands of 3 to 18 boxes) a step took 25 % less than with dense islands
-  /// up to 96 DOFs.
-  int dense_island_max_dofs = 12;
-  /// Leave out of the solve the joint-limit rows that the free motion keeps well inside their
-  /// limits, and check them on its result: when one would act, the island is solved again with
-  /// them. The result is the same (a left-out row contributes nothing where it is inactive);
-  /// only the cost differs. false keeps every limit row in every solve.
-  bool defer_inactive_joint_limits = true;
-  /// Soft bodies: a Newton iteration after the first recomputes the Hessian only of the elements
-  /// whose deformation gradient changed by more than this (in any entry, dimensionless) since
-  /// the start of the step; the others keep their Hessian there. The problem and its tolerance
-  /// are unchanged (the gradient is always exact); only the Newton direction is approximate.
-  /// 0 recomputes every element that moved.
-  real soft_hessian_reuse_strain = real(1e-3);
+/// The contact force on one node of a soft actor (N, world).
+struct NodeContactForce {
+  int index = 0;
+  Real3 force = Real3::Zero();
 };
 
-/// What the last step did.
-struct SolverStats {
-  int newton_iterations = 0;      ///< largest number of Newton iterations over islands
-  int total_newton_iterations = 0;
-  real residual = 0;              ///< largest final scaled residual over islands
-  bool converged = true;
-  int num_islands = 0;
-  int num_constraints = 0;        ///< active constraint rows (limits, friction)
-  int num_contacts = 0;
-  int soft_element_hessians = 0;  ///< element Hessians of soft bodies computed (see SolverParams::soft_hessian_reuse_strain)
-  /// Sparse factorizations of soft bodies' Newton matrices. A Newton iteration after the first
-  /// of a solve is solved by conjugate gradients preconditioned by the last factorization, and
-  /// factors its matrix only when they do not converge in a few iterations.
-  int soft_factorizations = 0;
-  double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
-  double time_collision = 0;      ///< seconds in collision detection
-  double time_solve = 0;          ///< seconds in the implicit solves
-  double time_total = 0;
+/// A soft actor's contact samples of the last step and the colliders' signed distances at them.
+struct SdfDistances {
+  std::vector<int> sample_indices;     ///< the node nearest each contact point
+  std::vector<Real3> world_positions;  ///< m
+  std::vector<real> distances;         ///< m, negative: penetration
+  std::vector<Real3> distance_grads;   ///< unit, world: the collider's outward normal
+  real max_sdf_far_distance_evaluation = 0;  ///< m
 };
 
 /// The material of a soft body (FORMATS.md `material`).
@@ -130,23 +92,6 @@ struct SoftMaterial {
   /// shape, in its r lowest vibration modes plus the exact static response to gravity and contact
   /// forces; needs pinned nodes (a prop held in place). Much faster, for small deformations.
   int reduced_modes = 0;
-};
-
-/// One joint's slice of the generalized coordinates.
-struct DofInfo {
-  int offset = 0;      ///< first DOF index of the joint
-  int trans_size = 0;  ///< translational DOFs
-  int rot_size = 0;    ///< rotational DOFs
-  int size() const { return trans_size + rot_size; }
-};
-
-/// The structure of an articulation, in link order.
-struct ArticulatedShapeInfo {
-  std::vector<std::string> link_names, joint_names;
-  std::vector<int> parents;            ///< -1 for the root
-  std::vector<JointType> joint_types;
-  std::vector<Vec3> joint_axes;        ///< unit axis in the joint frame
-  std::vector<DofInfo> dof_info;
 };
 
 /// What Scene::step does when the solve of an island produces a non-finite value (NaN or
@@ -170,8 +115,12 @@ struct NumericalFault {
 };
 
 class Scene;
-/// Called before (pre) or after (post) each step with the scene and the step's dt (s).
-using StepCallback = std::function<void(Scene& scene, real dt)>;
+/// What a step callback receives: the scene being stepped and the step's time step (s).
+struct StepInfo;
+/// Whether an actor contact rule covers an articulation's links.
+enum class IncludeNestedActors { No, Yes };
+/// Called before (pre) or after (post) each step.
+using StepCallback = std::function<void(const StepInfo& info)>;
 
 class Scene {
  public:
@@ -186,7 +135,9 @@ class Scene {
   /// non-positive dt or, under NumericalFaultPolicy::Raise, a numerical fault (the scene then
   /// keeps its last good state). Different scenes may be stepped on different threads at once;
   /// a scene must not be used from two threads at once.
-  void step(real dt);
+  void step(double time_step_sec);
+  /// The time step (s) of the last step with a positive one; 0 before.
+  double last_time_step() const;
   /// Sets what step() does on a numerical fault (default Raise). Not thread-safe: call it while
   /// no thread steps this scene.
   void set_numerical_fault_policy(NumericalFaultPolicy policy);
@@ -195,36 +146,28 @@ class Scene {
   std::vector<NumericalFault> last_numerical_faults() const;
   /// Seconds simulated since creation.
   double total_simulation_time() const;
+  /// Validates (superdex::Error naming the field) and sets the solve's parameters.
   void set_solver_params(const SolverParams& params);
+  /// The parameters as set; a new scene has default_scene_solver_params().
   SolverParams solver_params() const;
+  /// What the last step's solve did.
   SolverStats solver_stats() const;
+  /// How long the last step took.
+  PerformanceStats performance_stats() const;
 
-  /// A rigid body carrying `shape`: static (welded) or dynamic (a Free one-link articulation).
-  /// Mass from `mass`, else from `density` (kg/m^3, default 1000) and the shape's volume.
-  /// Its surface has the contact parameters `contact`, collision `layer` (0..63), and no
-  /// collider when `collider_type` is None.
-  ActorHandle create_rigid_actor(const std::string& name, const ShapeHandle& shape, bool is_static, const Transform& X_WL,
-                                 std::optional<real> density, std::optional<real> mass,
-                                 const ContactMaterial& contact = {}, int layer = 0,
-                                 ColliderType collider_type = ColliderType::Auto);
-  /// A soft body from a tet-mesh shape (create_tet_mesh_shape) placed at X_WL, with pinned
-  /// nodes (indices into the mesh). Throws superdex::Error naming the defect.
+  /// Creates an actor from its params (validated: superdex::Error naming the field). The shape's
+  /// data is shared with the actor: the shape handle may be released afterwards.
+  ActorHandle create_rigid_actor(const RigidActorParams& params);
+  ActorHandle create_soft_actor(const SoftActorParams& params);
+  ActorHandle create_articulated_actor(const ArticulatedActorParams& params);
+  /// A soft body from a tet-mesh shape placed at X_WL, with pinned nodes (indices into the mesh),
+  /// in this engine's material description (reduced models included): the form prefab files use.
   ActorHandle create_soft_actor(const std::string& name, const ShapeHandle& tet_mesh, const SoftMaterial& material,
                                 const Transform& X_WL, const std::vector<int>& fixed_nodes);
-  /// Node positions of a soft actor, world frame (N x 3, row-major).
+  /// Node positions of a soft actor, world frame.
   std::vector<Vec3> node_positions(ActorHandle soft) const;
-  /// Contact force on each node of a soft actor in the last step (N, world). Needs NODE_CONTACT_FORCES.
-  std::vector<Vec3> node_contact_forces(ActorHandle soft) const;
   /// Elastic energy of a soft actor at its current positions (J).
   real elastic_energy(ActorHandle soft) const;
-  /// Pins nodes of a soft actor at world positions (m); the next step moves them there (a moving
-  /// boundary condition: call again each step to drive them along a path). Throws on bad indices.
-  void set_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes, const std::vector<Vec3>& positions_W);
-  /// Releases pinned nodes: they move freely from the next step.
-  void release_boundary_nodes(ActorHandle soft, const std::vector<int>& nodes);
-  /// The pinned nodes of a soft actor (a prefab's fixedNodes / fixedRegion, set_boundary_nodes),
-  /// in increasing order.
-  std::vector<int> boundary_nodes(ActorHandle soft) const;
   /// An articulation from its description; `source` names it in error messages (a file).
   /// Creates one link actor per link.
   ActorHandle create_articulated_actor(const ArticulationDesc& desc, const std::string& source);
@@ -235,6 +178,8 @@ class Scene {
   std::vector<ActorHandle> actors() const;
 
   ActorType actor_type(ActorHandle actor) const;
+  /// Whether the actor is a link of an articulation (a Rigid actor nested in its Articulated one).
+  bool is_nested_link_actor(ActorHandle actor) const;
   std::string actor_name(ActorHandle actor) const;
   /// World-from-actor: a rigid body's pose, an articulation's root link, a link's pose.
   Transform root_transform(ActorHandle actor) const;
@@ -296,31 +241,129 @@ class Scene {
   /// The drive efforts (N m or N) the last step applied, per DOF (zero where no drive).
   VecX joint_drive_efforts(ActorHandle articulation) const;
 
-  /// Registers a query on an actor; returns its handle. Results are valid after the next step.
-  std::int64_t register_query(ActorHandle actor, QueryType type);
-  void cancel_query(ActorHandle actor, std::int64_t query);
+  /// Registers a query on an actor (superdex::Error when the actor does not support it; see
+  /// is_query_supported); `compute_now` makes a query computed from the state readable at once.
+  QueryHandle register_query(ActorHandle actor, QueryType type, bool compute_now = false);
+  /// Cancels a query; no effect for an invalid or already cancelled handle.
+  void cancel_query(ActorHandle actor, QueryHandle query);
+  bool is_query_supported(ActorHandle actor, QueryType type) const;
   /// Total contact force applied TO the actor by everything touching it (N, world). For an
   /// articulation: all its links; for a link: its own contacts. Needs TotalContactForce.
   Vec3 contact_force(ActorHandle actor) const;
-  /// Total contact torque about the actor's origin (N m, world). Needs TotalContactForce.
+  /// Total contact torque about the actor's centre of mass (N m, world). Needs TotalContactForce.
   Vec3 contact_torque(ActorHandle actor) const;
   /// Contact force applied to `actor` by `other` (N, world). Needs TotalContactForce.
   Vec3 contact_force_from(ActorHandle actor, ActorHandle other) const;
   /// The actor's contacts of the last step, each seen from the actor. Needs ContactPoints.
-  std::vector<ContactPointInfo> contact_points(ActorHandle actor) const;
+  std::vector<ContactPoint> contact_points(ActorHandle actor) const;
+  /// The soft actor's nodes with a contact force in the last step. Needs NodeContactForces.
+  std::vector<NodeContactForce> node_contact_forces(ActorHandle soft) const;
+  /// The soft actor's contact samples of the last step. Needs SdfDistances.
+  SdfDistances sdf_distances(ActorHandle soft) const;
 
-  /// Enables or disables contact between two actors (rigid, articulated or link actors).
-  void enable_actor_contact(ActorHandle a, ActorHandle b, bool enable);
-  /// Enables or disables contact between collision layers (0..63).
-  void enable_layer_contact(int layer_a, int layer_b, bool enable);
+  // Properties of actors (actor_properties.cpp). "Local" is the actor frame L (root transform).
+  bool is_static(ActorHandle actor) const;
+  ContactParams contact_params(ActorHandle actor) const;
+  /// Validated; applies from the next step (to every link of an articulated actor).
+  void set_contact_params(ActorHandle actor, const ContactParams& params);
+  /// The collider type in use (AUTO resolved from the shape).
+  ColliderType collider_type(ActorHandle actor) const;
+  /// Centre of mass (m) in the actor frame: rigid actors, links and soft actors.
+  Real3 center_of_mass_local(ActorHandle actor) const;
+  /// X_WC: the actor frame's rotation, translated to the centre of mass (dynamic rigid actors).
+  TransformRT center_of_mass_transform(ActorHandle actor) const;
+  void set_center_of_mass_transform(ActorHandle actor, const TransformRT& X_WC);
+  /// Rotational inertia about the centre of mass in the actor frame's axes (kg m^2), as
+  /// [ixx, ixy, ixz, iyy, iyz, izz] (tensor entries; off-diagonal ones negative products).
+  Real6 moment_of_inertia_local(ActorHandle actor) const;
+  /// kg/m^3 (rigid actors, links, soft actors).
+  real density(ActorHandle actor) const;
+  /// Scales the mass and inertia to a new density (kg/m^3, > 0); the centre of mass stays.
+  void set_density(ActorHandle actor, real density);
+  /// Sets the mass (kg), centre of mass (m, frame L) and inertia (kg m^2) of a dynamic rigid actor.
+  void set_inertia_properties(ActorHandle actor, real mass, const Real3& center_of_mass, const Real6& moment_of_inertia);
+  /// Bounds of the actor's geometry in its frame / in the world (m).
+  Aabb aabb_local(ActorHandle actor) const;
+  Aabb aabb_world(ActorHandle actor) const;
+  /// A new reference to the shape the actor was made from (rigid actors, links, soft actors).
+  ShapeHandle reference_shape(ActorHandle actor) const;
+  /// Signed distance (m, negative inside) of world points to the actor's collider surface.
+  std::vector<real> points_distance_to_surface(ActorHandle actor, std::span<const Real3> points_W) const;
+  /// The values of DOFs (empty: all); rigid: COM position (m) and rotation vector (rad) of X_WL;
+  /// articulations: joint positions; soft: node displacements (m, frame L).
+  std::vector<real> dof_values(ActorHandle actor, std::span<const int> dofs) const;
 
-  /// Registers a callback run at the start of every step (pre) or after it (post), in order of
-  /// `priority` (lower first), then name. A name already registered is replaced. An exception
-  /// thrown by a pre-step callback aborts the step before anything changed.
-  void register_pre_step_callback(const std::string& name, StepCallback fn, int priority = 100);
-  void register_post_step_callback(const std::string& name, StepCallback fn, int priority = 100);
-  /// Removes a callback; throws if no callback has that name.
-  void cancel_callback(const std::string& name);
+  // Soft actors (soft_actor_api.cpp). Node arrays hold 3 values per node, actor frame L.
+  std::vector<real> displacements(ActorHandle soft) const;
+  void set_displacements(ActorHandle soft, std::span<const real> displacements);
+  std::vector<real> node_positions_local(ActorHandle soft) const;
+  void set_node_positions_local(ActorHandle soft, std::span<const real> positions);
+  void set_node_velocities_local(ActorHandle soft, std::span<const real> velocities);
+  void set_zero_displacements_and_velocities(ActorHandle soft);
+  RecenteringParams recentering_params(ActorHandle actor) const;
+  void set_recentering_params(ActorHandle soft, const RecenteringParams& params);
+  SoftMaterialParams soft_material_params(ActorHandle soft) const;
+  void set_soft_material_params(ActorHandle soft, const SoftMaterialParams& params);
+  /// Per element, row-major 3 x 3 (9 values). Needs ElementsDeformationGradient.
+  std::vector<real> elements_deformation_gradient(ActorHandle soft) const;
+  /// Nodes of the compact surface mesh (Scene::surface_mesh order). Need SurfaceNodePositions/Normals.
+  std::vector<real> surface_node_positions_local(ActorHandle soft) const;
+  std::vector<real> surface_node_normals_local(ActorHandle soft) const;
+  /// Boundary conditions by DOF (3 per node: its world position, all three together) or by node;
+  /// `permanent` ones survive clear_boundary_conditions(). The latest entry of a DOF wins.
+  void add_boundary_condition_dofs_world(ActorHandle soft, std::span<const int> dofs, std::span<const real> values_W, bool permanent);
+  void add_boundary_condition_nodes_world(ActorHandle soft, std::span<const int> nodes, std::span<const real> positions_W, bool permanent);
+  void clear_boundary_conditions(ActorHandle soft);
+  /// All entries added, in insertion order (clearable and permanent).
+  std::vector<int> boundary_condition_dof_indices(ActorHandle soft) const;
+  std::vector<real> boundary_condition_dof_values_world(ActorHandle soft) const;
+
+  // Articulations (articulated_actor_api.cpp).
+  std::vector<ArticulatedJointFrictionParams> joint_friction_params(ActorHandle articulation) const;
+  void set_joint_friction_params(ActorHandle articulation, const std::vector<ArticulatedJointFrictionParams>& friction);
+  /// Armature (kg or kg m^2) per joint.
+  std::vector<real> joint_inertia_params(ActorHandle articulation) const;
+  void set_joint_inertia_params(ActorHandle articulation, std::span<const real> inertia);
+  /// [min, max] per DOF (m or rad; +-infinity where unlimited).
+  std::vector<Real2> dof_limits(ActorHandle articulation) const;
+  /// Poses the articulation from world-from-link transforms (projected onto its joints).
+  void set_pose_from_links(ActorHandle articulation, std::span<const TransformRT> X_WL);
+  /// pose (+) delta: joint-aware (rotation vectors composed as rotations).
+  VecX add_delta_to_pose(ActorHandle articulation, const VecX& pose, const VecX& delta) const;
+  /// The delta with add_delta_to_pose(base, delta) = target.
+  VecX pose_delta(ActorHandle articulation, const VecX& base, const VecX& target) const;
+  /// Per joint: translation distance (m) and rotation angle (rad) between two poses.
+  void pose_distance(ActorHandle articulation, const VecX& a, const VecX& b, VecX& translation, VecX& rotation) const;
+
+  /// Contact layers: each actor has one, named ("" by default); contact between a colliding actor
+  /// of layer a and a collider of layer b is enabled unless switched off (two actors touch when
+  /// either order is enabled). At most 64 layers per scene; names are registered on first use.
+  void enable_layer_contact_asymmetric(const std::string& layer_a, const std::string& layer_b, bool enable);
+  void enable_layer_contact_symmetric(const std::string& layer_a, const std::string& layer_b, bool enable);
+  bool is_layer_contact_enabled(const std::string& layer_a, const std::string& layer_b) const;
+  int num_contact_layers() const;
+  std::vector<std::string> contact_layer_names() const;
+  /// The contact layer of an actor (of each link, for an articulation's link actor).
+  std::string contact_layer(ActorHandle actor) const;
+  void set_contact_layer(ActorHandle actor, const std::string& layer);
+  /// Enables or disables contact of the colliding actor with the collider (asymmetric), or both
+  /// ways. With IncludeNestedActors::Yes the rule covers an articulation's links too; a rule for
+  /// two links of one articulation overrides its default (joined links do not touch).
+  void enable_actor_contact_asymmetric(ActorHandle colliding, ActorHandle collider, bool enable, IncludeNestedActors nested);
+  void enable_actor_contact_symmetric(ActorHandle a, ActorHandle b, bool enable, IncludeNestedActors nested);
+
+  /// The priority of callbacks registered without one.
+  static constexpr int kDefaultCallbackPriority = 100;
+  /// Registers a callback run at the start of every step (pre) or after it (post), on the
+  /// stepping thread, in increasing priority and then registration order. `debug_name` names it
+  /// in messages. An exception thrown by a pre-step callback aborts the step before anything
+  /// changed. Callbacks may register and cancel callbacks; the change applies from the next step.
+  CallbackHandle register_pre_step_callback(const std::string& debug_name, StepCallback fn, int priority = kDefaultCallbackPriority);
+  CallbackHandle register_post_step_callback(const std::string& debug_name, StepCallback fn, int priority = kDefaultCallbackPriority);
+  /// Removes a callback; no effect for an invalid or already cancelled handle.
+  void cancel_callback(CallbackHandle handle);
+  /// The number of registered pre- and post-step callbacks.
+  std::size_t num_step_callbacks() const;
 
   /// Adds a source of named signals shown by the debugger and written to recordings (frames
   /// already carry joint velocities and efforts and contact forces); returns its id.
@@ -328,15 +371,37 @@ class Scene {
   /// Removes a signal source; no effect for an unknown id.
   void remove_signal_source(int id);
 
-  /// The scene's evolving state (time, every body's positions, velocities and held forces) as
-  /// bytes; restoring it into a scene with the same actors replays bitwise identically.
-  std::vector<std::uint8_t> capture_state() const;
-  void restore_state(const std::vector<std::uint8_t>& state);
+  /// Captured states: capture_state() keeps a copy of the scene's evolving state (time, every
+  /// body's positions, velocities and held forces) under a handle; restore_state() replays from it
+  /// bitwise identically in this scene (the same actors).
+  StateHandle capture_state();
+  /// Throws superdex::Error for an unknown or released handle; releases it when `release`.
+  void restore_state(StateHandle state, bool release);
+  void release_state(StateHandle state);
+  void release_all_states();
+  /// Both handles valid and their states identical.
+  bool is_equal_state(StateHandle a, StateHandle b) const;
+  /// The state as bytes (appended to `out`), and restored from them.
+  void capture_state_to_bytes(std::vector<std::uint8_t>& out) const;
+  void restore_state_from_bytes(std::span<const std::uint8_t> bytes);
+  /// A JSON snapshot of the state for inspection.
+  void capture_state_to_file(const std::string& path) const;
+
+  /// Solve every dynamic body in one island (a debugging aid; slower).
+  void set_force_single_island(bool force);
+  bool force_single_island() const;
+  /// Every actor, links and nested actors included, in creation order.
+  std::vector<ActorHandle> all_actors() const;
 
  private:
   // the physics of one step (between the callbacks)
   void step_dynamics(real dt);
   SceneHandle handle_;
+};
+
+struct StepInfo {
+  Scene scene;
+  double time_step_sec = 0;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "superdex/physics/params/contact_params.h"
 #include "superdex/physics/real.h"
 
 namespace superdex::physics {
@@ -61,8 +62,8 @@ struct MeshShape {
   std::string source;                  ///< file it came from, for messages
 };
 
-/// Contact parameters of a body's surface. A pair combines them: friction
-/// 2 mu_a mu_b / (mu_a + mu_b), stiffness in series, dissipation time scale the larger.
+/// What the contact solve uses of a surface's ContactParams. A pair combines them: friction
+/// sqrt(mu_a mu_b), stiffness in series, dissipation time scale the larger.
 struct ContactMaterial {
   /// Coulomb friction coefficient (>= 0).
   real friction = real(0.5);
@@ -71,6 +72,9 @@ struct ContactMaterial {
   /// Dissipation time scale in s (normal damping = stiffness * time scale); used with a stiffness.
   real dissipation_time = 0;
 };
+
+/// The contact solve's part of ContactParams.
+ContactMaterial contact_material(const ContactParams& params);
 
 /// A tetrahedral mesh for soft bodies: nodes (m) and tetrahedra as node indices, positively
 /// oriented (det[x1 - x0, x2 - x0, x3 - x0] > 0).
@@ -82,9 +86,6 @@ struct TetMesh {
   std::vector<real> youngs_modulus;
   std::vector<real> poisson_ratio;
 };
-
-/// How a body's collision geometry is derived from its shape.
-enum class ColliderType { Auto, None, Sphere, Box, Plane, Mesh, Sdf };
 
 /// The geometry of one shape.
 using ShapeGeometry = std::variant<PlaneShape, SphereShape, BoxShape, CapsuleShape, MeshShape>;

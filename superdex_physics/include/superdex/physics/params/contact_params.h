@@ -2,6 +2,8 @@
 /// @file contact_params.h
 /// The contact parameters of an actor's surface, and how its collision geometry is derived.
 
+#include <string>
+
 #include "superdex/physics/real.h"
 
 namespace superdex::physics {
@@ -29,8 +31,9 @@ const char* collider_type_name(ColliderType type);
 /// friction).
 ///
 /// How this engine's implicit solve uses them: contact is near-rigid (each contact point's normal
-/// impulse keeps the gap from closing, regularised as the solver's near-rigid setting says), with
-/// Coulomb friction coulomb_friction_coefficient. The penalty law of the other fields (force =
+/// impulse keeps the gap from closing, regularised as the solver's near-rigid setting says), or
+/// compliant with this engine's contact_stiffness and dissipation_time_scale, with Coulomb
+/// friction coulomb_friction_coefficient. The penalty law of the other fields (force =
 /// penalty_coefficient x area x depth below penalty_threshold_default, smoothed, with viscous
 /// terms) is not the model this engine solves: they are kept, validated and returned, and an actor
 /// created with a value other than the default logs one warning naming the field.
@@ -48,6 +51,9 @@ struct ContactParams {
   real distance_error_bound = 0;                   ///< m, >= 0: padding of the collider's bounds when culling pairs
   real obj_scale = 1;                              ///< > 0: scale of approximate (learned) distance fields; 1 for exact ones
   real colliding_penalty_length_scale = 1;         ///< m, > 0: penalty correction for contact lumped on lines or points
+  // this engine's additions: compliant contact
+  real contact_stiffness = 0;       ///< N/m per contact point, >= 0; 0: near-rigid (the solver's regularisation)
+  real dissipation_time_scale = 0;  ///< s, >= 0: normal damping = contact_stiffness x this (with a stiffness)
   /// The contact detection threshold (m): the default plus, when `add_padding`, the extra padding.
   real penalty_threshold_dist(bool add_padding) const {
     return penalty_threshold_default + (add_padding ? penalty_threshold_extra_padding : real(0));
