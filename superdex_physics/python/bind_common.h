@@ -6,6 +6,7 @@
 #include <nanobind/ndarray.h>
 #include <nlohmann/json.hpp>
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,10 +39,24 @@ VecX read_vector(nb::handle obj, std::string_view arg, long expected = -1);
 // The same into `out`, which keeps its storage when the size is unchanged.
 void read_vector(nb::handle obj, std::string_view arg, VecX& out, long expected = -1);
 Vec3 read_vec3(nb::handle obj, std::string_view arg);
+// Integer indices from a list or tuple of ints, a DynamicArrayInt, a SpanConstInt or an array of
+// integral numbers; errors name `arg`. The first form keeps `out`'s storage.
+void read_indices(nb::handle obj, std::string_view arg, std::vector<int>& out);
+std::vector<int> read_indices(nb::handle obj, std::string_view arg);
+// Points from a DynamicArrayReal3, a sequence of Real3-like values or an (n, 3) array.
+std::vector<Real3> read_real3s(nb::handle obj, std::string_view arg);
 
 // The writable, contiguous 1-D buffer of length `n` behind an out-parameter: a numpy array of
 // the build's dtype or a DynamicArrayReal. Raises superdex.physics.Error otherwise.
 real* out_buffer(nb::handle out, std::string_view arg, size_t n);
+
+// Writes `values` into an out-parameter of exactly their length, raising superdex.physics.Error
+// naming `arg` otherwise: reals into a numpy array of the build's dtype, a DynamicArrayReal or a
+// SpanReal; transforms into a DynamicArrayTransformRT or SpanTransformRT; pairs into a
+// DynamicArrayReal2, a SpanReal2 or an (n, 2) array.
+void write_out(nb::handle out, std::span<const real> values, std::string_view arg);
+void write_out(nb::handle out, std::span<const TransformRT> values, std::string_view arg);
+void write_out(nb::handle out, std::span<const Real2> values, std::string_view arg);
 
 // An actor as seen from Python: its scene and handle.
 struct Actor {
@@ -51,13 +66,8 @@ struct Actor {
 
 // A Python object made of dicts, lists, strings, numbers, booleans and None as JSON (numpy
 // arrays through tolist()); non-finite floats are kept so that readers name the field. Errors
-// name `path` (bind_scene.cpp).
+// name `path` (bind_json.cpp).
 nlohmann::json to_json(nb::handle obj, const std::string& path);
-
-// A captured scene state.
-struct SceneState {
-  std::vector<std::uint8_t> bytes;
-};
 
 // A Python list of the elements of `items` (for vectors of types without a DynamicArray).
 template <class T>
@@ -80,18 +90,22 @@ T& object_of(nb::handle obj, const std::string& arg, const char* expected) {
   return *p;
 }
 
-// The shape handle behind a Shape object (bind_engine.cpp).
+// The ShapeHandle argument `arg`, or superdex.physics.Error naming it (bind_context.cpp).
 ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg);
-// A Shape object for a registered shape (bind_engine.cpp).
-nb::object shape_object(ShapeHandle handle);
 
 // Transform from a TransformRT or None (identity).
 Transform read_transform(nb::handle obj, const std::string& arg);
 
-void export_types(nb::module_& m);
+void export_error(nb::module_& m);
 void export_values(nb::module_& m);
 void export_containers(nb::module_& m);
-void export_engine(nb::module_& m);
+void export_handles(nb::module_& m);
+void export_enums(nb::module_& m);
+void export_solver_params(nb::module_& m);
+void export_material_params(nb::module_& m);
+void export_actor_params(nb::module_& m);
+void export_context(nb::module_& m);
+void export_constants(nb::module_& m);
 void export_debug_server(nb::module_& m);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);

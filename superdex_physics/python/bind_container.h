@@ -137,7 +137,7 @@ nb::class_<std::vector<T>> bind_dynamic_array(nb::handle scope, const char* name
            });
   if constexpr (by_reference) {
     c.def("__getitem__", [](Vec& v, long i) -> T& { return v[wrap_index(i, v.size())]; }, nb::rv_policy::reference_internal)
-        .def("__iter__", [](Vec& v) { return nb::make_iterator(nb::type<Vec>(), "iterator", v.begin(), v.end()); },
+        .def("__iter__", [](Vec& v) { return nb::make_iterator<nb::rv_policy::reference_internal>(nb::type<Vec>(), "iterator", v.begin(), v.end()); },
              nb::keep_alive<0, 1>());
   } else {
     c.def("__getitem__", [](const Vec& v, long i) { return T(v[wrap_index(i, v.size())]); })
@@ -191,7 +191,7 @@ nb::class_<SpanOf<T>> bind_span(nb::handle scope, const char* name) {
       .def("__deepcopy__", [](const Span& s, nb::handle) { return Vec(s.data, s.data + s.size); }, nb::arg("memo"));
   if constexpr (by_reference) {
     c.def("__getitem__", [](Span& s, long i) -> E& { return s.data[wrap_index(i, s.size)]; }, nb::rv_policy::reference_internal)
-        .def("__iter__", [](Span& s) { return nb::make_iterator(nb::type<Span>(), "iterator", s.data, s.data + s.size); },
+        .def("__iter__", [](Span& s) { return nb::make_iterator<nb::rv_policy::reference_internal>(nb::type<Span>(), "iterator", s.data, s.data + s.size); },
              nb::keep_alive<0, 1>());
   } else {
     c.def("__getitem__", [](const Span& s, long i) { return E(s.data[wrap_index(i, s.size)]); })

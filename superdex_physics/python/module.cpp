@@ -1,18 +1,26 @@
 // The native module: one per scalar type (_superdex_float, _superdex_double), loaded by
-// the `superdex.physics` package according to SUPERDEX_PRECISION.
+// the `superdex.physics` package according to SUPERDEX_PRECISION. Types are registered before the
+// functions whose defaults or signatures name them.
 
 #include "bind_common.h"
 
 NB_MODULE(SUPERDEX_MODULE_NAME, m) {
+  using namespace superdex::python;
   m.doc() = "SuperDex native engine";
-  superdex::python::export_types(m);
-  superdex::python::export_values(m);
-  superdex::python::export_containers(m);
-  superdex::python::export_engine(m);
-  superdex::python::export_debug_server(m);
-  superdex::python::export_scene(m);
-  superdex::python::export_actor(m);
-  superdex::python::export_robotics(m);
-  superdex::python::export_meshes(m);
-  superdex::python::export_prefab_loader(m);
+  export_error(m);
+  export_values(m);
+  export_containers(m);
+  export_handles(m);
+  export_enums(m);
+  export_solver_params(m);
+  export_material_params(m);
+  export_actor_params(m);
+  export_constants(m);
+  export_context(m);
+  export_scene(m);
+  export_actor(m);
+  export_debug_server(m);
+  export_robotics(m);
+  export_meshes(m);
+  export_prefab_loader(m);
 }

@@ -1,7 +1,6 @@
 #pragma once
 // Binds a plain C++ struct as a Python class in SuperDex's style: every field readable and
-// writable by name, a constructor taking any fields by keyword (or positionally in field order)
-// with the rest at their C++ defaults, `src=` copy construction, exact equality, copy.copy and
+// writable by name, a constructor taking any fields by keyword with the rest at their C++ defaults, `src=` copy construction, exact equality, copy.copy and
 // copy.deepcopy, pickling, and a repr listing the fields. Nested structs and arrays are returned
 // by reference, so `params.contact.penalty_coefficient = x` changes `params`.
 
@@ -50,16 +49,26 @@ class StructBinder {
     return *this;
   }
 
+  /// A std::vector field read as a read-only span of the struct's elements (SpanConstX, which
+  /// keeps the struct alive) and written from any array-like of elements (needs bind_container.h).
+  template <class E>
+  StructBinder& span_field(const char* name, std::vector<E> T::*member, const char* doc = "") {
+    cls_.def_prop_rw(
+        name, [member](const T& t) { return SpanOf<const E>{nullptr, (t.*member).data(), (t.*member).size()}; },
+        [member](T& t, const std::vector<E>& v) { t.*member = v; }, nb::for_getter(nb::keep_alive<0, 1>()), doc);
+    fields_->names.push_back(name);
+    fields_->setters.push_back([member](T& t, nb::handle v) { t.*member = nb::cast<std::vector<E>>(v); });
+    return *this;
+  }
+
   nb::class_<T>& cls() { return cls_; }
 
   /// Adds the constructor, equality (when `comparable`), copies, pickling and repr.
   nb::class_<T>& done(bool comparable = true) {
     std::shared_ptr<Fields> f = fields_;
-    cls_.def("__init__", [f](T* self, nb::args args, nb::kwargs kwargs) {
+    cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
+        .def("__init__", [f](T* self, nb::kwargs kwargs) {
           new (self) T();
-          if (args.size() > f->names.size())
-            throw nb::type_error((f->type_name + "(): takes at most " + std::to_string(f->names.size()) + " positional arguments").c_str());
-          for (size_t i = 0; i < args.size(); ++i) f->setters[i](*self, args[i]);
           for (auto [key, value] : kwargs) {
             const std::string k = nb::cast<std::string>(key);
             const size_t i = f->index(k);
@@ -67,7 +76,6 @@ class StructBinder {
             f->setters[i](*self, value);
           }
         })
-        .def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
         .def("__copy__", [](const T& t) { return T(t); })
         .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
         .def("__getstate__", [f](nb::handle self) {

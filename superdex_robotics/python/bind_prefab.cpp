@@ -65,8 +65,7 @@ void export_prefab(nb::module_& m) {
       .def_rw("has_gravity", &LinkDesc::has_gravity)
       .def_rw("layer", &LinkDesc::layer)
       .def_rw("render_model", &LinkDesc::render_model)
-      .def_prop_rw("friction", [](const LinkDesc& l) { return l.contact.friction; },
-                   [](LinkDesc& l, real mu) { l.contact.friction = mu; }, "Coulomb friction coefficient of its contacts")
+      .def_rw("contact", &LinkDesc::contact, "its contact params")
       .def("__repr__", [](const LinkDesc& l) { return "LinkDesc('" + l.name + "')"; });
   nb::bind_vector<std::vector<LinkDesc>, nb::rv_policy::reference_internal>(m, "LinkDescList");
 

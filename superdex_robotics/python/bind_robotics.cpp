@@ -85,7 +85,7 @@ void emit(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
 }
 
-ActorHandle actor_or_zero(nb::handle a, const char* what) { return a.is_none() ? 0 : actor_handle_of(a, what); }
+ActorHandle actor_or_zero(nb::handle a, const char* what) { return a.is_none() ? ActorHandle() : actor_handle_of(a, what); }
 
 // Bot component lists filtered by name or type.
 template <ComponentKind K>

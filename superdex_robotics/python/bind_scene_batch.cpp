@@ -118,7 +118,7 @@ void export_scene_batch(nb::module_& m) {
                members[k].scene = *scene;
                members[k].articulation = actor_handle_of(articulations[k], "SceneBatch: articulations" + index);
                nb::object c = contact_actors[k];
-               members[k].contact_actor = c.is_none() ? 0 : actor_handle_of(c, "SceneBatch: contact_actors" + index);
+               members[k].contact_actor = c.is_none() ? ActorHandle() : actor_handle_of(c, "SceneBatch: contact_actors" + index);
              }
              new (self) SceneBatch(spec, std::move(members));
            },

@@ -163,7 +163,7 @@ SceneBatch::SceneBatch(SceneBatchSpec spec, std::vector<SceneBatchMember> member
     SceneSlot slot;
     slot.member = m;
     if (m.contact_actor != 0) m.scene.register_query(m.contact_actor, physics::QueryType::TotalContactForce);
-    slot.initial_state = m.scene.capture_state();
+    m.scene.capture_state_to_bytes(slot.initial_state);
     slot.servos.resize(n);
     for (size_t j = 0; j < slot.servos.size() && b.spec.mode == BatchActionMode::VelocityServo; ++j)
       slot.servos[j].params = {b.spec.servo_k_p[j], b.spec.servo_k_i[j], b.spec.servo_effort_limit[j], b.spec.servo_profile_accel[j]};
@@ -197,7 +197,7 @@ void SceneBatch::reset(const std::vector<int>& indices, const double* q0, real* 
     SceneSlot& slot = b.slots[indices[i]];
     Scene& scene = slot.member.scene;
     const ActorHandle art = slot.member.articulation;
-    scene.restore_state(slot.initial_state);
+    scene.restore_state_from_bytes(slot.initial_state);
     VecX q = scene.pose(art);
     if (q0 != nullptr) {
       for (int j = 0; j < b.n; ++j) q[b.spec.action_dofs[j]] = static_cast<real>(q0[i * b.n + j]);

@@ -132,5 +132,10 @@ Bounds shape_local_aabb(const ShapeGeometry& shape) {
                     shape);
 }
 
+std::pair<Vec3, Vec3> shape_bounds(const ShapeGeometry& shape) {
+  const Bounds b = shape_local_aabb(shape);
+  return {b.min, b.max};
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -24,10 +24,12 @@ void initialize(int num_worker_threads) {
   if (num_worker_threads < -1) throw Error("initialize: num_worker_threads must be -1 (automatic), 0 or positive, got " + std::to_string(num_worker_threads));
   EngineData& e = engine_data();
   std::unique_lock lock(e.mutex);
-  if (e.initialized) throw Error("initialize: the engine is already initialized; call shutdown() first");
+  if (e.initialized) throw Error("initialize: the engine has already been initialized; call shutdown() first");
   int threads = num_worker_threads;
   if (threads == -1) threads = std::max(1u, std::thread::hardware_concurrency());
   e.num_threads = std::max(1, threads);
+  e.requested_threads = threads;
+  e.single_threaded = false;
   e.arena.reset();
   if (threads > 0) e.arena = std::make_unique<oneapi::tbb::task_arena>(threads);
   e.initialized = true;
@@ -54,6 +56,20 @@ int num_worker_threads() {
   EngineData& e = engine_data();
   std::shared_lock lock(e.mutex);
   return e.num_threads;
+}
+
+int num_threads() {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.single_threaded ? 0 : e.requested_threads;
+}
+
+void set_single_threaded(bool single) { engine_data().single_threaded = single; }
+
+bool is_single_threaded() {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.single_threaded || e.requested_threads == 0;
 }
 
 namespace {
@@ -184,6 +200,46 @@ std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std:
 }
 
 ShapeHandle add_shape_reference_to(std::shared_ptr<const ShapeData> data) { return register_shape(std::move(data), "get_reference_shape"); }
+
+void enable_file_cache(bool enable) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  e.file_cache_enabled = enable;
+  if (!enable) e.file_cache.clear();
+}
+
+bool is_file_cache_enabled() {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  return e.file_cache_enabled;
+}
+
+void clear_file_cache() {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  e.file_cache.clear();
+}
+
+void clear_file_from_cache(const std::string& path) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  // keys are the path, a newline, then the bake
+  std::erase_if(e.file_cache, [&](const auto& kv) { return kv.first.compare(0, path.size() + 1, path + "\n") == 0; });
+}
+
+std::shared_ptr<const ShapeData> cached_shape(const std::string& key) {
+  EngineData& e = engine_data();
+  std::shared_lock lock(e.mutex);
+  if (!e.file_cache_enabled) return nullptr;
+  auto it = e.file_cache.find(key);
+  return it == e.file_cache.end() ? nullptr : it->second;
+}
+
+void cache_shape(const std::string& key, std::shared_ptr<const ShapeData> data) {
+  EngineData& e = engine_data();
+  std::unique_lock lock(e.mutex);
+  if (e.file_cache_enabled) e.file_cache[key] = std::move(data);
+}
 
 ShapeGeometry shape_geometry(const ShapeHandle& shape) {
   const auto data = shape_data(shape, "shape_geometry");

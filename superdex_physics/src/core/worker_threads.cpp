@@ -28,6 +28,7 @@ oneapi::tbb::task_arena* arena_for(std::size_t count) {
   EngineData& e = engine_data();
   std::shared_lock lock(e.mutex);
   oneapi::tbb::task_arena* arena = e.arena.get();
+  if (e.single_threaded.load(std::memory_order_relaxed)) return nullptr;
   return arena && arena->max_concurrency() >= 2 ? arena : nullptr;
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "multibody/articulation_model.h"
+#include "multibody/inertia_validity.h"
 #include "multibody/dynamics.h"
 #include "superdex/physics/error.h"
 
@@ -80,16 +81,7 @@ ShapeGeometry scaled(const ShapeGeometry& shape, const Vec3& s, const Reporter& 
 // Checks a rotational inertia: symmetric positive definite and satisfying the triangle
 // inequality of principal moments (a physical mass distribution).
 void check_inertia(const Mat3& I, const Reporter& r, const std::string& path) {
-  if (!I.allFinite()) r.fail(path, "must be finite");
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I.cast<double>());
-  const Eigen::Vector3d l = eig.eigenvalues();
-  if (l.minCoeff() <= 0)
-    r.fail(path, "must be positive definite (principal moments " + num(real(l[0])) + ", " + num(real(l[1])) + ", " +
-                     num(real(l[2])) + ")");
-  const double tol = 1e-6 * l.maxCoeff();
-  if (l[0] + l[1] < l[2] - tol)
-    r.fail(path, "is not physically valid: principal moments violate the triangle inequality (" + num(real(l[0])) +
-                     " + " + num(real(l[1])) + " < " + num(real(l[2])) + ")");
+  if (auto defect = inertia_defect(I)) r.fail(path, *defect);
 }
 
 void check_nonnegative(real x, const Reporter& r, const std::string& path) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "collision/collision_geometry.h"
+#include "multibody/inertia_validity.h"
 #include "scene/actor_records.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/error.h"
@@ -81,8 +82,9 @@ struct LinkInput {
   std::optional<Real6> moment_of_inertia;
 };
 
-// The link description, and the density a mass and a shape imply.
-LinkDesc link_desc(const LinkInput& in, const std::string& where, real& density_out) {
+// The link description, and the density a mass and a shape imply. A moment of inertia that is
+// not physical is replaced by the nearest physical one, with a warning, and returned in `declared`.
+LinkDesc link_desc(const LinkInput& in, const std::string& where, real& density_out, std::optional<Real6>& declared) {
   LinkDesc link;
   link.name = in.name;
   link.contact = *in.contact;
@@ -107,8 +109,17 @@ LinkDesc link_desc(const LinkInput& in, const std::string& where, real& density_
       link.mass = density_out * volume;
     }
     if (in.moment_of_inertia) {
-      const Real6& I = *in.moment_of_inertia;
-      link.moment_of_inertia = std::array<real, 6>{I[0], I[1], I[2], I[3], I[4], I[5]};
+      const Real6& c = *in.moment_of_inertia;
+      Mat3 I;
+      I << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+      if (auto defect = inertia_defect(I); defect && I.allFinite()) {
+        I = nearest_physical_inertia(I);
+        declared = c;
+        log_warning(where + ".moment_of_inertia: " + *defect + "; simulating the nearest physical inertia [" + std::to_string(I(0, 0)) +
+                    ", " + std::to_string(I(0, 1)) + ", " + std::to_string(I(0, 2)) + ", " + std::to_string(I(1, 1)) + ", " +
+                    std::to_string(I(1, 2)) + ", " + std::to_string(I(2, 2)) + "]");
+      }
+      link.moment_of_inertia = std::array<real, 6>{I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2)};
     } else if (bounded) {
       const MassProperties mp = shape_mass_properties(*shape, 1);
       const Mat3 I = mp.inertia_about_com * (*link.mass / mp.mass);
@@ -181,7 +192,8 @@ ActorHandle Scene::create_rigid_actor(const RigidActorParams& p) {
     throw Error(where + ".shape: a plane is unbounded and can only carry a static actor (is_static=True)");
   warn_unused_contact_fields(p.contact, where);
   LinkInput in;
-  in.name = p.name;
+  // the body's one link and root joint take the actor's name (names are optional for actors)
+  in.name = p.name.empty() ? "link_0" : p.name;
   in.shape = shape;
   in.collider_type = p.collider_type;
   in.contact = &p.contact;
@@ -197,16 +209,17 @@ ActorHandle Scene::create_rigid_actor(const RigidActorParams& p) {
   desc.name = p.name;
   desc.world_from_root = p.world_from_local;
   desc.world_from_root.rotation.normalize();
-  desc.links = {link_desc(in, where, density)};
+  std::optional<Real6> declared;
+  desc.links = {link_desc(in, where, density, declared)};
   JointDesc joint;
-  joint.name = p.name + "_root";
+  joint.name = p.name.empty() ? "root" : p.name + "_root";
   joint.type = p.is_static ? JointType::Hard : JointType::Free;
   desc.joints = {joint};
   auto a = std::make_unique<Articulation>();
   a->is_rigid = true;
   a->is_static = p.is_static;
   a->model = build_articulation_model(desc, where);
-  a->links.push_back(LinkRecord{shape, p.contact, p.layer, density, p.collider_type});
+  a->links.push_back(LinkRecord{shape, p.contact, p.layer, density, p.collider_type, declared});
   const ActorHandle h = add_articulation(s, std::move(a));
   if (p.linear_velocity || p.angular_velocity)
     set_velocity(h, p.linear_velocity.value_or(Real3::Zero()), p.angular_velocity.value_or(Real3::Zero()));
@@ -240,11 +253,12 @@ ActorHandle Scene::create_articulated_actor(const ArticulatedActorParams& p) {
     if (in.shape && std::holds_alternative<PlaneShape>(*in.shape->geometry)) throw Error(lw + ".shape: a plane cannot be a link's shape");
     warn_unused_contact_fields(l.contact, lw);
     real density = 0;
-    LinkDesc link = link_desc(in, lw, density);
+    std::optional<Real6> declared;
+    LinkDesc link = link_desc(in, lw, density, declared);
     link.parent_link = l.parent_link;
     desc.links.push_back(std::move(link));
     desc.joints.push_back(joint_desc(p.joints[i], static_cast<int>(i)));
-    a->links.push_back(LinkRecord{in.shape, l.contact, l.layer, density, l.collider_type});
+    a->links.push_back(LinkRecord{in.shape, l.contact, l.layer, density, l.collider_type, declared});
     a->joint_friction.push_back(p.joints[i].friction);
   }
   a->model = build_articulation_model(desc, where);

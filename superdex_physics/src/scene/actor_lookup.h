@@ -35,6 +35,13 @@ inline Articulation& whole(SceneData& s, ActorHandle h, const char* what) {
   return *r.articulation;
 }
 
+// The articulation behind an articulated actor; rigid, link and soft actors are refused.
+inline Articulation& articulated(SceneData& s, ActorHandle h, const char* what) {
+  Articulation& a = whole(s, h, what);
+  if (a.is_rigid) throw Error(std::string(what) + ": " + describe(h) + " is a rigid actor, not an articulated one");
+  return a;
+}
+
 // The articulation and link index of a link actor, or link 0 of a rigid or articulated actor.
 inline std::pair<Articulation*, int> link_of(SceneData& s, ActorHandle h, const char* what) {
   ActorRef r = lookup(s, h, what);

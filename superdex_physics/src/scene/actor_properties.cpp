@@ -7,8 +7,10 @@
 #include "collision/collision_detection.h"
 #include "collision/collision_geometry.h"
 #include "multibody/dynamics.h"
+#include "multibody/inertia_validity.h"
 #include "multibody/kinematics.h"
 #include "scene/actor_lookup.h"
+#include "superdex/physics/log.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -54,6 +56,11 @@ void inertia_changed(Articulation& a) { merge_welded_links(a.model); }
 bool Scene::is_static(ActorHandle h) const {
   const ActorRef& r = lookup_const(scene_data(handle_), h, "is_static");
   return !r.soft && r.articulation->is_static;
+}
+
+ConvergenceStatus Scene::convergence_status(ActorHandle h) const {
+  const ActorRef& r = lookup_const(scene_data(handle_), h, "get_convergence_status");
+  return r.soft ? r.soft->convergence_status : r.articulation->convergence_status;
 }
 
 ContactParams Scene::contact_params(ActorHandle h) const {
@@ -126,6 +133,7 @@ void Scene::set_center_of_mass_transform(ActorHandle h, const TransformRT& X_WC)
 Real6 Scene::moment_of_inertia_local(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
   auto [a, link] = dynamic_rigid(s, h, "get_rigid_moment_of_inertia_local");
+  if (const auto& declared = a->links[link].declared_inertia) return *declared;
   return inertia_entries(a->model.inertia[link].inertia_com);
 }
 
@@ -155,6 +163,7 @@ void Scene::set_density(ActorHandle h, real density) {
   SpatialInertia& I = a->model.inertia[link];
   I.mass *= ratio;
   I.inertia_com *= ratio;
+  if (rec.declared_inertia) *rec.declared_inertia *= ratio;
   rec.density = density;
   inertia_changed(*a);
 }
@@ -171,6 +180,13 @@ void Scene::set_inertia_properties(ActorHandle h, real mass, const Real3& com, c
   I.com = com;
   I.inertia_com = inertia_matrix(moi);
   LinkRecord& rec = a->links[link];
+  // an inertia that is not physical is reported as given and simulated as the nearest physical one
+  rec.declared_inertia.reset();
+  if (auto defect = inertia_defect(I.inertia_com)) {
+    rec.declared_inertia = moi;
+    I.inertia_com = nearest_physical_inertia(I.inertia_com);
+    log_warning("set_inertia_properties: " + describe(h) + ": moment_of_inertia " + *defect + "; simulating the nearest physical inertia");
+  }
   const ShapeGeometry* shape = rec.shape && rec.shape->geometry ? &*rec.shape->geometry : nullptr;
   if (shape && !std::holds_alternative<PlaneShape>(*shape)) rec.density = mass / shape_volume(*shape);
   inertia_changed(*a);

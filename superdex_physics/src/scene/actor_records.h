@@ -3,6 +3,7 @@
 // actor getters (contact params, layer, density, shape, collider type).
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "superdex/physics/params/actor_params.h"
@@ -19,6 +20,9 @@ struct LinkRecord {
   std::string layer;
   real density = 0;  // kg/m^3: as given, or implied by a given mass and the shape's volume
   ColliderType collider_type = ColliderType::Auto;
+  // a moment of inertia given that is not physical (kg m^2, [ixx, ixy, ixz, iyy, iyz, izz]): what
+  // the getters report, while the dynamics use the nearest physical one
+  std::optional<Real6> declared_inertia;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -30,12 +30,12 @@ void check_pose_size(const char* what, const char* arg, const VecX& v, int nv) {
 }  // namespace
 
 std::vector<ArticulatedJointFrictionParams> Scene::joint_friction_params(ActorHandle h) const {
-  return whole(scene_data(handle_), h, "get_articulated_joint_friction_params").joint_friction;
+  return articulated(scene_data(handle_), h, "get_articulated_joint_friction_params").joint_friction;
 }
 
 void Scene::set_joint_friction_params(ActorHandle h, const std::vector<ArticulatedJointFrictionParams>& friction) {
   const char* what = "set_articulated_joint_friction_params";
-  Articulation& a = whole(scene_data(handle_), h, what);
+  Articulation& a = articulated(scene_data(handle_), h, what);
   if (static_cast<int>(friction.size()) != a.model.num_links)
     throw Error(std::string(what) + ": friction must hold one entry per joint (" + std::to_string(a.model.num_links) + "), got " +
                 std::to_string(friction.size()));
@@ -53,7 +53,7 @@ void Scene::set_joint_friction_params(ActorHandle h, const std::vector<Articulat
 }
 
 std::vector<real> Scene::joint_inertia_params(ActorHandle h) const {
-  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_joint_inertia_params");
+  const Articulation& a = articulated(scene_data(handle_), h, "get_articulated_joint_inertia_params");
   std::vector<real> out;
   for (const JointModel& j : a.model.joints) out.push_back(j.armature);
   return out;
@@ -61,7 +61,7 @@ std::vector<real> Scene::joint_inertia_params(ActorHandle h) const {
 
 void Scene::set_joint_inertia_params(ActorHandle h, std::span<const real> inertia) {
   const char* what = "set_articulated_joint_inertia_params";
-  Articulation& a = whole(scene_data(handle_), h, what);
+  Articulation& a = articulated(scene_data(handle_), h, what);
   if (static_cast<int>(inertia.size()) != a.model.num_links)
     throw Error(std::string(what) + ": inertia must hold one value per joint (" + std::to_string(a.model.num_links) + "), got " +
                 std::to_string(inertia.size()));
@@ -72,7 +72,7 @@ void Scene::set_joint_inertia_params(ActorHandle h, std::span<const real> inerti
 }
 
 std::vector<Real2> Scene::dof_limits(ActorHandle h) const {
-  const Articulation& a = whole(scene_data(handle_), h, "get_articulated_dof_limits");
+  const Articulation& a = articulated(scene_data(handle_), h, "get_articulated_dof_limits");
   const real inf = std::numeric_limits<real>::infinity();
   std::vector<Real2> out(a.model.nv, Real2(-inf, inf));
   for (const JointModel& j : a.model.joints)
@@ -82,7 +82,7 @@ std::vector<Real2> Scene::dof_limits(ActorHandle h) const {
 
 void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL) {
   const char* what = "set_articulated_pose_from_links";
-  Articulation& a = whole(scene_data(handle_), h, what);
+  Articulation& a = articulated(scene_data(handle_), h, what);
   const ArticulationModel& m = a.model;
   if (static_cast<int>(X_WL.size()) != m.num_links)
     throw Error(std::string(what) + ": world_from_links must hold one transform per link (" + std::to_string(m.num_links) + "), got " +
@@ -111,7 +111,7 @@ void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL
 
 VecX Scene::add_delta_to_pose(ActorHandle h, const VecX& pose, const VecX& delta) const {
   const char* what = "add_articulated_delta_to_pose";
-  const Articulation& a = whole(scene_data(handle_), h, what);
+  const Articulation& a = articulated(scene_data(handle_), h, what);
   check_pose_size(what, "pose", pose, a.model.nv);
   check_pose_size(what, "delta_dofs", delta, a.model.nv);
   VecX out = pose + delta;
@@ -127,7 +127,7 @@ VecX Scene::add_delta_to_pose(ActorHandle h, const VecX& pose, const VecX& delta
 
 VecX Scene::pose_delta(ActorHandle h, const VecX& base, const VecX& target) const {
   const char* what = "compute_articulated_pose_delta";
-  const Articulation& a = whole(scene_data(handle_), h, what);
+  const Articulation& a = articulated(scene_data(handle_), h, what);
   check_pose_size(what, "pose_base", base, a.model.nv);
   check_pose_size(what, "pose_target", target, a.model.nv);
   VecX out = target - base;
@@ -141,7 +141,7 @@ VecX Scene::pose_delta(ActorHandle h, const VecX& base, const VecX& target) cons
 
 void Scene::pose_distance(ActorHandle h, const VecX& pa, const VecX& pb, VecX& translation, VecX& rotation) const {
   const char* what = "get_articulated_pose_distance";
-  const Articulation& a = whole(scene_data(handle_), h, what);
+  const Articulation& a = articulated(scene_data(handle_), h, what);
   check_pose_size(what, "pose_a", pa, a.model.nv);
   check_pose_size(what, "pose_b", pb, a.model.nv);
   translation.setZero(a.model.num_links);

@@ -49,6 +49,7 @@ struct Articulation {
   ArticulationState state;
   ArticulationKinematics kin;  // always current with `state`
   VecX drive_efforts;          // results of the last step: joint drive efforts per DOF
+  ConvergenceStatus convergence_status = ConvergenceStatus::None;  // of its island's last solve
   std::vector<ActorHandle> link_handles;
 };
 
@@ -98,7 +99,7 @@ struct CachedCallbackOrder {
 struct SceneData {
   SceneHandle handle = 0;
   std::string name;
-  Vec3 gravity = Vec3(0, 0, real(-9.81));
+  Vec3 gravity = kDefaultGravity;
   double time = 0;
   double last_time_step = 0;  // s, of the last step with a positive time step
   SolverParams solver_params = default_scene_solver_params();  // as set (Scene::set_solver_params)
@@ -154,13 +155,18 @@ struct SceneData {
 struct EngineData {
   std::shared_mutex mutex;  // guards the registries below
   bool initialized = false;
-  int num_threads = 1;
+  int num_threads = 1;              // threads the work runs on (1: the calling thread alone)
+  int requested_threads = 0;        // as initialize() was asked (-1 resolved to the cores)
+  std::atomic<bool> single_threaded{false};  // set_single_threaded(): work runs on the calling thread
   std::unique_ptr<oneapi::tbb::task_arena> arena;  // null when single-threaded
   std::map<SceneHandle, std::unique_ptr<SceneData>> scenes;
   // bumped (under the unique lock) whenever `scenes` changes: scene_data()'s per-thread cache of
   // its last lookup is valid while this is unchanged
   std::atomic<std::uint64_t> scenes_version{0};
   std::unordered_map<std::int64_t, ShapeEntry> shapes;
+  // the file cache (engine.h): shape data by file and bake, kept while enabled
+  bool file_cache_enabled = false;
+  std::map<std::string, std::shared_ptr<const ShapeData>> file_cache;
 };
 
 EngineData& engine_data();
@@ -183,6 +189,9 @@ ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body);
 int contact_layer_index(SceneData& s, const std::string& name, const std::string& where);
 // The data of a live shape; throws superdex::Error "<where>: ..." for an invalid or released handle.
 std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std::string& where);
+// The file cache's data for `key` (a path and a bake), or null; and its storage when enabled.
+std::shared_ptr<const ShapeData> cached_shape(const std::string& key);
+void cache_shape(const std::string& key, std::shared_ptr<const ShapeData> data);
 // A new handle (one reference) to existing shape data.
 ShapeHandle add_shape_reference_to(std::shared_ptr<const ShapeData> data);
 // The live scene with this handle; throws superdex::Error if it does not exist.

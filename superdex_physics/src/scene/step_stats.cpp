@@ -18,6 +18,13 @@ void step_stats(Step& step, const StepClock& clock) {
       stats.soft_element_hessians += st->element_hessians();
       stats.soft_factorizations += st->factorizations();
     }
+  // each actor's status is its island's (NONE when it was in none: static or without DOFs)
+  for (auto& a : step.s.articulations) a->convergence_status = ConvergenceStatus::None;
+  for (auto& b : step.s.soft_bodies) b->convergence_status = ConvergenceStatus::None;
+  for (size_t k = 0; k < step.ws.islands.size() && k < step.ws.solutions.size(); ++k) {
+    for (int b : step.ws.islands[k].bodies) step.s.articulations[b]->convergence_status = step.ws.solutions[k].status;
+    for (int b : step.ws.islands[k].soft_bodies) step.s.soft_bodies[b]->convergence_status = step.ws.solutions[k].status;
+  }
   for (const IslandSolution& sol : step.ws.solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;

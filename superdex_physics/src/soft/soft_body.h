@@ -106,6 +106,7 @@ struct SoftBody {
   std::vector<char> base_pinned;
   VecX base_pin_target;
   VecX node_contact_forces;  // results of the last step: contact force on each node (N), world (3N)
+  ConvergenceStatus convergence_status = ConvergenceStatus::None;  // of its island's last solve
   std::unique_ptr<SoftPattern> pattern;  // built on first use
   std::shared_ptr<const ReducedSoftModel> reduced;  // the modes of a reduced body (reduced_soft.h), else null
   SoftStepStorage step_storage;

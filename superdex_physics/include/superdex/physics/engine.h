@@ -32,6 +32,13 @@ void shutdown();
 bool is_initialized();
 /// Worker threads in use (1 when single-threaded).
 int num_worker_threads();
+/// The worker threads initialize() was asked for (-1 resolved to one per core), or 0 when
+/// single-threaded.
+int num_threads();
+/// Runs new work on the calling thread (true) or on the worker threads again (false).
+void set_single_threaded(bool single);
+/// Whether work runs on the calling thread: no worker threads, or set_single_threaded(true).
+bool is_single_threaded();
 /// Runs work(i) for every i < count on the engine's worker threads (the oneTBB arena of
 /// initialize()), or in order on the calling thread when single-threaded. Returns when all are
 /// done; the first exception thrown by a work item is rethrown. Work items run concurrently, so
@@ -63,6 +70,14 @@ ShapeHandle create_shape(const ShapeGeometry& geometry);
 void release_shape(const ShapeHandle& shape);
 /// The number of live (unreleased) shapes.
 int num_shapes();
+/// File cache: when enabled, the data of shapes loaded from files (load_shape_from_file) stays in
+/// memory after their release, keyed by the path and the bake, so that loading them again is fast.
+/// Disabling it empties it.
+void enable_file_cache(bool enable);
+bool is_file_cache_enabled();
+void clear_file_cache();
+/// Drops every bake of one file (the exact path given to the loader).
+void clear_file_from_cache(const std::string& path);
 /// The geometry of a live shape as a rigid body carries it.
 ShapeGeometry shape_geometry(const ShapeHandle& shape);
 

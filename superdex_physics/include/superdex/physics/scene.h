@@ -61,12 +61,14 @@ struct ContactPoint {
   real int_weight = 0;           ///< quadrature weight (m^2); 0: a point contact
   int element_index = -1;        ///< the surface triangle of a soft actor a (-1 for rigid ones)
   Real3 parametric_coords = Real3::Zero();  ///< barycentric coordinates of pos_a in that triangle
+  bool operator==(const ContactPoint&) const = default;
 };
 
 /// The contact force on one node of a soft actor (N, world).
 struct NodeContactForce {
   int index = 0;
   Real3 force = Real3::Zero();
+  bool operator==(const NodeContactForce&) const = default;
 };
 
 /// A soft actor's contact samples of the last step and the colliders' signed distances at them.
@@ -76,6 +78,7 @@ struct SdfDistances {
   std::vector<real> distances;         ///< m, negative: penetration
   std::vector<Real3> distance_grads;   ///< unit, world: the collider's outward normal
   real max_sdf_far_distance_evaluation = 0;  ///< m
+  bool operator==(const SdfDistances&) const = default;
 };
 
 /// The material of a soft body (FORMATS.md `material`).
@@ -113,6 +116,10 @@ struct NumericalFault {
   std::string quantity;   ///< "positions", "velocities", "contact forces" or "convergence"
   std::string message;    ///< names the scene, the actor and the quantity, and what to check
 };
+
+/// A new scene's gravity (m/s^2, world frame): along -Y, as SuperDex scenes; Z-up worlds set
+/// (0, 0, -9.81) (robot files are Z-up).
+inline const Vec3 kDefaultGravity = Vec3(0, real(-9.8), 0);
 
 class Scene;
 /// What a step callback receives: the scene being stepped and the step's time step (s).
@@ -185,9 +192,11 @@ class Scene {
   Transform root_transform(ActorHandle actor) const;
   /// Moves a rigid body or an articulation's root (its base frame if welded).
   void set_root_transform(ActorHandle actor, const Transform& X_WL);
-  /// Sets the velocity of a free body's origin (m/s) and its angular velocity (rad/s), world frame.
+  /// Sets the velocity of a free body's centre of mass (m/s) and its angular velocity (rad/s),
+  /// world frame. A soft actor takes a linear velocity only (every node gets it).
   void set_velocity(ActorHandle actor, const Vec3& v_W, const Vec3& w_W);
-  /// (linear, angular) velocity of the actor's origin in world frame.
+  /// (linear, angular) velocity of the actor's centre of mass, world frame; for a soft actor the
+  /// rigid motion of its nodes (momentum over mass, angular momentum through the inertia).
   Vec6 velocity(ActorHandle actor) const;
   /// Total mass in kg.
   real mass(ActorHandle actor) const;
@@ -263,6 +272,9 @@ class Scene {
 
   // Properties of actors (actor_properties.cpp). "Local" is the actor frame L (root transform).
   bool is_static(ActorHandle actor) const;
+  /// How the last step's solve of the actor's island ended (NONE: the actor was in no island, being
+  /// static or without DOFs, or the scene was not stepped). A link reports its articulation's.
+  ConvergenceStatus convergence_status(ActorHandle actor) const;
   ContactParams contact_params(ActorHandle actor) const;
   /// Validated; applies from the next step (to every link of an articulated actor).
   void set_contact_params(ActorHandle actor, const ContactParams& params);

@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -98,6 +99,8 @@ struct MassProperties {
   Mat3 inertia_about_com = Mat3::Zero();
 };
 
+/// Bounds (min, max) of the shape in its frame (m); infinite for a plane.
+std::pair<Vec3, Vec3> shape_bounds(const ShapeGeometry& shape);
 /// Volume in m^3; throws superdex::Error for a plane (unbounded).
 real shape_volume(const ShapeGeometry& shape);
 /// Mass properties of the shape filled with `density` (kg/m^3).

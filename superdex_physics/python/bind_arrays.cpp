@@ -1,12 +1,12 @@
-// Error, enums, and the array helpers shared by the binding files.
+// The array helpers shared by the binding files: numbers in, and out-parameters.
 
+#include <climits>
 #include <cstring>
 
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
-#include "superdex/physics/articulation_desc.h"
-#include "superdex/physics/scene.h"
+#include "bind_container.h"
 
 namespace superdex::python {
 
@@ -87,6 +87,11 @@ real* out_buffer(nb::handle out, std::string_view arg, size_t n) {
   // the common case first: a writable contiguous array of the right dtype and length
   nb::ndarray<real, nb::ndim<1>, nb::c_contig> fast;
   if (nb::try_cast(out, fast, false) && fast.shape(0) == n) return fast.data();
+  if (nb::isinstance<SpanOf<real>>(out)) {
+    auto& span = nb::cast<SpanOf<real>&>(out);
+    if (span.size != n) throw Error(std::string(arg) + ": expected a SpanReal of length " + std::to_string(n) + ", got length " + std::to_string(span.size));
+    return span.data;
+  }
   if (nb::isinstance<std::vector<real>>(out)) {
     auto& d = nb::cast<std::vector<real>&>(out);
     if (d.size() != n)
@@ -109,6 +114,112 @@ real* out_buffer(nb::handle out, std::string_view arg, size_t n) {
   return static_cast<real*>(a.data());
 }
 
+void write_out(nb::handle out, std::span<const real> values, std::string_view arg) {
+  real* dst = out_buffer(out, arg, values.size());
+  std::copy(values.begin(), values.end(), dst);
+}
+
+namespace {
+
+// The elements behind an out-parameter of class elements: a DynamicArray or a mutable Span of
+// exactly n elements.
+template <class T>
+T* out_elements(nb::handle out, std::string_view arg, size_t n, const char* type_name) {
+  if (nb::isinstance<std::vector<T>>(out)) {
+    auto& v = nb::cast<std::vector<T>&>(out);
+    if (v.size() == n) return v.data();
+    throw Error(std::string(arg) + ": expected a DynamicArray" + type_name + " of length " + std::to_string(n) + ", got length " +
+                std::to_string(v.size()));
+  }
+  if (nb::isinstance<SpanOf<T>>(out)) {
+    auto& span = nb::cast<SpanOf<T>&>(out);
+    if (span.size == n) return span.data;
+    throw Error(std::string(arg) + ": expected a Span" + type_name + " of length " + std::to_string(n) + ", got length " +
+                std::to_string(span.size));
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void write_out(nb::handle out, std::span<const TransformRT> values, std::string_view arg) {
+  TransformRT* dst = out_elements<TransformRT>(out, arg, values.size(), "TransformRT");
+  if (!dst)
+    throw Error(std::string(arg) + ": expected a DynamicArrayTransformRT or SpanTransformRT of length " + std::to_string(values.size()) +
+                ", got " + nb::inst_name(out).c_str());
+  std::copy(values.begin(), values.end(), dst);
+}
+
+void write_out(nb::handle out, std::span<const Real2> values, std::string_view arg) {
+  if (Real2* dst = out_elements<Real2>(out, arg, values.size(), "Real2")) {
+    std::copy(values.begin(), values.end(), dst);
+    return;
+  }
+  // a writable (n, 2) array of the build's dtype
+  nb::ndarray<real, nb::shape<-1, 2>, nb::c_contig> a;
+  if (nb::try_cast(out, a, false) && a.shape(0) == values.size()) {
+    for (size_t i = 0; i < values.size(); ++i) a(i, 0) = values[i][0], a(i, 1) = values[i][1];
+    return;
+  }
+  throw Error(std::string(arg) + ": expected a DynamicArrayReal2, a SpanReal2 or a writable " + real_dtype_name() + " array of shape (" +
+              std::to_string(values.size()) + ", 2), got " + nb::inst_name(out).c_str());
+}
+
+void read_indices(nb::handle obj, std::string_view arg, std::vector<int>& out) {
+  // a list or tuple of Python ints, without a conversion to numpy
+  PyObject* o = obj.ptr();
+  if (PyList_Check(o) || PyTuple_Check(o)) {
+    const Py_ssize_t n = PySequence_Fast_GET_SIZE(o);
+    PyObject** items = PySequence_Fast_ITEMS(o);
+    out.resize(n);
+    bool all_ints = true;
+    for (Py_ssize_t i = 0; i < n && all_ints; ++i) {
+      int overflow = 0;
+      const long k = PyLong_Check(items[i]) ? PyLong_AsLongAndOverflow(items[i], &overflow) : 0;
+      all_ints = PyLong_Check(items[i]) && !overflow && k >= INT_MIN && k <= INT_MAX;
+      out[i] = static_cast<int>(k);
+    }
+    if (all_ints) return;
+  }
+  if (nb::isinstance<std::vector<int>>(obj)) {
+    out = nb::cast<std::vector<int>&>(obj);
+    return;
+  }
+  if (nb::isinstance<SpanOf<const int>>(obj)) {
+    auto& span = nb::cast<SpanOf<const int>&>(obj);
+    out.assign(span.data, span.data + span.size);
+    return;
+  }
+  const VecX v = read_vector(obj, arg);
+  out.resize(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i]) || v[i] != std::floor(v[i]) || std::abs(v[i]) > INT_MAX)
+      throw Error(std::string(arg) + "[" + std::to_string(i) + "]: expected an integer index, got " + std::to_string(v[i]));
+    out[i] = static_cast<int>(v[i]);
+  }
+}
+
+std::vector<int> read_indices(nb::handle obj, std::string_view arg) {
+  std::vector<int> out;
+  read_indices(obj, arg, out);
+  return out;
+}
+
+std::vector<Real3> read_real3s(nb::handle obj, std::string_view arg) {
+  if (nb::isinstance<std::vector<Real3>>(obj)) return nb::cast<std::vector<Real3>&>(obj);
+  std::vector<Real3> out;
+  // an (n, 3) array of numbers
+  nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig> a;
+  if (nb::try_cast(obj, a, true)) {
+    out.resize(a.shape(0));
+    for (size_t i = 0; i < out.size(); ++i) out[i] = Real3(real(a(i, 0)), real(a(i, 1)), real(a(i, 2)));
+    return out;
+  }
+  if (!nb::try_cast(obj, out, true))
+    throw Error(std::string(arg) + ": expected a sequence of Real3 (or an (n, 3) array), got " + nb::inst_name(obj).c_str());
+  return out;
+}
+
 Transform read_transform(nb::handle obj, const std::string& arg) {
   if (obj.is_none()) return Transform{};
   TransformRT t;
@@ -117,44 +228,6 @@ Transform read_transform(nb::handle obj, const std::string& arg) {
   const Quat q = t.rotation;
   if (!q.coeffs().allFinite() || q.norm() < real(1e-6)) throw Error(arg + ".rotation: must be a finite, non-zero quaternion");
   return Transform{q.normalized(), t.translation};
-}
-
-void export_types(nb::module_& m) {
-  nb::exception<superdex::Error> error_type(m, "Error", PyExc_RuntimeError);
-  // Messages quote file contents, which need not be UTF-8 (a malformed file's bytes): decode
-  // them with replacement characters instead of failing with a UnicodeDecodeError. Translators
-  // registered later are tried first, so this one replaces nanobind's default for Error.
-  nb::register_exception_translator(
-      [](const std::exception_ptr& p, void* type) {
-        try {
-          std::rethrow_exception(p);
-        } catch (const superdex::Error& e) {
-          const char* what = e.what();
-          PyObject* message = PyUnicode_DecodeUTF8(what, static_cast<Py_ssize_t>(std::strlen(what)), "replace");
-          PyErr_SetObject(static_cast<PyObject*>(type), message);
-          Py_XDECREF(message);
-        }
-      },
-      error_type.ptr());
-
-  nb::enum_<ActorType>(m, "ActorType")
-      .value("RIGID", ActorType::Rigid).value("SOFT", ActorType::Soft)
-      .value("ARTICULATED", ActorType::Articulated).value("LINK", ActorType::Link);
-  nb::enum_<JointType>(m, "JointType")
-      .value("HARD", JointType::Hard).value("FREE", JointType::Free).value("REVOLUTE", JointType::Revolute)
-      .value("PRISMATIC", JointType::Prismatic).value("SPHERICAL", JointType::Spherical);
-  nb::enum_<NumericalFaultPolicy>(m, "NumericalFaultPolicy",
-                                  "What scene.step does when a body's next state is not finite or the solver does not converge.")
-      .value("RAISE", NumericalFaultPolicy::Raise,
-             "raise superdex.physics.Error naming the actor and quantity; the scene keeps its last good state (default)")
-      .value("WARN_AND_CLAMP", NumericalFaultPolicy::WarnAndClamp,
-             "warn (RuntimeWarning) and keep going: a faulty island's bodies keep their last good positions with zero "
-             "velocity; an unconverged but finite result is kept");
-  nb::class_<NumericalFault>(m, "NumericalFault", "A numerical fault that the last step clamped.")
-      .def_ro("actor", &NumericalFault::actor, "handle of the rigid, articulated or soft actor")
-      .def_ro("quantity", &NumericalFault::quantity, "\"positions\", \"velocities\", \"contact forces\", \"node positions\", ... or \"convergence\"")
-      .def_ro("message", &NumericalFault::message)
-      .def("__repr__", [](const NumericalFault& f) { return "NumericalFault(" + f.message + ")"; });
 }
 
 }  // namespace superdex::python
