@@ -162,8 +162,13 @@ void export_context(nb::module_& m) {
   m.def("clear_file_cache", &physics::clear_file_cache);
   m.def("clear_file_from_cache", &physics::clear_file_from_cache, "file_path"_a, "Every bake of the file (exact path).");
 
-  // the Python log callback goes before the interpreter does
-  nb::module_::import_("atexit").attr("register")(nb::cpp_function([] { physics::set_log_callback(nullptr); }));
+  // At interpreter exit, before Python tears its objects down, the engine lets go of every Python
+  // object it holds (step callbacks, the log callback): a script may exit without shutdown() with
+  // scenes and callbacks alive. Registered at import, so the user's own exit handlers run first.
+  nb::module_::import_("atexit").attr("register")(nb::cpp_function([] {
+    physics::set_log_callback(nullptr);
+    if (physics::is_initialized()) physics::shutdown();
+  }));
 }
 
 // Exposed for bind_scene.cpp.
