@@ -187,6 +187,12 @@ nb::class_<SpanOf<T>> bind_span(nb::handle scope, const char* name) {
            })
       .def("__str__", [](const Span& s) { return sequence_text<E>(s.data, s.size); })
       .def("__repr__", [name](const Span& s) { return std::string(name) + "(" + sequence_text<E>(s.data, s.size) + ")"; })
+      // a span pickles as a list of its elements (what it views does not travel)
+      .def("__reduce__", [](const Span& s) {
+        nb::list l;
+        for (size_t i = 0; i < s.size; ++i) l.append(nb::cast(E(s.data[i]), nb::rv_policy::move));
+        return nb::make_tuple(nb::module_::import_("builtins").attr("list"), nb::make_tuple(l));
+      })
       .def("__copy__", [](const Span& s) { return Vec(s.data, s.data + s.size); })
       .def("__deepcopy__", [](const Span& s, nb::handle) { return Vec(s.data, s.data + s.size); }, nb::arg("memo"));
   if constexpr (by_reference) {
@@ -204,6 +210,8 @@ nb::class_<SpanOf<T>> bind_span(nb::handle scope, const char* name) {
   if constexpr (!is_const) {
     c.def("__setitem__", [](Span& s, long i, const E& x) { s.data[wrap_index(i, s.size)] = x; });
   }
+  // a span converts to a DynamicArray of its element type where one is expected (when bound)
+  if (nb::type<Vec>().is_valid()) nb::implicitly_convertible<Span, Vec>();
   if constexpr (NumpyShape<E>::numeric) {
     c.def("__array__", [](nb::handle self, nb::handle dtype, nb::handle copy) {
            Span& s = nb::cast<Span&>(self);

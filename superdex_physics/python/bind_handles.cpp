@@ -61,7 +61,10 @@ void export_handles(nb::module_& m) {
       .def("__hash__", [](const ShapeHandle& h) { return std::hash<std::int64_t>()(h.value()); })
       .def("__repr__", [](const ShapeHandle& h) { return "ShapeHandle(" + std::to_string(h.value()) + ")"; })
       .def("__copy__", [](const ShapeHandle& h) { return ShapeHandle(h); })
-      .def("__deepcopy__", [](const ShapeHandle& h, nb::handle) { return ShapeHandle(h); }, "memo"_a);
+      .def("__deepcopy__", [](const ShapeHandle& h, nb::handle) { return ShapeHandle(h); }, "memo"_a)
+      // within a process: unpickling takes a new reference to the shape, if it still lives
+      .def("__getstate__", &ShapeHandle::value)
+      .def("__setstate__", [](ShapeHandle& self, std::int64_t v) { new (&self) ShapeHandle(v); });
 }
 
 }  // namespace superdex::python
