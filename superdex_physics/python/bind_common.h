@@ -109,6 +109,7 @@ void export_constants(nb::module_& m);
 void export_debug_server(nb::module_& m);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
+void export_experimental(nb::module_& m);
 void export_robotics(nb::module_& m);
 void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
 void export_scene_batch(nb::module_& m);    // superdex_robotics/python: into superdex.robotics

@@ -19,6 +19,7 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_context(m);
   export_scene(m);
   export_actor(m);
+  export_experimental(m);
   export_debug_server(m);
   export_robotics(m);
   export_meshes(m);

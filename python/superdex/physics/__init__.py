@@ -10,6 +10,11 @@ for _name in dir(_m):
     if not _name.startswith("_") and _name != "robotics":
         globals()[_name] = getattr(_m, _name)
 del _name
+# the native submodules import as superdex.physics.<name> too
+import sys as _sys  # noqa: E402
+
+for _sub in ("experimental",):
+    _sys.modules[f"{__name__}.{_sub}"] = getattr(_m, _sub)
 
 from superdex.physics import debugger, paths, prefab  # noqa: E402  (submodules, after the native names)
 

@@ -135,26 +135,67 @@ SoftMaterialParams Scene::soft_material_params(ActorHandle h) const {
   return soft_of(scene_data(handle_), h, "get_soft_material_params").material_params;
 }
 
+namespace {
+
+// The elastic material of params (validated by the caller).
+ElasticMaterial elastic_material(const SoftMaterialParams& p, const std::string& where) {
+  MaterialModel model = MaterialModel::NeoHookean;
+  real E = p.neo_hookean.youngs_modulus, nu = p.neo_hookean.poisson_ratio;
+  if (p.type == SoftMaterialType::StVenantKirchhoff) model = MaterialModel::StVK, E = p.st_venant_kirchhoff.youngs_modulus, nu = p.st_venant_kirchhoff.poisson_ratio;
+  if (p.type == SoftMaterialType::LinearElastic) model = MaterialModel::Linear, E = p.linear_elastic.youngs_modulus, nu = p.linear_elastic.poisson_ratio;
+  return ElasticMaterial::from_young_poisson(model, E, nu, where);
+}
+
+// Lumped node masses from each tetrahedron's density: a quarter of its mass to each node.
+void lump_masses(SoftBody& b) {
+  b.model.node_mass.setZero();
+  for (size_t e = 0; e < b.model.tets.size(); ++e) {
+    const real density = b.element_params.empty() ? b.material_params.density : b.element_params[e].density;
+    for (int k = 0; k < 4; ++k) b.model.node_mass[b.model.tets[e][k]] += density * b.model.rest[e].volume / 4;
+  }
+  b.model.total_mass = b.model.node_mass.sum();
+}
+
+}  // namespace
+
 void Scene::set_soft_material_params(ActorHandle h, const SoftMaterialParams& p) {
   const char* what = "set_soft_material_params";
   SoftBody& b = soft_of(scene_data(handle_), h, what);
   validate(p, std::string(what) + ": params");
   refuse_reduced(b, what);
-  MaterialModel model = MaterialModel::NeoHookean;
-  real E = p.neo_hookean.youngs_modulus, nu = p.neo_hookean.poisson_ratio;
-  if (p.type == SoftMaterialType::StVenantKirchhoff) model = MaterialModel::StVK, E = p.st_venant_kirchhoff.youngs_modulus, nu = p.st_venant_kirchhoff.poisson_ratio;
-  if (p.type == SoftMaterialType::LinearElastic) model = MaterialModel::Linear, E = p.linear_elastic.youngs_modulus, nu = p.linear_elastic.poisson_ratio;
-  const ElasticMaterial m = ElasticMaterial::from_young_poisson(model, E, nu, std::string(what) + ": params");
-  std::fill(b.model.material.begin(), b.model.material.end(), m);
+  std::fill(b.model.material.begin(), b.model.material.end(), elastic_material(p, std::string(what) + ": params"));
   b.model.alpha = p.mass_damping_coefficient;
   b.model.beta = p.stiffness_damping_coefficient;
-  // masses follow the density: lumped quarter volumes
-  if (p.density != b.material_params.density) {
-    b.model.node_mass *= p.density / b.material_params.density;
-    b.model.total_mass = b.model.node_mass.sum();
-  }
+  const bool masses_change = p.density != b.material_params.density || !b.element_params.empty();
   b.material_params = p;
+  b.element_params.clear();
+  if (masses_change) lump_masses(b);
   b.step_storage = SoftStepStorage{};  // the Hessians kept from the last step belong to the old material
+}
+
+SoftMaterialParams Scene::soft_material_params_field(ActorHandle h, int element) const {
+  const char* what = "get_soft_material_params_field";
+  const SoftBody& b = soft_of(scene_data(handle_), h, what);
+  if (element < 0 || element >= static_cast<int>(b.model.tets.size()))
+    throw Error(std::string(what) + ": element_index " + std::to_string(element) + " is out of range (the actor has " +
+                std::to_string(b.model.tets.size()) + " elements)");
+  return b.element_params.empty() ? b.material_params : b.element_params[element];
+}
+
+void Scene::set_soft_material_params_field(ActorHandle h, const SoftMaterialParams& p, int element) {
+  const char* what = "set_soft_material_params_field";
+  SoftBody& b = soft_of(scene_data(handle_), h, what);
+  if (element < 0 || element >= static_cast<int>(b.model.tets.size()))
+    throw Error(std::string(what) + ": element_index " + std::to_string(element) + " is out of range (the actor has " +
+                std::to_string(b.model.tets.size()) + " elements)");
+  validate(p, std::string(what) + ": params");
+  refuse_reduced(b, what);
+  b.model.material[element] = elastic_material(p, std::string(what) + ": params");
+  if (b.element_params.empty()) b.element_params.assign(b.model.tets.size(), b.material_params);
+  const bool masses_change = p.density != b.element_params[element].density;
+  b.element_params[element] = p;
+  if (masses_change) lump_masses(b);
+  b.step_storage = SoftStepStorage{};
 }
 
 std::vector<real> Scene::elements_deformation_gradient(ActorHandle h) const {

@@ -94,6 +94,9 @@ struct SoftBody {
   // as created (returned by the actor getters)
   ContactParams contact_params;
   SoftMaterialParams material_params;
+  // per tetrahedron, once one was given its own (set_soft_material_params_field); empty while all
+  // take material_params
+  std::vector<SoftMaterialParams> element_params;
   std::string layer;
   int layer_index = 0;  // SceneData::layer_names
   std::shared_ptr<const ShapeData> shape;

@@ -315,7 +315,12 @@ class Scene {
   RecenteringParams recentering_params(ActorHandle actor) const;
   void set_recentering_params(ActorHandle soft, const RecenteringParams& params);
   SoftMaterialParams soft_material_params(ActorHandle soft) const;
+  /// The material of every element (per-element values set before are replaced).
   void set_soft_material_params(ActorHandle soft, const SoftMaterialParams& params);
+  /// The material of one tetrahedron (index in the volume mesh): its elastic model and moduli,
+  /// and its density (the node masses follow). Damping stays the actor's.
+  SoftMaterialParams soft_material_params_field(ActorHandle soft, int element) const;
+  void set_soft_material_params_field(ActorHandle soft, const SoftMaterialParams& params, int element);
   /// Per element, row-major 3 x 3 (9 values). Needs ElementsDeformationGradient.
   std::vector<real> elements_deformation_gradient(ActorHandle soft) const;
   /// Nodes of the compact surface mesh (Scene::surface_mesh order). Need SurfaceNodePositions/Normals.
