@@ -113,5 +113,6 @@ void export_robotics(nb::module_& m);
 void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
 void export_scene_batch(nb::module_& m);    // superdex_robotics/python: into superdex.robotics
 void export_meshes(nb::module_& m);
+void export_model(nb::module_& m);  // ModelData and the superdex.physics.model submodule
 
 }  // namespace superdex::python
