@@ -1,4 +1,4 @@
-// The .mochi.h5 model layout (FORMATS.md): groups mesh/, visual_mesh/, sdf/, material/, box/,
+// The .mochi.h5 model layout (docs/model_formats.md): groups mesh/, visual_mesh/, sdf/, material/, box/,
 // sphere/ and plane/. Reals are stored in the build's precision, integers as int32. Reading takes
 // every variant earlier files used (sdf/ attributes on the group, a scalar scale, skinning/ or
 // embedding/, legacy material names) and checks only what reading needs: validate() checks the rest.

@@ -1,4 +1,4 @@
-// The .mochi.json model format: keys as in FORMATS.md (camelCase), optional parts written only
+// The .mochi.json model format (docs/model_formats.md): camelCase keys, optional parts written only
 // when present, reals as the shortest decimal that reads back to the same value in this build's
 // precision. Reading names the source and the JSON path of every defect.
 
