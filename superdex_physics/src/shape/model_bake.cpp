@@ -35,6 +35,12 @@ struct Affine {
   // The orthogonal part of the map when |scale| is uniform: rotation * sign(scale).
   Mat3d orthogonal() const { return rotation * scale.cwiseSign().asDiagonal(); }
   Vec3d point(const Vec3d& p) const { return linear() * p + translation; }
+  // A unit vector normal to a surface, transformed by the inverse transpose; a uniform |scale|
+  // leaves the orthogonal part, which keeps the length (and is exact for a change of axes).
+  Vec3d normal(const Vec3d& n) const {
+    if (uniform()) return orthogonal() * n;
+    return (inverse_transpose() * n).normalized();
+  }
 };
 
 Vec3d vec(const Real3& v) { return v.cast<double>(); }
@@ -119,9 +125,8 @@ void transform_model(ModelData& d, const Affine& a) {
   if (d.visual_mesh) transform_mesh(*d.visual_mesh, a);
   if (d.element_frame_axes) {
     std::vector<real>& axes = *d.element_frame_axes;
-    const Mat3d N = a.inverse_transpose();
     for (size_t i = 0; i + 2 < axes.size(); i += 3) {
-      const Vec3d v = (N * Vec3d(axes[i], axes[i + 1], axes[i + 2])).normalized();
+      const Vec3d v = a.normal(Vec3d(axes[i], axes[i + 1], axes[i + 2]));
       axes[i] = static_cast<real>(v.x()), axes[i + 1] = static_cast<real>(v.y()), axes[i + 2] = static_cast<real>(v.z());
     }
   }
@@ -135,10 +140,11 @@ void transform_model(ModelData& d, const Affine& a) {
   if (d.plane) {
     Plane& p = *d.plane;
     const Vec3d n = vec(p.normal);
-    const Vec3d on_plane = a.point(n * (double(p.distance) / n.squaredNorm()));
-    const Vec3d n2 = (a.inverse_transpose() * n).normalized();
+    const Vec3d n2 = a.normal(n);
+    // uniform: d' = |s| d + n'.t (exact for a pure change of axes); else through a point of the plane
+    p.distance = static_cast<real>(uniform ? std::abs(a.scale.x()) * p.distance * n.norm() + n2.dot(a.translation)
+                                           : n2.dot(a.point(n * (double(p.distance) / n.squaredNorm()))));
     p.normal = real3(n2);
-    p.distance = static_cast<real>(n2.dot(on_plane));
   }
   if (d.sphere) {
     d.sphere->center = real3(a.point(vec(d.sphere->center)));
