@@ -28,7 +28,7 @@ physics::CoordinateAxes page_axes(const CoordinateSpace& c) {
 Real3 real3(const Eigen::Vector3d& v) { return v.cast<real>(); }
 
 void bind_coordinate_space(nb::module_& m) {
-  nb::enum_<CoordinateSpaceAxes> axes(m, "CoordinateSpaceAxes",
+  nb::enum_<CoordinateSpaceAxes> axes(m, "CoordinateSpaceAxes", nb::is_arithmetic(),
                                       "Where the x, y and z axes point: FLU is x forward, y left, z up (the engine's).");
   for (CoordinateSpaceAxes a : kAllCoordinateSpaceAxes) axes.value(coordinate_space_axes_name(a), a);
   // DEFAULT is another name of the FLU member (not a member of its own)

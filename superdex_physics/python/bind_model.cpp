@@ -429,10 +429,10 @@ void bind_model_functions(nb::module_& mm) {
 }  // namespace
 
 void export_model(nb::module_& m) {
-  nb::enum_<FileFormat>(m, "FileFormat", "Formats model.save_to_file writes.")
+  nb::enum_<FileFormat>(m, "FileFormat", nb::is_arithmetic(), "Formats model.save_to_file writes.")
       .value("JSON", FileFormat::JSON, ".mochi.json")
       .value("H5", FileFormat::H5, ".mochi.h5");
-  nb::enum_<MeshFileType>(m, "MeshFileType", "What model.load_from_bytes parses.")
+  nb::enum_<MeshFileType>(m, "MeshFileType", nb::is_arithmetic(), "What model.load_from_bytes parses.")
       .value("LEGACY", MeshFileType::Legacy, ".mochi.h5 or .mochi.json, told apart by the HDF5 signature")
       .value("PLY", MeshFileType::PLY)
       .value("OFF", MeshFileType::OFF)
