@@ -42,15 +42,6 @@ double volume(const MeshData& m, int e) {
   return (p(1) - p(0)).dot((p(2) - p(0)).cross(p(3) - p(0))) / 6;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST(ModelData, TheTestCubeIsValidAndPositivelyOriented) {
   const ModelData d = tet_cube();
   model::validate(d);
