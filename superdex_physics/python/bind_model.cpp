@@ -271,10 +271,8 @@ void bind_structs(nb::module_& m) {
   StructBinder<PerElementSoftMaterialData> material(m, "PerElementSoftMaterialData", "Per-element soft material values.");
   material.field("type", &PerElementSoftMaterialData::type).field("psd_strategy", &PerElementSoftMaterialData::psd_strategy);
   for (const MaterialArray& a : kMaterialArrays) material.field(a.name, a.member, a.doc);
-  material.cls().def("get_num_elements", [](const PerElementSoftMaterialData& d) {
-    const bool arap = d.type == SoftMaterialType::Arap || d.type == SoftMaterialType::ActiveShapeTargetingArap;
-    return static_cast<int>(arap ? d.arap_stiffness.size() : d.poisson_ratio.size());
-  }, "arap_stiffness' size for the ARAP types, poisson_ratio's otherwise.");
+  material.cls().def("get_num_elements", &PerElementSoftMaterialData::num_elements,
+                     "arap_stiffness' size for the ARAP types, poisson_ratio's otherwise.");
   construct_from_view(material.cls());
   material.done();
   StructBinder<Box>(m, "Box", "An oriented box: center (m), half extents (m) along its axes, rotation.")
