@@ -41,14 +41,18 @@ struct View {
   const Src* source = nullptr;
   bool owned = false;  // `source` is the view's own copy
 
+  View(std::shared_ptr<void> k, const Src* s, bool o) : keep(std::move(k)), source(s), owned(o) {}
+  // A view of a default Src (what DynamicArrayXView(n) fills with): never a null source.
+  View() : View(owning(Src{})) {}
+
   static View owning(Src value) {
     auto p = std::make_shared<Src>(std::move(value));
-    return View{p, p.get(), true};
+    return View(p, p.get(), true);
   }
   // A view of the part `part` of an object kept alive by `keep`.
   template <class Part>
   View<Part> child(const Part& part) const {
-    return View<Part>{keep, &part, false};
+    return View<Part>(keep, &part, false);
   }
   // The view's own, writable copy of its values.
   Src& detach() {
@@ -121,7 +125,7 @@ class ViewBinder {
           if (args.size() == 1 && kwargs.size() == 0 && nb::isinstance<Src>(args[0])) src = args[0];
           if (args.size() == 0 && kwargs.size() == 1 && kwargs.contains("src")) src = kwargs["src"];
           if (src.is_valid()) {
-            if (nb::isinstance<Src>(src)) *self = V{hold(src), &nb::cast<const Src&>(src), false};
+            if (nb::isinstance<Src>(src)) *self = V(hold(src), &nb::cast<const Src&>(src), false);
             else if (nb::isinstance<V>(src)) *self = nb::cast<const V&>(src);
             else throw nb::type_error((f->type_name + "(): src must be a " + f->source_name + " or a " + f->type_name).c_str());
             return;

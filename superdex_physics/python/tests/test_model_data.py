@@ -699,6 +699,13 @@ def test_views_built_field_by_field_and_copies():
     assert copy.deepcopy(owning) == owning and copy.copy(owning) is not owning
     with pytest.raises(TypeError, match="src must be"):
         sdp.MeshDataView(src=sdp.SkinningData())
+    with pytest.raises(TypeError):
+        sdp.SkinningDataView(3)  # fields are keyword-only
+    with pytest.raises(TypeError):
+        sdp.SkinningData(3)
+    # an array of views made with a size holds empty views, not dangling ones
+    empty = sdp.DynamicArrayBlendingDataView(2)
+    assert empty[1].source_shape == "" and len(empty[1].weights) == 0
 
 
 def test_save_and_validate_take_views(tmp_path):
