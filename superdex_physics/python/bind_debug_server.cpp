@@ -4,6 +4,7 @@
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
+#include "bind_container.h"
 #include "struct_binder.h"
 #include "superdex/physics/coordinate_space.h"
 #include "superdex/physics/debug_server.h"
@@ -31,8 +32,7 @@ void bind_coordinate_space(nb::module_& m) {
   nb::enum_<CoordinateSpaceAxes> axes(m, "CoordinateSpaceAxes", nb::is_arithmetic(),
                                       "Where the x, y and z axes point: FLU is x forward, y left, z up (the engine's).");
   for (CoordinateSpaceAxes a : kAllCoordinateSpaceAxes) axes.value(coordinate_space_axes_name(a), a);
-  // DEFAULT is another name of the FLU member (not a member of its own)
-  nb::setattr(axes, "DEFAULT", axes.attr("FLU"));
+  add_default_alias<CoordinateSpaceAxes>(m, "CoordinateSpaceAxes");
   StructBinder<CoordinateSpace> c(m, "CoordinateSpace", "A coordinate convention: axis directions and length units per metre.");
   c.field("axes", &CoordinateSpace::axes).field("units_per_meter", &CoordinateSpace::units_per_meter, "> 0 finite; e.g. 100 for centimetres.");
   c.cls()
