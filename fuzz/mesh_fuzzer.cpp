@@ -1,6 +1,6 @@
 /// @file mesh_fuzzer.cpp
-/// libFuzzer target for the mesh readers (mesh_io.h). Built three times, as obj_fuzzer,
-/// stl_fuzzer and ply_fuzzer, with SUPERDEX_FUZZ_MESH_EXT naming the extension that
+/// libFuzzer target for the mesh readers (mesh_io.h). Built four times, as obj_fuzzer,
+/// stl_fuzzer, ply_fuzzer and off_fuzzer, with SUPERDEX_FUZZ_MESH_EXT naming the extension that
 /// read_mesh_file dispatches on. A mesh that reads is also put through the edge checks the
 /// shape builders run on it (closedness, volume).
 

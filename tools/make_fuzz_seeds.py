@@ -45,6 +45,16 @@ def valid_seeds():
     ascii_facets = "".join("facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in mc.CUBE_V[t])
                            + "endloop\nendfacet\n" for t in mc.CUBE_T)
     yield "stl", "cube_ascii.stl", f"solid cube\n{ascii_facets}endsolid cube\n"
+    yield "off", "cube.off", "OFF\n8 12 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in mc.CUBE_V) + "".join(
+        f"3 {a} {b} {c}\n" for a, b, c in mc.CUBE_T)
+    yield "off", "square_with_colours.off", "OFF # a quad with a colour\n4 1 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n"
+    yield "model_json", "cube_mesh.mochi.json", (assets / "cube/cube_mesh.mochi.json").read_bytes()
+    yield "model_json", "box.mochi.json", '{"box": {"center": [0, 0, 0.5], "halfExtents": [0.5, 0.5, 0.5], "rotation": [0, 0, 0, 1]}}'
+    yield "model_json", "flat.json", json.dumps({"element_size": 4, "coordinates": [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1],
+                                                 "connectivity": [0, 1, 2, 3], "constrained_nodes": [0]})
+    yield "model_h5", "tets.mochi.h5", mc.h5(mc.mesh(v=mc.TET_V, t=mc.TET_T))
+    yield "model_h5", "box.mochi.h5", mc.h5(attrs={"box": {"center": [0.0, 0.0, 0.5], "half_extents": [0.1, 0.2, 0.3],
+                                                           "rotation": [0.0, 0.0, 0.0, 1.0]}})
     yield "ply", "cube_ascii.ply", mc.ply_header(8, 12) + mc.ply_body_ascii()
     little = b"".join(struct.pack("<3f", *p) for p in mc.CUBE_V) + b"".join(struct.pack("<B3i", 3, *t) for t in mc.CUBE_T)
     yield "ply", "cube_binary_le.ply", mc.ply_header(8, 12, fmt="binary_little_endian") + little

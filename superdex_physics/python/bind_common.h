@@ -96,6 +96,16 @@ ShapeHandle shape_handle_of(nb::handle obj, const std::string& arg);
 // Transform from a TransformRT or None (identity).
 Transform read_transform(nb::handle obj, const std::string& arg);
 
+// DEFAULT as a true alias of the member the C++ Default equals (`E.DEFAULT is E.NEWTON`), as
+// Python's enum aliases are: nanobind would make it a member of its own, unequal to the other.
+template <class E>
+void add_default_alias(nb::module_& m, const char* type_name) {
+  nb::object type = m.attr(type_name);
+  nb::object member = nb::cast(E::Default);
+  type.attr("_member_map_")["DEFAULT"] = member;
+  nb::handle(reinterpret_cast<PyObject*>(&PyType_Type)).attr("__setattr__")(type, "DEFAULT", member);
+}
+
 void export_error(nb::module_& m);
 void export_values(nb::module_& m);
 void export_containers(nb::module_& m);
@@ -114,5 +124,6 @@ void export_robotics(nb::module_& m);
 void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
 void export_scene_batch(nb::module_& m);    // superdex_robotics/python: into superdex.robotics
 void export_meshes(nb::module_& m);
+void export_model(nb::module_& m);  // ModelData and the superdex.physics.model submodule
 
 }  // namespace superdex::python

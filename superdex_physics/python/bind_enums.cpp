@@ -8,20 +8,6 @@
 
 namespace superdex::python {
 
-namespace {
-
-// DEFAULT as a true alias of the member the C++ Default equals (`E.DEFAULT is E.NEWTON`), as
-// Python's enum aliases are: nanobind would make it a member of its own, unequal to the other.
-template <class E>
-void add_default_alias(nb::module_& m, const char* type_name) {
-  nb::object type = m.attr(type_name);
-  nb::object member = nb::cast(E::Default);
-  type.attr("_member_map_")["DEFAULT"] = member;
-  nb::handle(reinterpret_cast<PyObject*>(&PyType_Type)).attr("__setattr__")(type, "DEFAULT", member);
-}
-
-}  // namespace
-
 void export_enums(nb::module_& m) {
   nb::enum_<LogChannel>(m, "LogChannel", "The channel of a log message.")
       .value("VERBOSE", LogChannel::Verbose).value("INFO", LogChannel::Info)

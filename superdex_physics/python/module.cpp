@@ -23,5 +23,6 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_debug_server(m);
   export_robotics(m);
   export_meshes(m);
+  export_model(m);
   export_prefab_loader(m);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Binds a plain C++ struct as a Python class in SuperDex's style: every field readable and
-// writable by name, a constructor taking any fields by keyword with the rest at their C++ defaults, `src=` copy construction, exact equality, copy.copy and
+// writable by name, a constructor taking any fields by keyword with the rest at their C++
+// defaults, `src=` copy construction (also positional), exact equality, copy.copy and
 // copy.deepcopy, pickling, and a repr listing the fields. Nested structs and arrays are returned
 // by reference, so `params.contact.penalty_coefficient = x` changes `params`.
 
@@ -16,6 +17,39 @@
 namespace superdex::python {
 
 namespace nb = nanobind;
+
+/// The named fields of a bound class, each with a setter taking any Python value: what keyword
+/// construction, pickling and repr need (shared by StructBinder and the view binders).
+template <class Obj>
+struct BinderFields {
+  std::string type_name;
+  std::vector<std::string> names;
+  std::vector<std::function<void(Obj&, nb::handle)>> setters;
+
+  size_t index(const std::string& n) const {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return i;
+    return names.size();
+  }
+  /// Sets the fields given by keyword.
+  void apply(Obj& self, nb::kwargs kwargs) const {
+    for (auto [key, value] : kwargs) {
+      const std::string k = nb::cast<std::string>(key);
+      const size_t i = index(k);
+      if (i == names.size()) throw nb::type_error((type_name + "(): unexpected keyword argument '" + k + "'").c_str());
+      setters[i](self, value);
+    }
+  }
+  /// "Type(field=repr, ...)".
+  std::string repr(nb::handle self) const {
+    std::string s = type_name + "(";
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (i) s += ", ";
+      s += names[i] + "=" + nb::cast<std::string>(nb::repr(self.attr(names[i].c_str())));
+    }
+    return s + ")";
+  }
+};
 
 template <class T>
 class StructBinder {
@@ -69,12 +103,7 @@ class StructBinder {
     cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
         .def("__init__", [f](T* self, nb::kwargs kwargs) {
           new (self) T();
-          for (auto [key, value] : kwargs) {
-            const std::string k = nb::cast<std::string>(key);
-            const size_t i = f->index(k);
-            if (i == f->names.size()) throw nb::type_error((f->type_name + "(): unexpected keyword argument '" + k + "'").c_str());
-            f->setters[i](*self, value);
-          }
+          f->apply(*self, kwargs);
         })
         .def("__copy__", [](const T& t) { return T(t); })
         .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
@@ -87,14 +116,7 @@ class StructBinder {
           new (&self) T();
           for (auto [key, value] : state) f->setters[f->index(nb::cast<std::string>(key))](self, value);
         })
-        .def("__repr__", [f](nb::handle self) {
-          std::string s = f->type_name + "(";
-          for (size_t i = 0; i < f->names.size(); ++i) {
-            if (i) s += ", ";
-            s += f->names[i] + "=" + nb::cast<std::string>(nb::repr(self.attr(f->names[i].c_str())));
-          }
-          return s + ")";
-        });
+        .def("__repr__", [f](nb::handle self) { return f->repr(self); });
     if (comparable) {
       cls_.def("__eq__", [](const T& a, const T& b) { return a == b; }, nb::is_operator())
           .def("__ne__", [](const T& a, const T& b) { return !(a == b); }, nb::is_operator());
@@ -110,16 +132,7 @@ class StructBinder {
     using type = A1;
   };
 
-  struct Fields {
-    std::string type_name;
-    std::vector<std::string> names;
-    std::vector<Setter> setters;
-    size_t index(const std::string& n) const {
-      for (size_t i = 0; i < names.size(); ++i)
-        if (names[i] == n) return i;
-      return names.size();
-    }
-  };
+  using Fields = BinderFields<T>;
   nb::class_<T> cls_;
   std::shared_ptr<Fields> fields_;
 };

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <sstream>
@@ -17,9 +18,20 @@
 #include <unistd.h>
 
 #include "mesh_builders.h"
+#include "superdex/physics/error.h"
 #include "superdex/physics/shape.h"
 
 namespace superdex::physics::test {
+
+/// The message of the superdex::Error that f throws, or "no error".
+inline std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 /// Exact signed distance (m) to an axis-aligned box of half extents h centred at the origin.
 inline double box_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& h) {

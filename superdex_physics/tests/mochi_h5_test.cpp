@@ -178,15 +178,6 @@ std::string sdf_file(const TempDir& dir, const std::string& name, const std::vec
   return path;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 TEST_F(MochiH5Test, MalformedSdfGroups) {
   const std::vector<double> lo{0, 0, 0}, hi{1, 1, 1};
   auto read = [](const std::string& p) { return [p] { read_mochi_h5(p); }; };

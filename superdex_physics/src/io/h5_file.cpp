@@ -194,6 +194,28 @@ std::string Reader::string_attribute(const std::string& group, const std::string
   return s;
 }
 
+std::vector<std::string> Reader::members(const std::string& group) const {
+  require_group(group);
+  Id g(H5Gopen2(file_.get(), group.c_str(), H5P_DEFAULT), H5Gclose);
+  H5G_info_t info;
+  if (H5Gget_info(g.get(), &info) < 0) fail(group, "cannot list the group");
+  if (info.nlinks > kMaxElements) fail(group, "too many members");
+  std::vector<std::string> names;
+  for (const H5_index_t index : {H5_INDEX_CRT_ORDER, H5_INDEX_NAME}) {
+    names.clear();
+    for (hsize_t i = 0; i < info.nlinks; ++i) {
+      const ssize_t n = H5Lget_name_by_idx(g.get(), ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+      if (n < 0) break;  // creation order not tracked: list by name
+      std::string name(static_cast<size_t>(n) + 1, '\0');
+      if (H5Lget_name_by_idx(g.get(), ".", index, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT) < 0) break;
+      name.resize(static_cast<size_t>(n));
+      names.push_back(std::move(name));
+    }
+    if (names.size() == info.nlinks) return names;
+  }
+  fail(group, "cannot list the group's members");
+}
+
 Writer::Writer(const std::string& path) : path_(path) {
   file_ = Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   if (!file_.valid()) throw Error(path + ": cannot create the HDF5 file (missing directory or no permission?)");
@@ -201,8 +223,11 @@ Writer::Writer(const std::string& path) : path_(path) {
 
 void Writer::fail(const std::string& where, const std::string& what) const { throw Error(path_ + ": " + where + ": " + what); }
 
-void Writer::group(const std::string& name) {
-  Id g(H5Gcreate2(file_.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+void Writer::group(const std::string& name, bool track_order) {
+  Id plist(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+  if (!plist.valid() || (track_order && H5Pset_link_creation_order(plist.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0))
+    fail(name, "cannot set up the group");
+  Id g(H5Gcreate2(file_.get(), name.c_str(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Gclose);
   if (!g.valid()) fail(name, "cannot create the group");
 }
 
@@ -213,7 +238,15 @@ void write_dataset(hid_t file, const std::string& path, const std::vector<hsize_
   if (element_count(dims) != values.size()) fail("internal error: " + std::to_string(values.size()) + " values for the given shape");
   Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   if (!space.valid()) fail("cannot create the dataspace");
-  Id ds(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  // non-empty data as one chunk, shuffled and deflated (when the library has zlib)
+  Id plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (!plist.valid()) fail("cannot set up the dataset");
+  if (!values.empty() && !dims.empty()) {
+    if (H5Pset_chunk(plist.get(), static_cast<int>(dims.size()), dims.data()) < 0) fail("cannot set up the dataset's chunk");
+    if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0 && (H5Pset_shuffle(plist.get()) < 0 || H5Pset_deflate(plist.get(), 6) < 0))
+      fail("cannot set up the dataset's compression");
+  }
+  Id ds(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose);
   if (!ds.valid()) fail("cannot create the dataset");
   if (!values.empty() && H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) fail("cannot write the data");
 }
@@ -223,19 +256,35 @@ void Writer::dataset(const std::string& path, const std::vector<hsize_t>& dims, 
   write_dataset(file_.get(), path, dims, values, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, [&](const std::string& what) { fail(path, what); });
 }
 
+void Writer::dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<float>& values) {
+  write_dataset(file_.get(), path, dims, values, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, [&](const std::string& what) { fail(path, what); });
+}
+
 void Writer::dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<int>& values) {
   write_dataset(file_.get(), path, dims, values, H5T_STD_I32LE, H5T_NATIVE_INT, [&](const std::string& what) { fail(path, what); });
 }
 
-void Writer::attribute(const std::string& group, const std::string& name, const std::vector<double>& values) {
-  const std::string where = group + "/" + name;
+namespace {
+template <class T>
+void write_attribute(hid_t file, const std::string& object, const std::string& name, const std::vector<T>& values, hid_t file_type,
+                     hid_t mem_type, const std::function<void(const std::string&)>& fail) {
   const hsize_t n = values.size();
   Id space(values.size() == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
-  if (!space.valid()) fail(where, "cannot create the dataspace");
-  Id attr(H5Acreate_by_name(file_.get(), group.c_str(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-          H5Aclose);
-  if (!attr.valid()) fail(where, "cannot create the attribute");
-  if (!values.empty() && H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, values.data()) < 0) fail(where, "cannot write the attribute");
+  if (!space.valid()) fail("cannot create the dataspace");
+  Id attr(H5Acreate_by_name(file, object.c_str(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!attr.valid()) fail("cannot create the attribute");
+  if (!values.empty() && H5Awrite(attr.get(), mem_type, values.data()) < 0) fail("cannot write the attribute");
+}
+}  // namespace
+
+void Writer::attribute(const std::string& group, const std::string& name, const std::vector<double>& values) {
+  write_attribute(file_.get(), group, name, values, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                  [&](const std::string& what) { fail(group + "/" + name, what); });
+}
+
+void Writer::attribute_f32(const std::string& group, const std::string& name, const std::vector<float>& values) {
+  write_attribute(file_.get(), group, name, values, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT,
+                  [&](const std::string& what) { fail(group + "/" + name, what); });
 }
 
 void Writer::string_attribute(const std::string& group, const std::string& name, const std::string& value) {

@@ -75,6 +75,8 @@ class Reader {
   // A numeric attribute (integer or floating-point).
   Numbers attribute(const std::string& group, const std::string& name) const;
   std::string string_attribute(const std::string& group, const std::string& name) const;
+  // The names of the links in `group`, in creation order when the group tracks it, else by name.
+  std::vector<std::string> members(const std::string& group) const;
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const;
 
@@ -98,11 +100,17 @@ class Writer {
  public:
   explicit Writer(const std::string& path);
 
-  void group(const std::string& name);
+  // A group; with `track_order` its links are listed in creation order (Reader::members).
+  void group(const std::string& name, bool track_order = false);
+  // Datasets of float64, float32 or int32 values; non-empty ones are stored as one chunk,
+  // shuffled and deflated.
   void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<double>& values);
+  void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<float>& values);
   void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<int>& values);
-  // A scalar attribute when `values` has one entry, else a 1-D array.
+  // A scalar attribute when `values` has one entry, else a 1-D array, attached to the group or
+  // dataset `group`, of float64 values (attribute_f32: float32).
   void attribute(const std::string& group, const std::string& name, const std::vector<double>& values);
+  void attribute_f32(const std::string& group, const std::string& name, const std::vector<float>& values);
   void string_attribute(const std::string& group, const std::string& name, const std::string& value);
   // Flushes and closes; throws when the data could not be written.
   void close();

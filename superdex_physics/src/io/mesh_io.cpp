@@ -21,11 +21,13 @@ TriangleMesh read_mesh_file(const std::string& path) {
   if (ext == ".obj") return read_obj_file(path);
   if (ext == ".stl") return read_stl_file(path);
   if (ext == ".ply") return read_ply_file(path);
-  fail(path, 0, "unknown mesh file extension '" + ext + "' (expected .obj, .stl or .ply)");
+  if (ext == ".off") return read_off_file(path);
+  fail(path, 0, "unknown mesh file extension '" + ext + "' (expected .obj, .stl, .ply or .off)");
 }
 
-TriangleMesh read_obj_file(const std::string& path) {
-  const std::string text = mesh_io::read_bytes(path);
+TriangleMesh read_obj_file(const std::string& path) { return read_obj_bytes(mesh_io::read_bytes(path), path); }
+
+TriangleMesh read_obj_bytes(const std::string& text, const std::string& path) {
   TriangleMesh mesh;
   // 1-based positive indices may refer to vertices defined later: checked once all are read
   struct PendingFace {

@@ -196,8 +196,9 @@ class BodyReader {
 
 }  // namespace
 
-TriangleMesh read_ply_file(const std::string& path) {
-  const std::string bytes = mesh_io::read_bytes(path);
+TriangleMesh read_ply_file(const std::string& path) { return read_ply_bytes(mesh_io::read_bytes(path), path); }
+
+TriangleMesh read_ply_bytes(const std::string& bytes, const std::string& path) {
   const Header header = parse_header(path, bytes);
   long long num_vertices = -1;
   for (const Element& e : header.elements)

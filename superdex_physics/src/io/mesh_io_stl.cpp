@@ -96,8 +96,9 @@ TriangleMesh read_ascii(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-TriangleMesh read_stl_file(const std::string& path) {
-  const std::string bytes = mesh_io::read_bytes(path);
+TriangleMesh read_stl_file(const std::string& path) { return read_stl_bytes(mesh_io::read_bytes(path), path); }
+
+TriangleMesh read_stl_bytes(const std::string& bytes, const std::string& path) {
   TriangleMesh mesh;
   const bool sized_as_binary = bytes.size() >= kHeaderBytes &&
                                kHeaderBytes + kRecordBytes * static_cast<std::uint64_t>(read_u32_le(bytes.data() + 80)) == bytes.size();

@@ -126,13 +126,15 @@ MochiSdf read_sdf(const Reader& r) {
   for (size_t i = 0; i < nx; ++i)
     for (size_t j = 0; j < ny; ++j)
       for (size_t k = 0; k < nz; ++k) s.grid.values[i + nx * (j + ny * k)] = static_cast<real>(g.values[(i * ny + j) * nz + k]);
-  s.grid.grid_min = vec3_attribute(r, "sdf", "grid_min");
-  s.grid.grid_max = vec3_attribute(r, "sdf", "grid_max");
+  // attributes on the grid dataset (SuperDex's layout, model::save_to_file) or on the group
+  const std::string at = r.has_attribute("sdf/grid", "grid_min") ? "sdf/grid" : "sdf";
+  s.grid.grid_min = vec3_attribute(r, at, "grid_min");
+  s.grid.grid_max = vec3_attribute(r, at, "grid_max");
   if (!(s.grid.grid_min.array() < s.grid.grid_max.array()).all())
-    r.fail("sdf", "grid_min must be < grid_max on every axis, got grid_min " + vec_text(s.grid.grid_min) + " and grid_max " +
+    r.fail(at, "grid_min must be < grid_max on every axis, got grid_min " + vec_text(s.grid.grid_min) + " and grid_max " +
                       vec_text(s.grid.grid_max));
-  if (r.has_attribute("sdf", "scale")) {
-    const Numbers a = r.attribute("sdf", "scale");
+  if (r.has_attribute(at, "scale")) {
+    const Numbers a = r.attribute(at, "scale");
     if (a.values.size() != 1 && a.values.size() != 3) r.fail("sdf/scale", "wrong shape: expected 1 or 3 values, got " + std::to_string(a.values.size()));
     require_finite(r, "sdf/scale", a.values, flat_position);
     const Vec3 scale = a.values.size() == 1 ? Vec3::Constant(static_cast<real>(a.values[0]))
@@ -140,13 +142,13 @@ MochiSdf read_sdf(const Reader& r) {
     if ((scale.array() <= 0).any()) r.fail("sdf/scale", "must be positive, got " + vec_text(scale));
     s.scale = scale;
   }
-  if (r.has_attribute("sdf", "rotation")) {
-    const auto q = attribute_values(r, "sdf", "rotation", 4);
+  if (r.has_attribute(at, "rotation")) {
+    const auto q = attribute_values(r, at, "rotation", 4);
     const Quat rot(static_cast<real>(q[3]), static_cast<real>(q[0]), static_cast<real>(q[1]), static_cast<real>(q[2]));
     if (rot.norm() < real(1e-6)) r.fail("sdf/rotation", "must be a non-zero quaternion [x, y, z, w]");
     s.rotation = rot.normalized();
   }
-  if (r.has_attribute("sdf", "translation")) s.translation = vec3_attribute(r, "sdf", "translation");
+  if (r.has_attribute(at, "translation")) s.translation = vec3_attribute(r, at, "translation");
   return s;
 }
 

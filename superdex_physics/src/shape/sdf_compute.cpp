@@ -87,11 +87,23 @@ SdfGrid sdf_layout(const TriangleMesh& mesh, const SdfOptions& options, const st
   return g;
 }
 
-SdfGrid compute_sdf(const TriangleMesh& mesh, const SdfOptions& options, const std::string& where) {
+namespace {
+void check_closed(const TriangleMesh& mesh, const std::string& where) {
   check_triangle_mesh(mesh, where);
   if (const EdgeReport edges = edge_report(mesh); !edges.closed())
     throw Error(where + ": computing a signed-distance field needs a closed mesh: " + edges.describe());
+}
+}  // namespace
+
+SdfGrid compute_sdf(const TriangleMesh& mesh, const SdfOptions& options, const std::string& where) {
+  check_closed(mesh, where);
   SdfGrid grid = sdf_layout(mesh, options, where);
+  fill_sdf(mesh, grid, where);
+  return grid;
+}
+
+void fill_sdf(const TriangleMesh& mesh, SdfGrid& grid, const std::string& where) {
+  check_closed(mesh, where);
 
   std::vector<Eigen::Vector3d> v(mesh.vertices.size());
   for (size_t i = 0; i < v.size(); ++i) v[i] = mesh.vertices[i].cast<double>();
@@ -118,7 +130,6 @@ SdfGrid compute_sdf(const TriangleMesh& mesh, const SdfOptions& options, const s
       }
     }
   });
-  return grid;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -1,6 +1,7 @@
 #pragma once
 /// @file mesh_io.h
-/// Reading triangle meshes from OBJ, STL (ASCII and binary) and PLY (ASCII and binary) files.
+/// Reading triangle meshes from OBJ, OFF, STL (ASCII and binary) and PLY (ASCII and binary) files,
+/// or from their bytes in memory.
 /// Coordinates are taken as they are in the file (metres, in the file's frame); polygons are
 /// fan-triangulated; STL vertices shared by several facets are welded (exact duplicates).
 ///
@@ -15,7 +16,7 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-/// Reads a mesh file chosen by extension (.obj, .stl, .ply; case-insensitive) and checks it
+/// Reads a mesh file chosen by extension (.obj, .stl, .ply, .off; case-insensitive) and checks it
 /// with check_triangle_mesh (mesh_validation.h).
 TriangleMesh read_mesh_file(const std::string& path);
 
@@ -29,6 +30,17 @@ TriangleMesh read_stl_file(const std::string& path);
 /// double properties x, y, z and element `face` with a list property `vertex_indices` (or
 /// `vertex_index`); other elements and properties are skipped.
 TriangleMesh read_ply_file(const std::string& path);
+/// Object File Format: an `OFF` header line (optional when the counts follow on the same line),
+/// then `num_vertices num_faces num_edges`, the vertices `x y z`, and the faces `n i0 ... i(n-1)`
+/// (0-based; extra values such as colours after the indices are ignored). `#` starts a comment.
+TriangleMesh read_off_file(const std::string& path);
+
+/// The readers above on the contents of a file held in memory; `name` stands for the file in
+/// error messages.
+TriangleMesh read_obj_bytes(const std::string& bytes, const std::string& name);
+TriangleMesh read_stl_bytes(const std::string& bytes, const std::string& name);
+TriangleMesh read_ply_bytes(const std::string& bytes, const std::string& name);
+TriangleMesh read_off_bytes(const std::string& bytes, const std::string& name);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics
