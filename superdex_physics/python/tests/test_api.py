@@ -90,12 +90,15 @@ def test_rigid_actor_static_and_dynamic(scene):
     assert dyn.get_num_dofs() == 6
     heavy = scene.create_rigid_actor(sdp.RigidActorParams(name="heavy", shape=box, mass=3.0))
     assert heavy.get_mass() == pytest.approx(3.0)
+    # SuperDex: given both, the mass takes precedence over the density
+    both = scene.create_rigid_actor(name="both", shape=box, mass=2.0, density=500.0)
+    assert both.get_mass() == pytest.approx(2.0)
     ground = scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     assert ground.get_num_dofs() == 0
     assert scene.get_actor(dyn.get_handle()) == dyn
     names = []
     scene.for_each_actor(lambda a: names.append(a.get_name()))
-    assert names == ["box", "heavy", "ground"]
+    assert names == ["box", "heavy", "both", "ground"]
 
 
 def test_free_body_velocity_round_trip(scene):
