@@ -68,13 +68,21 @@ class StructBinder {
     std::shared_ptr<Fields> f = fields_;
     cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
         .def("__init__", [f](T* self, nb::kwargs kwargs) {
-          new (self) T();
+          // built aside, so that a rejected keyword leaves no half-made instance behind
+          T t;
           for (auto [key, value] : kwargs) {
             const std::string k = nb::cast<std::string>(key);
             const size_t i = f->index(k);
             if (i == f->names.size()) throw nb::type_error((f->type_name + "(): unexpected keyword argument '" + k + "'").c_str());
-            f->setters[i](*self, value);
+            try {
+              f->setters[i](t, value);
+            } catch (const nb::cast_error&) {
+              // nanobind's bare std::bad_cast would name neither the field nor the value
+              throw nb::type_error((f->type_name + "(): " + k + ": cannot be set from a value of type " +
+                                    nb::inst_name(value).c_str()).c_str());
+            }
           }
+          new (self) T(std::move(t));
         })
         .def("__copy__", [](const T& t) { return T(t); })
         .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
