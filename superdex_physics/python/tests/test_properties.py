@@ -2,9 +2,10 @@
 sizes, masses, poses and velocities, on the ground or in the air, stepped with random time steps.
 
 - Stepping never produces NaN or infinity, and never raises a numerical fault (under the default
-  NumericalFaultPolicy.RAISE a diverged or non-finite step would raise), and every solve
-  converges (SolverStats.convergence_status CONVERGED, a solve stopped by its iteration limit
-  being no fault any more).
+  NumericalFaultPolicy.RAISE a diverged or non-finite step would raise); and no solve runs out
+  of Newton iterations unconverged (that raised too before a solve stopped by a limit became
+  SuperDex's STOPPED, no fault): each converges, or stops early on a Newton step that can no
+  longer move the solution at the working precision (NonLinearSolverParams.rel_step_tol).
 - capture_state, then restore_state, then step gives bitwise the same state as stepping on.
 
 CI runs a fixed, derandomized set of examples (profile "ci"); `SUPERDEX_HYPOTHESIS_PROFILE=explore`
@@ -95,10 +96,13 @@ def test_random_scenes_never_produce_nan(description):
     sdp.initialize(0)
     try:
         scene, actors = build(description)
+        max_iter = scene.get_solver_params().non_linear_solver.max_iter
         for _ in range(25):
             scene.step(description["dt"])  # raises on a numerical fault
             assert np.all(np.isfinite(state_of(actors)))
-            assert scene.get_solver_stats().convergence_status == sdp.ConvergenceStatus.CONVERGED
+            stats = scene.get_solver_stats()
+            assert (stats.convergence_status == sdp.ConvergenceStatus.CONVERGED
+                    or (stats.convergence_status == sdp.ConvergenceStatus.STOPPED and stats.max_non_linear_iters < max_iter)), stats
         assert scene.get_last_numerical_faults() == []
     finally:
         sdp.shutdown()
