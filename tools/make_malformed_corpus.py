@@ -163,7 +163,7 @@ def bot_cases():
     case(B, "contact_override_unknown_link" + e, bot(contactOverrides=[{"linkA": "base", "linkB": "hand", "enable": False}]),
          r"contactOverrides\[0\]\.linkB: no link named 'hand'")
     case(B, "negative_friction_coefficient" + e, bot_edit(link(2, contact={"coulombFrictionCoefficient": -0.5})),
-         r"links\[2\]\.contact\.coulombFrictionCoefficient: must be >= 0")
+         r"links\[2\]\.contact\.coulombFrictionCoefficient: must be a finite number >= 0, got -0\.5")
     case(B, "params_file_not_json" + e, bot_edit(link(1, actuators=[{"type": "IDEAL_PD", "name": "a", "params": "valid_readme.txt"}])),
          r"links\[1\]\.actuators\[0\] \('a'\): create_actuator\('IDEAL_PD', name 'a'\): IDEAL_PD: params file '.*valid_readme\.txt' is not valid JSON")
     case(B, "params_number_overflow" + e, bot_edit(link(1, actuators=[{"type": "IDEAL_PD", "name": "a", "params": '{"kp": 1e999}'}])),
@@ -208,7 +208,9 @@ def prefab_cases():
     case(P, "shape_dot_dot" + e, prefab(rigid=[box_actor(shape="./../../secret.obj")]), r"actors\.rigid\[0\]\.shape: paths containing '\.\.' are not allowed \('\./\.\./\.\./secret\.obj'\)")
     case(P, "shape_file_missing" + e, prefab(rigid=[box_actor(shape="./missing.obj")]), r"actors\.rigid\[0\]\.shape: shape file '.*prefab/missing\.obj' does not exist")
     case(P, "negative_mass" + e, prefab(rigid=[box_actor(mass=-1.0)]), r"actors\.rigid\[0\]\.mass: must be a positive finite number, got -1")
-    case(P, "mass_and_density" + e, prefab(rigid=[box_actor(density=500.0)]), r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): give mass or density, not both")
+    # (mass and density together are no defect: SuperDex's mass takes precedence)
+    case(P, "negative_density" + e, prefab(rigid=[{k: v for k, v in box_actor(density=-500.0).items() if k != "mass"}]),
+         r"actors\.rigid\[0\]\.density: must be a positive finite number, got -500")
     case(P, "rotation_three_values" + e, prefab(rigid=[box_actor(worldFromLocal={"rotation": [0, 0, 1], "translation": [0, 0, 0]})]),
          r"actors\.rigid\[0\]\.worldFromLocal\.rotation: expected an array of 4 numbers, got an array of 3")
     case(P, "translation_string" + e, prefab(rigid=[box_actor(worldFromLocal={"rotation": [0, 0, 0, 1], "translation": [0, "z", 0]})]),
@@ -216,8 +218,8 @@ def prefab_cases():
     case(P, "is_static_string" + e, prefab(rigid=[box_actor(isStatic="yes")]), r"actors\.rigid\[0\]\.isStatic: expected a boolean, got \"yes\"")
     case(P, "unknown_collider" + e, prefab(rigid=[box_actor(colliderType="Cone")]), r"actors\.rigid\[0\]\.colliderType: unknown collider type \"Cone\"")
     case(P, "dynamic_plane" + e, prefab(rigid=[box_actor(shape={"plane": {"normal": [0, 0, 1], "distance": 0}})]),
-         r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): shape: a plane is unbounded and can only be static \(pass is_static=True\)")
-    case(P, "layer_out_of_range" + e, prefab(rigid=[box_actor(layer=99)]), r"actors\.rigid\[0\]\.layer: must be between 0 and 63, got 99")
+         r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): params\.shape: a plane is unbounded and can only carry a static actor \(is_static=True\)")
+    case(P, "layer_not_a_name" + e, prefab(rigid=[box_actor(layer=99)]), r"actors\.rigid\[0\]\.layer: expected a contact layer name \(a string\), got 99")
     case(P, "soft_triangle_mesh" + e, prefab(soft=[soft_actor(shape="./valid_cube.obj")]), r"actors\.soft\[0\]\.shape: '.*prefab/valid_cube\.obj' has no tetrahedral mesh/ \(connectivity M x 4\)")
     case(P, "soft_unknown_material" + e, prefab(soft=[soft_actor(material={"type": "Jelly", "youngsModulus": 1e5, "poissonRatio": 0.3})]),
          r"actors\.soft\[0\]: create_soft_actor\('corpus/jelly'\): material\.type: unknown material type 'Jelly'")

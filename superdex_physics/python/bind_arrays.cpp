@@ -109,6 +109,7 @@ real* out_buffer(nb::handle out, std::string_view arg, size_t n) {
   if (a.dtype() != nb::dtype<real>() || a.ndim() != 1 || a.shape(0) != n || (n > 1 && a.stride(0) != 1)) {
     std::string got = "ndim " + std::to_string(a.ndim());
     if (a.ndim() == 1) got = "shape (" + std::to_string(a.shape(0)) + ",)";
+    if (a.ndim() == 1 && n > 1 && a.stride(0) != 1) got += ", not contiguous";
     throw Error(std::string(arg) + ": expected " + expect + ", got " + got + (a.dtype() != nb::dtype<real>() ? " with another dtype" : ""));
   }
   return static_cast<real*>(a.data());

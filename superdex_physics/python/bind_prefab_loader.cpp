@@ -20,7 +20,8 @@ void export_prefab_loader(nb::module_& m) {
           std::vector<std::string> warnings;
           PrefabResult r = add_prefab_to_scene(prefab_path, root_path, scene, params, &warnings);
           for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
-          return std::make_pair(r.actors, r.constraints);
+          // the constraint handles as a list of ints (a vector of them has no Python type)
+          return nb::make_tuple(nb::cast(r.actors), to_list(r.constraints));
         },
         "prefab_path"_a, "root_path"_a, "scene"_a, "name"_a, "scale"_a, "world_from_prefab"_a.none(), "apply_scene_settings"_a);
 }

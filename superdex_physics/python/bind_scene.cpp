@@ -66,6 +66,13 @@ std::vector<std::uint8_t> read_bytes(nb::handle data, const char* what) {
   throw Error(std::string(what) + ": data: expected bytes, a bytearray, a DynamicArrayUint8 or a uint8 array, got " + nb::inst_name(data).c_str());
 }
 
+// The handle of an actor argument that must exist in the scene; errors name the argument.
+ActorHandle existing_actor(const Scene& s, nb::handle obj, const std::string& arg) {
+  const ActorHandle h = actor_handle_of(obj, arg);
+  if (!s.has_actor(h)) throw Error(arg + ": actor " + std::to_string(h) + " does not exist in scene '" + s.name() + "'");
+  return h;
+}
+
 nb::object actor_or_none(const Scene& s, ActorHandle h) {
   if (!h.is_valid() || !s.has_actor(h)) return nb::none();
   return nb::cast(Actor{s, h});
@@ -168,6 +175,13 @@ void export_scene(nb::module_& m) {
            }, "An articulated actor from ArticulatedActorParams, or from its fields as keywords.")
       .def("destroy_actor", [](Scene& s, nb::handle actor) {
              if (actor.is_none()) return;
+             // an Actor knows its scene: one of another live scene is a mistake, not a destroyed actor
+             if (nb::isinstance<Actor>(actor)) {
+               const Actor& a = nb::cast<const Actor&>(actor);
+               if (a.scene.handle() != s.handle() && physics::scene_exists(a.scene.handle()))
+                 throw Error("destroy_actor: actor: actor " + std::to_string(a.handle) + " belongs to scene '" + a.scene.name() + "', not '" +
+                             s.name() + "'");
+             }
              const ActorHandle h = actor_handle_of(actor, "destroy_actor: actor");
              if (!s.has_actor(h)) return;
              if (s.is_nested_link_actor(h))
@@ -190,23 +204,26 @@ void export_scene(nb::module_& m) {
              for (const std::string& name : s.contact_layer_names()) fn(name);
            }, "callback"_a)
       .def("enable_actor_contact_asymmetric", [](Scene& s, nb::handle colliding, nb::handle collider, bool enable, IncludeNestedActors nested) {
-             s.enable_actor_contact_asymmetric(actor_handle_of(colliding, "enable_actor_contact_asymmetric: colliding"),
-                                               actor_handle_of(collider, "enable_actor_contact_asymmetric: collider"), enable, nested);
+             // in argument order, so that an error names the first bad one
+             const ActorHandle a = existing_actor(s, colliding, "enable_actor_contact_asymmetric: colliding");
+             const ActorHandle b = existing_actor(s, collider, "enable_actor_contact_asymmetric: collider");
+             s.enable_actor_contact_asymmetric(a, b, enable, nested);
            }, "colliding"_a, "collider"_a, "enable"_a, "include_nested_actors"_a)
       .def("enable_actor_contact_symmetric", [](Scene& s, nb::handle a, nb::handle b, bool enable, IncludeNestedActors nested) {
-             s.enable_actor_contact_symmetric(actor_handle_of(a, "enable_actor_contact_symmetric: actor_a"),
-                                              actor_handle_of(b, "enable_actor_contact_symmetric: actor_b"), enable, nested);
+             const ActorHandle ha = existing_actor(s, a, "enable_actor_contact_symmetric: actor_a");
+             const ActorHandle hb = existing_actor(s, b, "enable_actor_contact_symmetric: actor_b");
+             s.enable_actor_contact_symmetric(ha, hb, enable, nested);
            }, "actor_a"_a, "actor_b"_a, "enable"_a, "include_nested_actors"_a)
       // callbacks
       .def("register_pre_step_callback", [](Scene& s, const std::string& debug_name, nb::handle callback, int priority) {
              return s.register_pre_step_callback(debug_name, python_step_callback(callback, "register_pre_step_callback('" + debug_name + "')"),
                                                  priority);
-           }, "debug_name"_a, "callback"_a, "priority"_a = Scene::kDefaultCallbackPriority,
+           }, "debug_name"_a, "callback"_a.none(), "priority"_a = Scene::kDefaultCallbackPriority,
            "Calls callback(info) at the start of every step, lower priority first. Exceptions propagate to step().")
       .def("register_post_step_callback", [](Scene& s, const std::string& debug_name, nb::handle callback, int priority) {
              return s.register_post_step_callback(debug_name, python_step_callback(callback, "register_post_step_callback('" + debug_name + "')"),
                                                   priority);
-           }, "debug_name"_a, "callback"_a, "priority"_a = Scene::kDefaultCallbackPriority, "Calls callback(info) at the end of every step.")
+           }, "debug_name"_a, "callback"_a.none(), "priority"_a = Scene::kDefaultCallbackPriority, "Calls callback(info) at the end of every step.")
       .def("cancel_callback", &Scene::cancel_callback, "handle"_a, "No effect for an invalid or cancelled handle.")
       .def("__eq__", [](const Scene& a, const Scene& b) { return a.handle() == b.handle(); }, nb::is_operator())
       .def("__ne__", [](const Scene& a, const Scene& b) { return a.handle() != b.handle(); }, nb::is_operator())

@@ -37,7 +37,13 @@ struct BinderFields {
       const std::string k = nb::cast<std::string>(key);
       const size_t i = index(k);
       if (i == names.size()) throw nb::type_error((type_name + "(): unexpected keyword argument '" + k + "'").c_str());
-      setters[i](self, value);
+      try {
+        setters[i](self, value);
+      } catch (const nb::cast_error&) {
+        // nanobind's bare std::bad_cast would name neither the field nor the value
+        throw nb::type_error((type_name + "(): " + k + ": cannot be set from a value of type " +
+                              nb::inst_name(value).c_str()).c_str());
+      }
     }
   }
   /// "Type(field=repr, ...)".
@@ -102,8 +108,10 @@ class StructBinder {
     std::shared_ptr<Fields> f = fields_;
     cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
         .def("__init__", [f](T* self, nb::kwargs kwargs) {
-          new (self) T();
-          f->apply(*self, kwargs);
+          // built aside, so that a rejected keyword leaves no half-made instance behind
+          T t;
+          f->apply(t, kwargs);
+          new (self) T(std::move(t));
         })
         .def("__copy__", [](const T& t) { return T(t); })
         .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))

@@ -30,7 +30,10 @@ def add_to_scene(prefab_path, root_path, scene, params: PrefabParams | None = No
     """Loads a prefab into `scene`; paths starting with ./ are relative to the prefab file, other
     relative paths to `root_path`. All or nothing: on an Error no actor of it remains."""
     params = params or PrefabParams()
-    transform = _m.TransformRT(rotation=params.rotation, translation=params.translation)
+    # TransformRT takes no None: unset parts are the identity's
+    rotation = params.rotation if params.rotation is not None else _m.Quaternion(0, 0, 0, 1)
+    translation = params.translation if params.translation is not None else [0.0, 0.0, 0.0]
+    transform = _m.TransformRT(rotation=rotation, translation=translation)
     actors, constraints = _m._add_prefab_to_scene(
         str(Path(prefab_path)), str(Path(root_path)), scene, params.name, float(params.scale), transform,
         bool(params.apply_scene_settings))

@@ -12,27 +12,28 @@ G = 9.81
 
 
 def material(mu=0.5, **extra):
-    """A contact material dict for create_rigid_actor(contact=...) or a link's "contact" field."""
-    return {"coulombFrictionCoefficient": mu, **extra}
+    """ContactParams for create_rigid_actor(contact=...) or a link's `contact`: Coulomb friction mu
+    (combined with the other side's by their geometric mean) and other fields by their names."""
+    return sdp.ContactParams(coulomb_friction_coefficient=mu, **extra)
 
 
 def add_ground(scene, mu=0.5, name="ground", **kwargs):
-    """A static half-space below z = 0 (normal +z)."""
-    return scene.create_rigid_actor(name, sdp.create_plane_shape([0, 0, 1], 0), is_static=True,
+    """A static half-space below z = 0 (normal +z); kwargs: other RigidActorParams fields."""
+    return scene.create_rigid_actor(name=name, shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True,
                                     contact=material(mu), **kwargs)
 
 
 def add_box(scene, name, center, half=0.1, mass=1.0, mu=0.5, rotation=None, **kwargs):
     """A dynamic cube of half extent `half` (its origin is its centre of mass)."""
     xf = sdp.TransformRT(rotation=rotation or sdp.Quaternion(0, 0, 0, 1), translation=list(center))
-    return scene.create_rigid_actor(name, sdp.create_box_shape([half, half, half]), world_from_local=xf,
+    return scene.create_rigid_actor(name=name, shape=sdp.create_box_shape([half, half, half]), world_from_local=xf,
                                     mass=mass, contact=material(mu), **kwargs)
 
 
 def add_sphere(scene, name, center, radius=0.1, mass=1.0, mu=0.5, **kwargs):
     """A dynamic solid ball centred on its origin."""
     xf = sdp.TransformRT(rotation=sdp.Quaternion(0, 0, 0, 1), translation=list(center))
-    return scene.create_rigid_actor(name, sdp.create_sphere_shape([0, 0, 0], radius), world_from_local=xf,
+    return scene.create_rigid_actor(name=name, shape=sdp.create_sphere_shape([0, 0, 0], radius), world_from_local=xf,
                                     mass=mass, contact=material(mu), **kwargs)
 
 

@@ -47,6 +47,7 @@ except ImportError as exc:  # a declared dev dependency: missing means a broken 
     ) from exc
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link
 
 if not sdp.uses_double_precision():
     pytest.skip(
@@ -186,36 +187,29 @@ def generate_tree(seed: int, root_type: str, dof_budget: int, p_hard: float, p_c
 # the tree in SuperDex
 
 
-def superdex_description(tree: Tree) -> tuple[list[dict], list[dict]]:
+def superdex_description(tree: Tree) -> tuple[list, list]:
+    """The tree's ArticulatedLinkParams and ArticulatedJointParams."""
     links, joints = [], []
     for i in range(tree.num_links):
         I = tree.inertias[i]
-        link = {
-            "name": f"link{i}",
-            "mass": tree.masses[i],
-            "centerOfMass": tree.coms[i].tolist(),
-            "momentOfInertia": [I[0, 0], I[0, 1], I[0, 2], I[1, 1], I[1, 2], I[2, 2]],
-        }
-        if i > 0:
-            link["parentLink"] = tree.parents[i]
-        joint = {
-            "name": f"joint{i}",
-            "type": tree.types[i],
-            "parentLinkFromJoint": {
-                "rotation": tree.quats[i].tolist(),
-                "translation": tree.parent_from_joint[i].translation.tolist(),
-            },
-        }
+        links.append(link(
+            f"link{i}", parent=tree.parents[i] if i > 0 else -1, mass=float(tree.masses[i]),
+            center_of_mass=tree.coms[i].tolist(),
+            moment_of_inertia=[I[0, 0], I[0, 1], I[0, 2], I[1, 1], I[1, 2], I[2, 2]]))
+        fields = {}
         if tree.types[i] in ("Revolute", "Prismatic"):
-            joint["axis"] = tree.axes[i].tolist()
-        links.append(link)
-        joints.append(joint)
+            fields["axis"] = tree.axes[i].tolist()
+        joints.append(joint(
+            f"joint{i}", tree.types[i],
+            parent_link_from_joint=sdp.TransformRT(rotation=sdp.Quaternion(tree.quats[i].tolist()),
+                                                   translation=tree.parent_from_joint[i].translation.tolist()),
+            **fields))
     return links, joints
 
 
 def world_from_root_desc(tree: Tree):
     return sdp.TransformRT(
-        rotation=tree.world_from_root_quat.tolist(), translation=tree.world_from_root.translation.tolist()
+        rotation=sdp.Quaternion(tree.world_from_root_quat.tolist()), translation=tree.world_from_root.translation.tolist()
     )
 
 
@@ -488,9 +482,7 @@ def test_dynamics_match_pinocchio(engine, case):
     scene = sdp.create_scene(f"pinocchio_tree_{seed}")
     scene.set_gravity(GRAVITY.tolist())
     links, joints = superdex_description(tree)
-    art = scene.create_articulated_actor(
-        f"tree{seed}", links=links, joints=joints, world_from_root=world_from_root_desc(tree)
-    )
+    art = articulation(scene, f"tree{seed}", links, joints, world_from_root=world_from_root_desc(tree))
     assert art.get_num_dofs() == n
     link_handles = list(art.get_nested_link_actors())
     assert len(link_handles) == tree.num_links

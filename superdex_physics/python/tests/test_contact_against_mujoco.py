@@ -1,8 +1,8 @@
 """The five-box stack of test_contact_stack.py, settled in SuperDex and in MuJoCo: same resting heights.
 
 Both simulators get the same scene: a ground plane at z = 0, five free 1 kg cubes of half
-extent 0.1 m with friction 0.5 (MuJoCo combines friction by max, SuperDex harmonically: with
-every surface at 0.5 both give 0.5), gravity -9.81 z, timestep 10 ms, box k released at
+extent 0.1 m with friction 0.5 (MuJoCo combines friction by max, SuperDex by the geometric
+mean: with every surface at 0.5 both give 0.5), gravity -9.81 z, timestep 10 ms, box k released at
 z = 0.1 + 0.2 k + 0.001 (k + 1). After 3 s every box's height must agree within 3 mm.
 
 MuJoCo contact parameters: MuJoCo contacts are soft; with its defaults (solref 0.02 1,

@@ -30,6 +30,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link
 from contact_helpers import G, material, position, skew, step_for, vec
 
 L1 = L2 = 0.5
@@ -70,23 +71,23 @@ def point_jacobian(q, p):
 def build(scene):
     inertia1 = [0.001, 0, 0, M1 * L1**2 / 12, 0, M1 * L1**2 / 12]
     links = [
-        {"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
-        {"name": "upper", "parentLink": 0, "mass": M1, "centerOfMass": [A1, 0, 0], "momentOfInertia": inertia1,
-         "shape": {"sphere": {"radius": 0.04, "center": [L1, 0, 0]}}, "contact": material(MU)},
-        {"name": "lower", "parentLink": 1, "mass": M2, "centerOfMass": [A2, 0, 0], "momentOfInertia": inertia1,
-         "shape": {"sphere": {"radius": R, "center": [L2, 0, 0]}}, "contact": material(MU)},
+        link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+        link("upper", parent=0, mass=M1, center_of_mass=[A1, 0, 0], moment_of_inertia=inertia1,
+             shape=sdp.create_sphere_shape([L1, 0, 0], 0.04), contact=material(MU)),
+        link("lower", parent=1, mass=M2, center_of_mass=[A2, 0, 0], moment_of_inertia=inertia1,
+             shape=sdp.create_sphere_shape([L2, 0, 0], R), contact=material(MU)),
     ]
     joints = [
-        {"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, H]}},
-        {"name": "shoulder", "type": "Revolute", "axis": [0, 1, 0]},
-        {"name": "elbow", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [L1, 0, 0]}},
+        joint("weld", "hard", at=[0, 0, H]),
+        joint("shoulder", "revolute", axis=[0, 1, 0]),
+        joint("elbow", "revolute", at=[L1, 0, 0], axis=[0, 1, 0]),
     ]
-    arm = scene.create_articulated_actor("arm", links, joints)
+    arm = articulation(scene, "arm", links, joints)
     arm.set_articulated_pose_from_joints(Q0)
     _, _, tip = forward(Q0)
     top = tip[2] - R - 2e-3
     table = scene.create_rigid_actor(
-        "table", sdp.create_box_shape([0.15, 0.15, 0.1]), is_static=True,
+        name="table", shape=sdp.create_box_shape([0.15, 0.15, 0.1]), is_static=True,
         world_from_local=sdp.TransformRT(rotation=sdp.Quaternion(0, 0, 0, 1), translation=[tip[0], 0, top - 0.1]),
         contact=material(MU))
     lower = scene.get_actor(arm.get_nested_link_actors()[2])
@@ -119,7 +120,8 @@ def test_arm_pressing_on_a_box_balances_joint_torques(scene):
     final pose q:  |tau - c(q, 0) + J_p(q)^T f| < 1 % of |tau|.  Also: f is (0, 0, 20 N) to 2 %
     (the equilibrium the torques were designed for; the pose barely changes), inside the friction
     cone; the contact point is the sphere's lowest point (1 mm) with normal +z; and the contact
-    torque about the link origin (the elbow) is (p - e) x f."""
+    torque about the lower link's centre of mass c = e + a2 (cos(q1 + q2), 0, -sin(q1 + q2)) is
+    (p - c) x f."""
     arm, lower, table = build(scene)
     lower.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     lower.register_query(sdp.QueryType.CONTACT_POINTS)
@@ -137,7 +139,7 @@ def test_arm_pressing_on_a_box_balances_joint_torques(scene):
     for pt in points:
         assert pt.actor_b == table.get_handle()
         np.testing.assert_allclose(vec(pt.normal), [0, 0, 1], atol=1e-3)
-    p = np.sum([vec(pt.position) * np.linalg.norm(vec(pt.force)) for pt in points], axis=0) / \
+    p = np.sum([vec(pt.pos_a) * np.linalg.norm(vec(pt.force)) for pt in points], axis=0) / \
         np.sum([np.linalg.norm(vec(pt.force)) for pt in points])
     np.testing.assert_allclose(p, tip - np.array([0, 0, R]), atol=1e-3)
 
@@ -148,24 +150,26 @@ def test_arm_pressing_on_a_box_balances_joint_torques(scene):
 
     np.testing.assert_allclose(f, [0, 0, F_TARGET], atol=0.02 * F_TARGET)
     assert np.linalg.norm(f[:2]) <= MU * f[2]
-    np.testing.assert_allclose(vec(lower.get_contact_torque_world()), np.cross(p - e, f), atol=0.01 * F_TARGET * L2)
+    c = e + A2 * np.array([np.cos(q[0] + q[1]), 0, -np.sin(q[0] + q[1])])
+    np.testing.assert_allclose(vec(lower.get_contact_torque_world()), np.cross(p - c, f), atol=0.01 * F_TARGET * L2)
 
 
 def test_welded_base_touching_the_ground_is_not_a_contact(scene):
     """A robot's base welded to the world and resting on the ground plane: neither side can move,
     so the pair yields no contact (it used to produce a zero-compliance block and NaN)."""
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01],
-              "shape": {"box": {"halfExtents": [0.05, 0.05, 0.1], "center": [0, 0, 0.1]}}},
-             {"name": "arm", "parentLink": 0, "mass": 0.5, "centerOfMass": [0.2, 0, 0],
-              "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]}]
-    joints = [{"name": "weld", "type": "Hard"},
-              {"name": "j", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0, 0, 0.3]}}]
-    robot = scene.create_articulated_actor("robot", links, joints)
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    # the base's box (half extents 0.05, 0.05, 0.1) stands on the plane: its centre is 0.1 m up;
+    # create_box_shape centres a box on its shape origin, so the base link frame sits there
+    links = [link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01],
+                  shape=sdp.create_box_shape([0.05, 0.05, 0.1])),
+             link("arm", parent=0, mass=0.5, center_of_mass=[0.2, 0, 0], moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3])]
+    joints = [joint("weld", "hard", at=[0, 0, 0.1]),
+              joint("j", "revolute", at=[0, 0, 0.2], axis=[0, 1, 0])]
+    robot = articulation(scene, "robot", links, joints)
     robot.register_query(sdp.QueryType.CONTACT_POINTS)
     for _ in range(10):
         scene.step(0.004)
     v = np.zeros(1, dtype=np.float64 if sdp.uses_double_precision() else np.float32)
     robot.get_articulated_joint_velocities(out_velocities=v)
     assert np.isfinite(v).all() and v[0] != 0, "the arm swings under gravity"
-    assert robot.get_contact_points_world() == []
+    assert len(robot.get_contact_points_world()) == 0

@@ -19,9 +19,9 @@ def test_compliant_box_sinks_by_weight_over_stiffness(scene):
     add_ground(scene)
     m, k, half = 2.0, 2.0e4, 0.1
     box = scene.create_rigid_actor(
-        "box", sdp.create_box_shape([half] * 3), mass=m,
+        name="box", shape=sdp.create_box_shape([half] * 3), mass=m,
         world_from_local=sdp.TransformRT(translation=[0, 0, half]),
-        contact={"coulombFrictionCoefficient": 0.5, "stiffness": k, "dissipationTimeScale": 0.05})
+        contact=sdp.ContactParams(coulomb_friction_coefficient=0.5, contact_stiffness=k, dissipation_time_scale=0.05))
     box.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     step_for(scene, 0.005, 3.0)
     sink = half - position(box)[2]
@@ -33,9 +33,9 @@ def test_compliant_ball_with_dissipation_settles(scene):
     add_ground(scene)
     m, k, r = 1.0, 1.0e4, 0.05
     ball = scene.create_rigid_actor(
-        "ball", sdp.create_sphere_shape([0, 0, 0], r), mass=m,
+        name="ball", shape=sdp.create_sphere_shape([0, 0, 0], r), mass=m,
         world_from_local=sdp.TransformRT(translation=[0, 0, 0.3]),
-        contact={"stiffness": k, "dissipationTimeScale": 0.02})
+        contact=sdp.ContactParams(contact_stiffness=k, dissipation_time_scale=0.02))
     step_for(scene, 0.002, 2.0)
     assert position(ball)[2] == pytest.approx(r - m * G / k, abs=2e-4)
     assert abs(ball.get_linear_velocity()[2]) < 1e-3
@@ -48,7 +48,7 @@ def test_two_hundred_spheres_land_on_the_ground(scene):
     for i in range(20):
         for j in range(10):
             balls.append(scene.create_rigid_actor(
-                f"s{i}_{j}", sdp.create_sphere_shape([0, 0, 0], r), mass=0.1,
+                name=f"s{i}_{j}", shape=sdp.create_sphere_shape([0, 0, 0], r), mass=0.1,
                 world_from_local=sdp.TransformRT(translation=[0.1 * i, 0.1 * j, 0.2 + 0.01 * ((i + j) % 5)])))
     step_for(scene, 0.01, 1.0)
     z = np.array([position(b)[2] for b in balls])

@@ -1,7 +1,8 @@
 """Contact filtering: by actor pair, by layer pair, and inside articulations.
 
-Rules under test: scene.enable_actor_contact_symmetric(a, b, enable) switches contact between
-two actors; scene.enable_layer_contact_symmetric(la, lb, enable) between two layers (0..63);
+Rules under test: scene.enable_actor_contact_symmetric(a, b, enable, IncludeNestedActors.NO)
+switches contact between two actors; scene.enable_layer_contact_symmetric(la, lb, enable)
+between two named layers (at most 64 per scene);
 links joined by a joint never collide with each other; other links of one articulation do
 (self-collision) unless disabled by actor pair. Every filtered case is paired with the same
 scene unfiltered, so a test cannot pass merely because contact does nothing.
@@ -15,6 +16,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link
 from contact_helpers import G, add_ground, add_sphere, position, step_for, vec
 
 DT = 0.01
@@ -28,7 +30,7 @@ def overlapping_pair(scene, **kwargs_b):
     return a, b
 
 
-def head_on_pair(scene, layer_a=0, layer_b=0):
+def head_on_pair(scene, layer_a="", layer_b=""):
     """Two balls 1 m apart closing at 2 m/s; without contact they swap places in 1 s."""
     scene.set_gravity([0, 0, 0])
     a = add_sphere(scene, "a", [-0.5, 0, 1], radius=R, layer=layer_a)
@@ -48,7 +50,7 @@ def test_overlapping_spheres_are_pushed_apart_when_contact_is_on(scene):
 def test_actor_pair_filter_lets_overlapping_spheres_stay(scene):
     """With contact disabled between them, overlapping balls feel nothing: they stay put."""
     a, b = overlapping_pair(scene)
-    scene.enable_actor_contact_symmetric(a, b, False)
+    scene.enable_actor_contact_symmetric(a, b, False, sdp.IncludeNestedActors.NO)
     step_for(scene, DT, 1.0)
     np.testing.assert_allclose(position(a), [0, 0, 1], atol=1e-6)
     np.testing.assert_allclose(position(b), [0.1, 0, 1], atol=1e-6)
@@ -59,7 +61,7 @@ def test_actor_pair_filter_lets_spheres_pass_through(scene):
     """Head-on balls with their pair disabled (given in either order) pass through each other
     at constant velocity; with contact on (control) they do not pass."""
     a, b = head_on_pair(scene)
-    scene.enable_actor_contact_symmetric(b, a, False)
+    scene.enable_actor_contact_symmetric(b, a, False, sdp.IncludeNestedActors.NO)
     step_for(scene, DT, 1.0)
     np.testing.assert_allclose(position(a), [0.5, 0, 1], atol=1e-5)
     np.testing.assert_allclose(position(b), [-0.5, 0, 1], atol=1e-5)
@@ -72,19 +74,21 @@ def test_head_on_spheres_collide_when_contact_is_on(engine):
         scene = sdp.create_scene("s")
         a, b = head_on_pair(scene)
         if reenable:
-            scene.enable_actor_contact_symmetric(a, b, False)
-            scene.enable_actor_contact_symmetric(a, b, True)
+            scene.enable_actor_contact_symmetric(a, b, False, sdp.IncludeNestedActors.NO)
+            scene.enable_actor_contact_symmetric(a, b, True, sdp.IncludeNestedActors.NO)
         step_for(scene, DT, 1.0)
         assert position(a)[0] < position(b)[0] - 2 * R + 1e-3, "the balls passed through each other"
 
 
 def test_layer_filter(scene):
-    """Layers 1 and 2 have contact disabled between them: head-on balls on those layers pass
-    through each other. Balls on layers 3 and 4 (no filter) collide."""
-    scene.enable_layer_contact_symmetric(1, 2, False)
-    a, b = head_on_pair(scene, layer_a=1, layer_b=2)
-    c = add_sphere(scene, "c", [-0.5, 2, 1], radius=R, layer=3)
-    d = add_sphere(scene, "d", [0.5, 2, 1], radius=R, layer=4)
+    """Layers "one" and "two" have contact disabled between them: head-on balls on those layers
+    pass through each other. Balls on layers "three" and "four" (no filter) collide."""
+    scene.enable_layer_contact_symmetric("one", "two", False)
+    assert not scene.is_layer_contact_enabled("one", "two") and not scene.is_layer_contact_enabled("two", "one")
+    assert scene.is_layer_contact_enabled("three", "four")
+    a, b = head_on_pair(scene, layer_a="one", layer_b="two")
+    c = add_sphere(scene, "c", [-0.5, 2, 1], radius=R, layer="three")
+    d = add_sphere(scene, "d", [0.5, 2, 1], radius=R, layer="four")
     c.set_velocity([1, 0, 0], [0, 0, 0])
     d.set_velocity([-1, 0, 0], [0, 0, 0])
     step_for(scene, DT, 1.0)
@@ -94,25 +98,33 @@ def test_layer_filter(scene):
 
 
 def test_layer_filter_against_the_ground(scene):
-    """The ground is on layer 0. Disabling layers (0, 5) lets a ball on layer 5 fall through the
-    ground (free fall: z = 0.3 - g t^2 / 2 after t = 0.6 s), while a ball on layer 6 lands and
-    rests on it."""
-    scene.enable_layer_contact_symmetric(5, 0, False)
-    add_ground(scene)
-    ghost = add_sphere(scene, "ghost", [0, 0, 0.3], radius=R, layer=5)
-    solid = add_sphere(scene, "solid", [1, 0, 0.3], radius=R, layer=6)
+    """The ground is on layer "ground". Disabling layers ("ghost", "ground") lets a ball on layer
+    "ghost" fall through the ground (free fall: z = 0.3 - g t^2 / 2 after t = 0.6 s), while a
+    ball on layer "solid" lands and rests on it."""
+    scene.enable_layer_contact_symmetric("ghost", "ground", False)
+    add_ground(scene, layer="ground")
+    ghost = add_sphere(scene, "ghost", [0, 0, 0.3], radius=R, layer="ghost")
+    solid = add_sphere(scene, "solid", [1, 0, 0.3], radius=R, layer="solid")
     step_for(scene, DT, 0.6)
     assert position(ghost)[2] == pytest.approx(0.3 - 0.5 * G * 0.6**2, abs=0.03)
     assert position(solid)[2] == pytest.approx(R, abs=1e-3)
 
 
-def test_layers_out_of_range_raise(scene):
-    with pytest.raises(sdp.Error):
-        scene.enable_layer_contact_symmetric(64, 0, False)
-    with pytest.raises(sdp.Error):
-        scene.enable_layer_contact_symmetric(0, -1, False)
-    with pytest.raises(sdp.Error):
-        add_sphere(scene, "bad", [0, 0, 1], layer=64)
+def test_bad_layers_raise(scene):
+    """Layers are names, registered on first use, at most 64 per scene (the actors' default
+    layer "" among them): an empty name cannot be filtered, and a 65th layer raises, each error
+    naming the argument or field."""
+    with pytest.raises(sdp.Error, match="layer_a"):
+        scene.enable_layer_contact_symmetric("", "x", False)
+    with pytest.raises(sdp.Error, match="layer_b"):
+        scene.enable_layer_contact_symmetric("x", "", False)
+    for k in range(63):
+        scene.enable_layer_contact_symmetric(f"layer{k}", "layer0", True)
+    assert scene.get_num_contact_layers() == 63
+    with pytest.raises(sdp.Error, match="at most 64"):
+        scene.enable_layer_contact_symmetric("layer63", "layer0", False)
+    with pytest.raises(sdp.Error, match="params.layer"):
+        add_sphere(scene, "bad", [0, 0, 1], layer="layer63")
 
 
 # --------------------------------------------------------------------------------------
@@ -126,23 +138,22 @@ def double_pendulum(scene, name, y, with_shapes):
     overlaps: a ball on the base at the shoulder; a 1.2 m bar on link 1 centred on the
     shoulder, reaching through the elbow; a ball on link 2 centred on the elbow. The only
     non-joined pair, base and link 2, stays 0.5 m apart (the elbow circles the shoulder)."""
-    shapes = [{"sphere": {"radius": 0.12, "center": [0, 0, 0]}},
-              {"box": {"halfExtents": [0.6, 0.05, 0.05]}},
-              {"sphere": {"radius": R, "center": [0, 0, 0]}}]
     links = [
-        {"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
-        {"name": "upper", "parentLink": 0, "mass": 1.0, "centerOfMass": [0.25, 0, 0], "momentOfInertia": INERTIA},
-        {"name": "lower", "parentLink": 1, "mass": 1.0, "centerOfMass": [0.25, 0, 0], "momentOfInertia": INERTIA},
+        link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+        link("upper", parent=0, mass=1.0, center_of_mass=[0.25, 0, 0], moment_of_inertia=INERTIA),
+        link("lower", parent=1, mass=1.0, center_of_mass=[0.25, 0, 0], moment_of_inertia=INERTIA),
     ]
     if with_shapes:
-        for link, shape in zip(links, shapes):
-            link["shape"] = shape
+        shapes = [sdp.create_sphere_shape([0, 0, 0], 0.12), sdp.create_box_shape([0.6, 0.05, 0.05]),
+                  sdp.create_sphere_shape([0, 0, 0], R)]
+        for params, shape in zip(links, shapes):
+            params.shape = shape
     joints = [
-        {"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, y, 1]}},
-        {"name": "shoulder", "type": "Revolute", "axis": [0, 1, 0]},
-        {"name": "elbow", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0.5, 0, 0]}},
+        joint("weld", "hard", at=[0, y, 1]),
+        joint("shoulder", "revolute", axis=[0, 1, 0]),
+        joint("elbow", "revolute", at=[0.5, 0, 0], axis=[0, 1, 0]),
     ]
-    arm = scene.create_articulated_actor(name, links, joints)
+    arm = articulation(scene, name, links, joints)
     arm.set_articulated_pose_from_joints([0.0, 0.5])
     return arm
 
@@ -179,18 +190,17 @@ def folding_chain(scene):
     at q = -1.2 swinging towards q = 0 at 2 rad/s. 'a' and 'c' are not joined to each other."""
     scene.set_gravity([0, 0, 0])
     links = [
-        {"name": "a", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01],
-         "shape": {"sphere": {"radius": R, "center": [0.5, 0, 0]}}},
-        {"name": "b", "parentLink": 0, "mass": 0.1, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
-        {"name": "c", "parentLink": 1, "mass": 1.0, "centerOfMass": [0.25, 0, 0], "momentOfInertia": INERTIA,
-         "shape": {"sphere": {"radius": R, "center": [0.25, 0, 0]}}},
+        link("a", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01], shape=sdp.create_sphere_shape([0.5, 0, 0], R)),
+        link("b", parent=0, mass=0.1, moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3]),
+        link("c", parent=1, mass=1.0, center_of_mass=[0.25, 0, 0], moment_of_inertia=INERTIA,
+             shape=sdp.create_sphere_shape([0.25, 0, 0], R)),
     ]
     joints = [
-        {"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, 1]}},
-        {"name": "ab", "type": "Hard"},
-        {"name": "bc", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0.25, 0, 0]}},
+        joint("weld", "hard", at=[0, 0, 1]),
+        joint("ab", "hard"),
+        joint("bc", "revolute", at=[0.25, 0, 0], axis=[0, 1, 0]),
     ]
-    chain = scene.create_articulated_actor("chain", links, joints)
+    chain = articulation(scene, "chain", links, joints)
     chain.set_articulated_pose_from_joints([-1.2])
     chain.set_articulated_joint_velocities([2.0])
     handles = chain.get_nested_link_actors()
@@ -210,6 +220,6 @@ def test_self_collision_can_be_disabled_by_actor_pair(scene):
     """The same chain with contact disabled between links 'a' and 'c' swings freely:
     q = -1.2 + 2 t, so q = 0.8 after 1 s."""
     chain, a, c = folding_chain(scene)
-    scene.enable_actor_contact_symmetric(a, c, False)
+    scene.enable_actor_contact_symmetric(a, c, False, sdp.IncludeNestedActors.NO)
     step_for(scene, DT, 1.0)
     assert float(chain.get_articulated_pose()[0]) == pytest.approx(0.8, abs=1e-3)

@@ -4,8 +4,8 @@ The incline is made by tilting gravity rather than the ground: with gravity
 g (sin th, 0, -cos th) a box on the horizontal ground (normal +z) is in exactly the situation
 of a box on a plane inclined by th, with "downhill" = +x. Coulomb's law with coefficient mu:
 the box sticks while tan th <= mu, and otherwise slides with acceleration
-a = g (sin th - mu cos th) along the slope. Pairs combine their coefficients as
-2 mu_a mu_b / (mu_a + mu_b).
+a = g (sin th - mu cos th) along the slope. Pairs combine their coefficients by their
+geometric mean sqrt(mu_a mu_b) (SuperDex's rule).
 
 Boxes are 2 kg cubes of half extent 0.1 m, stepped at dt = 10 ms. A cube sliding or pushed at
 its centre does not tip here: tipping needs the resultant to leave the base, i.e.
@@ -30,7 +30,7 @@ def tilted_gravity(scene, theta_deg):
 
 
 def combined_mu(a, b):
-    return 2 * a * b / (a + b)
+    return np.sqrt(a * b)
 
 
 def sliding_acceleration(scene, box, settle=0.2, window=0.8):
@@ -83,10 +83,11 @@ def test_box_slides_above_the_friction_angle(scene):
     assert -f[0] == pytest.approx(0.5 * f[2], rel=0.02)
 
 
-def test_friction_coefficients_combine_harmonically(scene):
-    """Box mu = 0.3 on ground mu = 1.0: the pair's coefficient is 2 (0.3)(1.0) / 1.3 = 0.4615, so at
-    35 deg the box slides with g (sin th - 0.4615 cos th) = 1.918 m/s^2 (5 %). (Other rules give
-    clearly different motion: max or mean stick, min gives 3.22, geometric mean 1.22 m/s^2.)"""
+def test_friction_coefficients_combine_by_geometric_mean(scene):
+    """Box mu = 0.3 on ground mu = 1.0: the pair's coefficient is sqrt(0.3 x 1.0) = 0.5477, so at
+    35 deg (tan 35 deg = 0.700) the box slides with g (sin th - 0.5477 cos th) = 1.226 m/s^2 (5 %).
+    (Other rules give clearly different motion: max sticks, the arithmetic mean 0.65 gives
+    0.40, the harmonic mean 0.4615 gives 1.918, min gives 3.22 m/s^2.)"""
     th = tilted_gravity(scene, 35.0)
     add_ground(scene, mu=1.0)
     box = add_box(scene, "box", [0, 0, HALF], half=HALF, mass=M, mu=0.3)
@@ -95,8 +96,8 @@ def test_friction_coefficients_combine_harmonically(scene):
 
 
 def push(box, force):
-    # a dynamic rigid actor's 6 DOFs are (linear, angular) in its body frame; the box stays
-    # unrotated (checked), so DOF 0 is world x
+    # a dynamic rigid actor's external forces are the force on its centre of mass (DOFs 0-2) and
+    # the torque (3-5), world frame: DOF 0 is world x
     box.set_external_forces_on_dofs([0], [force])
 
 

@@ -4,8 +4,8 @@
   shape's distance field, and the other shape's samples against the cube's grid) rests on
   the ground like a box: the contact force carries m g and the cube sits at its half extent.
 - A box dropped on a static mesh cube comes to rest on its top face.
-- contactOverrides re-enable contact between two links joined by a joint, which by default
-  never collide.
+- An actor contact rule (Scene.enable_actor_contact_symmetric on two link actors) re-enables
+  contact between two links joined by a joint, which by default never collide.
 - Stepping with worker threads (islands in parallel) gives bitwise the results of one thread.
 """
 
@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link
 from contact_helpers import G, add_box, add_ground, position, step_for
 
 HALF = 0.1
@@ -32,7 +33,7 @@ def test_mesh_cube_rests_on_the_ground(scene, tmp_path, monkeypatch):
     monkeypatch.setenv("SUPERDEX_CACHE_DIR", str(tmp_path))
     add_ground(scene)
     v, t = cube_mesh(HALF)
-    cube = scene.create_rigid_actor("mesh_cube", sdp.create_tri_mesh_shape(v, t), mass=2.0,
+    cube = scene.create_rigid_actor(name="mesh_cube", shape=sdp.create_tri_mesh_shape(v, t), mass=2.0,
                                     world_from_local=sdp.TransformRT(translation=[0, 0, HALF + 0.02]))
     cube.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     step_for(scene, 0.005, 1.5)
@@ -45,7 +46,7 @@ def test_mesh_cube_rests_on_the_ground(scene, tmp_path, monkeypatch):
 def test_box_rests_on_a_static_mesh_cube(scene, tmp_path, monkeypatch):
     monkeypatch.setenv("SUPERDEX_CACHE_DIR", str(tmp_path))
     v, t = cube_mesh(0.2)
-    scene.create_rigid_actor("pedestal", sdp.create_tri_mesh_shape(v, t), is_static=True)
+    scene.create_rigid_actor(name="pedestal", shape=sdp.create_tri_mesh_shape(v, t), is_static=True)
     box = add_box(scene, "box", [0.02, -0.03, 0.2 + HALF + 0.01], half=HALF, mass=1.0)
     box.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     step_for(scene, 0.005, 1.5)
@@ -56,28 +57,28 @@ def test_box_rests_on_a_static_mesh_cube(scene, tmp_path, monkeypatch):
     assert np.linalg.norm(box.get_linear_velocity()) < 1e-3
 
 
-def overlapping_pair():
+def overlapping_pair(scene):
     """Two links joined by a prismatic joint whose spheres overlap by 5 cm at rest."""
     links = [
-        {"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
-        {"name": "a", "parentLink": 0, "mass": 1.0, "shape": {"sphere": {"radius": 0.1}}},
-        {"name": "b", "parentLink": 1, "mass": 1.0, "shape": {"sphere": {"radius": 0.1}}},
+        link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+        link("a", parent=0, mass=1.0, shape=sdp.create_sphere_shape([0, 0, 0], 0.1)),
+        link("b", parent=1, mass=1.0, shape=sdp.create_sphere_shape([0, 0, 0], 0.1)),
     ]
     joints = [
-        {"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, 1]}},
-        {"name": "ja", "type": "Prismatic", "axis": [1, 0, 0]},
-        {"name": "jb", "type": "Prismatic", "axis": [1, 0, 0], "parentLinkFromJoint": {"translation": [0.15, 0, 0]}},
+        joint("weld", "hard", at=[0, 0, 1]),
+        joint("ja", "prismatic", axis=[1, 0, 0]),
+        joint("jb", "prismatic", at=[0.15, 0, 0], axis=[1, 0, 0]),
     ]
-    return links, joints
+    return articulation(scene, "pair", links, joints)
 
 
 @pytest.mark.parametrize("enable", [False, True])
-def test_contact_overrides_enable_joined_links(scene, enable):
+def test_actor_contact_rule_enables_joined_links(scene, enable):
     scene.set_gravity([0, 0, 0])
-    links, joints = overlapping_pair()
-    overrides = [{"linkA": "a", "linkB": "b", "enable": True}] if enable else None
-    art = scene.create_articulated_actor("pair", links, joints, contact_overrides=overrides)
-    link_b = scene.get_actor(art.get_nested_link_actors()[2])
+    art = overlapping_pair(scene)
+    link_a, link_b = (scene.get_actor(h) for h in list(art.get_nested_link_actors())[1:])
+    if enable:
+        scene.enable_actor_contact_symmetric(link_a, link_b, True, sdp.IncludeNestedActors.NO)
     link_b.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     scene.step(0.01)
     force = link_b.get_contact_force_world()
@@ -88,10 +89,17 @@ def test_contact_overrides_enable_joined_links(scene, enable):
         np.testing.assert_allclose(force, 0, atol=1e-9)
 
 
-def test_contact_override_names_must_exist(scene):
-    links, joints = overlapping_pair()
-    with pytest.raises(sdp.Error, match=r"contactOverrides\[0\]\.linkB: no link named 'c'"):
-        scene.create_articulated_actor("pair", links, joints, contact_overrides=[{"linkA": "a", "linkB": "c", "enable": True}])
+def test_actor_contact_rule_actors_must_exist(scene):
+    """A rule naming an actor that does not exist (here a destroyed one) raises, naming the
+    argument."""
+    art = overlapping_pair(scene)
+    link_a = scene.get_actor(art.get_nested_link_actors()[1])
+    gone = scene.create_rigid_actor(name="gone", shape=sdp.create_sphere_shape([0, 0, 0], 0.1))
+    scene.destroy_actor(gone)
+    with pytest.raises(sdp.Error, match=r"enable_actor_contact_symmetric: actor_b: actor \d+ does not exist"):
+        scene.enable_actor_contact_symmetric(link_a, gone, True, sdp.IncludeNestedActors.NO)
+    with pytest.raises(sdp.Error, match=r"enable_actor_contact_symmetric: actor_a: expected an Actor or an ActorHandle"):
+        scene.enable_actor_contact_symmetric("a", link_a, True, sdp.IncludeNestedActors.NO)
 
 
 def pile(scene, n=12):

@@ -40,7 +40,7 @@ def test_stack_of_five_boxes_stands(scene, dt):
         assert p[2] == pytest.approx(HALF + 2 * HALF * k, abs=5e-3), f"box {k} at height {p[2]:.4f}"
         assert rotation_angle(quaternion(b), np.array([0, 0, 0, 1.0])) < 0.02, f"box {k} turned"
         assert np.linalg.norm(vec(b.get_linear_velocity())) < 1e-2
-    assert scene.get_solver_stats().converged
+    assert scene.get_solver_stats().convergence_status == sdp.ConvergenceStatus.CONVERGED
 
 
 @pytest.mark.parametrize("dt", [0.01, 0.025])

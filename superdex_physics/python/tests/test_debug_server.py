@@ -134,8 +134,9 @@ class SteppingScene:
     def __init__(self, dt=0.01):
         sdp.initialize()
         self.scene = sdp.create_scene("served")
-        self.scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-        self.ball = self.scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1),
+        self.scene.set_gravity([0, 0, -9.81])
+        self.scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+        self.ball = self.scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1),
                                                   world_from_local=sdp.TransformRT(translation=[0, 0, 0.5]))
         self.dt = dt
         self.steps = 0
@@ -341,7 +342,8 @@ def test_replay_sends_the_recording_then_end(tmp_path, ui_dir):
     recording = tmp_path / "run.jsonl"
     sdp.initialize()
     scene = sdp.create_scene("recorded")
-    scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+    scene.set_gravity([0, 0, -9.81])
+    scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1))
     sdp.start_recording(str(recording), 0.0)
     for _ in range(150):
         scene.step(0.01)

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link
 
 M, L, ICOM = 1.0, 0.5, 1e-3
 IPIVOT = ICOM + M * L * L
@@ -20,11 +21,11 @@ G = 9.81
 
 def arm(scene):
     links = [
-        {"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
-        {"name": "rod", "parentLink": 0, "mass": M, "centerOfMass": [L, 0, 0], "momentOfInertia": [ICOM, 0, 0, ICOM, 0, ICOM]},
+        link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+        link("rod", parent=0, mass=M, center_of_mass=[L, 0, 0], moment_of_inertia=[ICOM, 0, 0, ICOM, 0, ICOM]),
     ]
-    joints = [{"name": "weld", "type": "Hard"}, {"name": "hinge", "type": "Revolute", "axis": [0, 1, 0]}]
-    return scene.create_articulated_actor("arm", links, joints)
+    joints = [joint("weld", "hard"), joint("hinge", "revolute", axis=[0, 1, 0])]
+    return articulation(scene, "arm", links, joints)
 
 
 def test_static_sag_is_weight_over_stiffness(scene):
@@ -81,7 +82,7 @@ def test_drives_are_captured_and_validated(scene):
     for _ in range(200):
         scene.step(0.01)
     moved = float(a.get_articulated_pose()[0])
-    scene.restore_state(state)  # captured without a drive: the arm falls freely again
+    scene.restore_state(state, release_immediately=True)  # captured without a drive: the arm falls freely again
     for _ in range(200):
         scene.step(0.01)
     assert float(a.get_articulated_pose()[0]) != pytest.approx(moved, abs=1e-3)
@@ -100,7 +101,7 @@ def test_link_drive_brings_a_free_body_to_a_pose(scene):
     """A free box pulled by a critically damped link drive reaches a rotated, translated target."""
     scene.set_gravity([0, 0, 0])
     m = 2.0
-    box = scene.create_rigid_actor("box", sdp.create_box_shape([0.1, 0.2, 0.05]), mass=m)
+    box = scene.create_rigid_actor(name="box", shape=sdp.create_box_shape([0.1, 0.2, 0.05]), mass=m)
     target = sdp.TransformRT(sdp.Quaternion.from_axis_angle([0.3, 0.2, 1.0], 1.2), [0.5, -0.3, 0.8])
     k_lin, k_ang = 400.0, 20.0
     box.set_link_drive(target, linear_stiffness=k_lin, linear_damping=2 * np.sqrt(k_lin * m),
@@ -115,17 +116,17 @@ def test_link_drive_brings_a_free_body_to_a_pose(scene):
 def test_link_drive_reaches_with_an_arm_at_25_ms(scene):
     """A three-joint arm's tip link is driven to a reachable world point under gravity, stiffly
     (5e4 N/m) and at 25 ms: it gets there within 1 mm."""
-    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]}]
-    joints = [{"name": "weld", "type": "Hard"}]
+    links = [link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01])]
+    joints = [joint("weld", "hard")]
     axes = [[0, 0, 1], [0, 1, 0], [0, 1, 0]]
     for i, axis in enumerate(axes):
-        links.append({"name": f"l{i}", "parentLink": i, "mass": 1.0, "centerOfMass": [0.15, 0, 0],
-                      "momentOfInertia": [0.001, 0, 0, 0.008, 0, 0.008]})
-        joints.append({"name": f"j{i}", "type": "Revolute", "axis": axis,
-                       "parentLinkFromJoint": {"translation": [0.3 if i > 0 else 0.0, 0, 0.5 if i == 0 else 0.0]}})
-    links.append({"name": "tip", "parentLink": 3, "mass": 0.1, "momentOfInertia": [1e-4, 0, 0, 1e-4, 0, 1e-4]})
-    joints.append({"name": "tip_weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0.3, 0, 0]}})
-    arm = scene.create_articulated_actor("arm", links, joints, default_pose=[0.2, -0.3, 0.6])
+        links.append(link(f"l{i}", parent=i, mass=1.0, center_of_mass=[0.15, 0, 0],
+                          moment_of_inertia=[0.001, 0, 0, 0.008, 0, 0.008]))
+        joints.append(joint(f"j{i}", "revolute", at=[0.3 if i > 0 else 0.0, 0, 0.5 if i == 0 else 0.0], axis=axis))
+    links.append(link("tip", parent=3, mass=0.1, moment_of_inertia=[1e-4, 0, 0, 1e-4, 0, 1e-4]))
+    joints.append(joint("tip_weld", "hard", at=[0.3, 0, 0]))
+    arm = articulation(scene, "arm", links, joints)
+    arm.set_articulated_pose_from_joints([0.2, -0.3, 0.6])  # the start pose (a bot file's defaultPose)
     tip = scene.get_actor(arm.get_nested_link_actors()[-1])
     target = [0.35, 0.35, 0.4]
     tip.set_link_drive(sdp.TransformRT(translation=target), linear_stiffness=5e4, linear_damping=2e3)

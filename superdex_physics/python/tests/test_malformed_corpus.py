@@ -39,12 +39,12 @@ def load_prefab(path, scene, entry):
 def load_shape(path, scene, entry):
     shape = sdp.load_shape_from_file(str(path))
     # a shape that loads must also make a body (some defects show only then)
-    scene.create_rigid_actor("corpus", shape, density=1000.0)
+    scene.create_rigid_actor(name="corpus", shape=shape, density=1000.0)
 
 
 def load_soft_shape(path, scene, entry):
     shape = sdp.load_shape_from_file(str(path))
-    scene.create_soft_actor("corpus", shape, density=1000.0)
+    scene.create_soft_actor(name="corpus", shape=shape, material=sdp.SoftMaterialParams(density=1000.0))
 
 
 def replay(path, scene, entry):

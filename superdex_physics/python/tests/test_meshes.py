@@ -77,7 +77,7 @@ def write_sdf(path, grid=None, with_mesh=True, **attrs):
 
 
 def mass_of(scene, shape, name="body"):
-    return scene.create_rigid_actor(name, shape, density=1000.0).get_mass()
+    return scene.create_rigid_actor(name=name, shape=shape, density=1000.0).get_mass()
 
 
 # ---------------------------------------------------------------------------------------------
@@ -86,7 +86,7 @@ def mass_of(scene, shape, name="body"):
 
 def test_create_tri_mesh_shape_cube(scene):
     shape = sdp.create_tri_mesh_shape(CUBE_V, CUBE_T)
-    assert isinstance(shape, sdp.Shape)
+    assert isinstance(shape, sdp.ShapeHandle) and shape.is_valid()
     assert mass_of(scene, shape) == pytest.approx(1000.0, rel=1e-5)
     # lists work too, and an inside-out cube is turned right side out
     flipped = sdp.create_tri_mesh_shape(CUBE_V.tolist(), CUBE_T[:, ::-1].tolist())
@@ -125,7 +125,7 @@ def test_load_mochi_h5_primitives(scene, tmp_path):
     ball = sdp.load_shape_from_file(write_mochi(tmp_path / "ball.mochi.h5", sphere={"radius": 0.5}))
     assert mass_of(scene, ball, "ball") == pytest.approx(1000.0 * 4 / 3 * np.pi * 0.125, rel=1e-5)
     ground = sdp.load_shape_from_file(write_mochi(tmp_path / "ground.mochi.h5", plane={"normal": [0, 0, 1], "distance": 0.0}))
-    scene.create_rigid_actor("ground", ground, is_static=True)
+    scene.create_rigid_actor(name="ground", shape=ground, is_static=True)
 
 
 def test_bake_scale_and_transform(scene, tmp_path):
@@ -143,9 +143,9 @@ def test_open_mesh_loads_but_has_no_volume(scene, tmp_path):
     path = tmp_path / "open.obj"
     path.write_text(obj_text(CUBE_V, CUBE_T[:-1]))
     shape = sdp.load_shape_from_file(path)
-    scene.create_rigid_actor("static_open", shape, is_static=True)
-    with pytest.raises(sdp.Error, match=r"open\.obj: computing mass properties needs a closed mesh: 3 boundary edges"):
-        scene.create_rigid_actor("dynamic_open", shape, density=1000.0)
+    scene.create_rigid_actor(name="static_open", shape=shape, is_static=True)
+    with pytest.raises(sdp.Error, match=r"open\.obj: computing a volume needs a closed mesh: 3 boundary edges"):
+        scene.create_rigid_actor(name="dynamic_open", shape=shape, density=1000.0)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -186,8 +186,8 @@ def test_degenerate_triangles(engine, tmp_path):
 
 def test_open_mesh_where_a_closed_one_is_needed(scene, tmp_path):
     shape = sdp.create_tri_mesh_shape(CUBE_V, CUBE_T[:-2])
-    with pytest.raises(sdp.Error, match=r"create_tri_mesh_shape: computing mass properties needs a closed mesh: 4 boundary edges"):
-        scene.create_rigid_actor("open", shape)
+    with pytest.raises(sdp.Error, match=r"create_tri_mesh_shape: computing a volume needs a closed mesh: 4 boundary edges"):
+        scene.create_rigid_actor(name="open", shape=shape)
     # a stored grid with a rotation can only be re-laid from a closed mesh
     path = tmp_path / "rotated_open.mochi.h5"
     with h5py.File(path, "w") as f:
@@ -246,7 +246,8 @@ def test_sdf_without_mesh_and_tetrahedra(engine, tmp_path):
         f["mesh/coordinates"] = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
         f["mesh/connectivity"] = np.array([[0, 1, 2, 3]], dtype=np.int32)
     scene = sdp.create_scene("soft")
-    soft = scene.create_soft_actor("tet", sdp.load_shape_from_file(tmp_path / "tet.mochi.h5"), material={"density": 600})
+    soft = scene.create_soft_actor(name="tet", shape=sdp.load_shape_from_file(tmp_path / "tet.mochi.h5"),
+                                   material=sdp.SoftMaterialParams(density=600))
     assert soft.get_mass() == pytest.approx(600 / 6)
     with h5py.File(tmp_path / "inverted.mochi.h5", "w") as f:
         f["mesh/coordinates"] = np.array([[0, 0, 0], [0, 1, 0], [1, 0, 0], [0, 0, 1]], dtype=float)
@@ -258,13 +259,18 @@ def test_sdf_without_mesh_and_tetrahedra(engine, tmp_path):
 def test_bad_arrays_and_arguments(engine, tmp_path):
     with pytest.raises(sdp.Error, match=r"connectivity: expected integers, got dtype float64"):
         sdp.create_tri_mesh_shape(CUBE_V, CUBE_T.astype(float))
-    with pytest.raises(sdp.Error, match=r"connectivity: expected shape \(M, 3\), got \(3, 4\)"):
+    with pytest.raises(sdp.Error, match=r"connectivity: expected 3 values per row, flat or of shape \(n, 3\), got shape \(3, 4\)"):
         sdp.create_tri_mesh_shape(CUBE_V, np.zeros((3, 4), dtype=int))
-    with pytest.raises(sdp.Error, match=r"coordinates: expected shape \(N, 3\), got \(24,\)"):
-        sdp.create_tri_mesh_shape(CUBE_V.ravel(), CUBE_T)
+    with pytest.raises(sdp.Error, match=r"coordinates: expected 3 values per row, flat or of shape \(n, 3\), got shape \(8, 2\)"):
+        sdp.create_tri_mesh_shape(np.zeros((8, 2)), CUBE_T)
+    with pytest.raises(sdp.Error, match=r"coordinates: expected a multiple of 3 values, got 23"):
+        sdp.create_tri_mesh_shape(CUBE_V.ravel()[:-1], CUBE_T)
+    # SuperDex takes flat arrays too: 3 values per vertex, 3 indices per triangle
+    flat = sdp.create_tri_mesh_shape(CUBE_V.ravel(), CUBE_T.ravel())
+    assert sdp.get_shape_aabb(flat) == sdp.Aabb([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5])
     bad = CUBE_T.copy()
     bad[0, 2] = 9
-    with pytest.raises(sdp.Error, match=r"connectivity\[0, 2\] = 9 is out of range \[0, 8\)"):
+    with pytest.raises(sdp.Error, match=r"connectivity\[2\] = 9 is out of range \[0, 8\)"):  # the flat index of [0, 2]
         sdp.create_tri_mesh_shape(CUBE_V, bad)
     path = tmp_path / "cube.obj"
     path.write_text(obj_text(CUBE_V, CUBE_T))

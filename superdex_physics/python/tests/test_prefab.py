@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import node_positions_world
 from superdex.physics.paths import get_assets_root
 from superdex.physics.prefab import PrefabParams, add_to_scene
 
@@ -81,6 +82,13 @@ def test_nested_prefabs_scale_and_bot(scene, tmp_path):
     assert crate.get_mass() == pytest.approx(1.0)
 
 
+def test_mass_takes_precedence_over_density(scene, tmp_path):
+    """An entry with both a mass and a density gets the mass (SuperDex's RigidActorParams rule)."""
+    prefab = write(tmp_path / "p.mochi_prefab", {"actors": {"rigid": [box_entry("both", [0, 0, 0], density=500.0)]}})
+    inst = add_to_scene(prefab, tmp_path, scene)
+    assert scene.get_actor(inst.actors[0]).get_mass() == pytest.approx(1.0)
+
+
 def test_scene_settings_and_contact_filter(scene, tmp_path):
     prefab = write(tmp_path / "p.mochi_prefab", {
         "actors": {"rigid": [box_entry("a", [0, 0, 0]), box_entry("b", [0.15, 0, 0])]},
@@ -118,7 +126,7 @@ def test_errors_leave_nothing_behind(scene, tmp_path):
     ]}})
     with pytest.raises(sdp.Error, match=r"actors\.rigid\[1\]\.shape.*sphere radius must be a positive"):
         add_to_scene(prefab, tmp_path, scene)
-    assert scene.get_actors() == [], "all or nothing"
+    assert scene.get_num_actors() == 0, "all or nothing"
 
 
 def test_other_errors(scene, tmp_path):
@@ -157,14 +165,15 @@ def test_duck_lamp_prefab_loads_as_a_pinned_soft_actor(scene):
         nodes, tets = f["mesh/coordinates"][()], f["mesh/connectivity"][()]
     a, b, c, d = (nodes[tets[:, k]] for k in range(4))
     volume = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a).sum() / 6
-    x0 = duck.get_node_positions_world()
+    duck.register_query_and_compute(sdp.QueryType.NODE_POSITIONS)
+    x0 = node_positions_world(duck)
     assert x0.shape == nodes.shape
     np.testing.assert_allclose(x0, nodes + [-0.30, 0, 0], atol=1e-6)
     assert duck.get_mass() == pytest.approx(1100 * volume, rel=1e-5)
     bottom = np.flatnonzero(x0[:, 2] <= 1e-3)
     for _ in range(10):
         scene.step(0.02)
-    x = duck.get_node_positions_world()
+    x = node_positions_world(duck)
     np.testing.assert_allclose(x[bottom], x0[bottom], atol=1e-12)
     sag = np.abs(x - x0).max()
     assert 0 < sag < 0.005

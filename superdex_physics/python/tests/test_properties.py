@@ -2,7 +2,10 @@
 sizes, masses, poses and velocities, on the ground or in the air, stepped with random time steps.
 
 - Stepping never produces NaN or infinity, and never raises a numerical fault (under the default
-  NumericalFaultPolicy.RAISE an unconverged or non-finite step would raise).
+  NumericalFaultPolicy.RAISE a diverged or non-finite step would raise); and no solve runs out
+  of Newton iterations unconverged (that raised too before a solve stopped by a limit became
+  SuperDex's STOPPED, no fault): each converges, or stops early on a Newton step that can no
+  longer move the solution at the working precision (NonLinearSolverParams.rel_step_tol).
 - capture_state, then restore_state, then step gives bitwise the same state as stepping on.
 
 CI runs a fixed, derandomized set of examples (profile "ci"); `SUPERDEX_HYPOTHESIS_PROFILE=explore`
@@ -59,19 +62,25 @@ def shape_of(b):
 def build(description):
     scene = sdp.create_scene("random")
     scene.set_gravity([0, 0, -9.81])
-    contact = {"coulombFrictionCoefficient": description["friction"]}
+    contact = sdp.ContactParams(coulomb_friction_coefficient=description["friction"])
     if description["ground"]:
-        scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True, contact=contact)
+        scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True, contact=contact)
     actors = []
     for k, b in enumerate(description["bodies"]):
         axis = np.array(b["axis"])
         rotation = (sdp.Quaternion.from_axis_angle(axis, b["angle"]) if np.linalg.norm(axis) > 1e-3
                     else sdp.Quaternion(0, 0, 0, 1))
-        a = scene.create_rigid_actor(f"{b['kind']}{k}", shape_of(b), mass=b["mass"], contact=contact,
+        a = scene.create_rigid_actor(name=f"{b['kind']}{k}", shape=shape_of(b), mass=b["mass"], contact=contact,
                                      world_from_local=sdp.TransformRT(rotation=rotation, translation=list(b["position"])))
         a.set_velocity(list(b["linear"]), list(b["angular"]))
         actors.append(a)
     return scene, actors
+
+
+def state_bytes(scene):
+    out = bytearray()
+    scene.capture_state_to_bytes(out)
+    return bytes(out)
 
 
 def state_of(actors):
@@ -87,9 +96,13 @@ def test_random_scenes_never_produce_nan(description):
     sdp.initialize(0)
     try:
         scene, actors = build(description)
+        max_iter = scene.get_solver_params().non_linear_solver.max_iter
         for _ in range(25):
             scene.step(description["dt"])  # raises on a numerical fault
             assert np.all(np.isfinite(state_of(actors)))
+            stats = scene.get_solver_stats()
+            assert (stats.convergence_status == sdp.ConvergenceStatus.CONVERGED
+                    or (stats.convergence_status == sdp.ConvergenceStatus.STOPPED and stats.max_non_linear_iters < max_iter)), stats
         assert scene.get_last_numerical_faults() == []
     finally:
         sdp.shutdown()
@@ -106,11 +119,11 @@ def test_capture_restore_step_equals_step(description, before, after):
         saved = scene.capture_state()
         for _ in range(after):
             scene.step(dt)
-        straight = (scene.capture_state_to_bytes(), state_of(actors).tobytes())
-        scene.restore_state(saved)
+        straight = (state_bytes(scene), state_of(actors).tobytes())
+        scene.restore_state(saved, release_immediately=True)
         for _ in range(after):
             scene.step(dt)
-        replayed = (scene.capture_state_to_bytes(), state_of(actors).tobytes())
+        replayed = (state_bytes(scene), state_of(actors).tobytes())
         assert replayed == straight
     finally:
         sdp.shutdown()

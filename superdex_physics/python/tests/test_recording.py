@@ -16,8 +16,8 @@ def read(path):
 
 def test_recording_of_a_ball_falling_on_the_ground(scene, tmp_path):
     path = tmp_path / "run.jsonl"
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    ball = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0,
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    ball = scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0,
                                     world_from_local=sdp.TransformRT(translation=[0, 0, 0.5]))
     sdp.start_recording(str(path), 0.0)
     with pytest.raises(sdp.Error, match="already running"):
@@ -52,7 +52,7 @@ def test_recording_of_a_ball_falling_on_the_ground(scene, tmp_path):
 
 def test_frame_interval_decimates(scene, tmp_path):
     path = tmp_path / "run.jsonl"
-    scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
     sdp.start_recording(str(path), 0.05)
     for _ in range(100):
         scene.step(0.01)
@@ -70,7 +70,7 @@ def test_debugger_records_headless_for_a_duration(scene, tmp_path, monkeypatch, 
     monkeypatch.setenv("SUPERDEX_DEBUGGER_RECORD", str(path))
     monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "0.5")
     monkeypatch.setenv("SUPERDEX_DEBUGGER_FRAME_INTERVAL", "0.1")
-    scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
     assert sdp.debugger.attach()
     steps = 0
     while sdp.debugger.is_attached():

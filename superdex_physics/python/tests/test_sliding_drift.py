@@ -1,4 +1,4 @@
-"""Coulomb friction without the cone model's drift (SolverParams.drift_correction_iterations).
+"""Coulomb friction without the cone model's drift (SolverParams.implicit_step.drift_correction_iterations).
 
 In the convex cone model a contact sliding at speed s moves apart at mu s: a box pushed along
 the ground rises, and boxes sliding on each other separate. The Newton solve corrects each
@@ -21,9 +21,10 @@ HALF = 0.05
 
 def make_scene(name, correction_iterations=None):
     scene = sdp.create_scene(name)
+    scene.set_gravity([0, 0, -G])
     if correction_iterations is not None:
         params = scene.get_solver_params()
-        params.drift_correction_iterations = correction_iterations
+        params.implicit_step.drift_correction_iterations = correction_iterations
         scene.set_solver_params(params)
     add_ground(scene, mu=0.5)
     return scene
@@ -127,11 +128,11 @@ def test_a_settled_pile_is_at_rest(engine):
         scene.step(DT)
     speed = np.linalg.norm(np.array([position(b) for b in boxes]) - before, axis=1) / (25 * DT)
     assert np.max(speed) < 1e-4, speed
-    assert scene.get_solver_stats().converged
+    assert scene.get_solver_stats().convergence_status == sdp.ConvergenceStatus.CONVERGED
 
 
 def test_correction_iterations_must_not_be_negative(scene):
     params = scene.get_solver_params()
-    params.drift_correction_iterations = -1
-    with pytest.raises(sdp.Error, match="drift_correction_iterations"):
+    params.implicit_step.drift_correction_iterations = -1
+    with pytest.raises(sdp.Error, match="implicit_step.drift_correction_iterations"):
         scene.set_solver_params(params)

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link, node_contact_forces_world, node_positions_world, soft_actor, soft_material
 from test_soft_bodies import box_tet_mesh
 
 DUCK = Path(__file__).resolve().parents[3] / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.mochi_prefab"
@@ -27,15 +28,15 @@ def soft_block(scene, size=0.1, cells=5, E=1e5):
     nodes, tets = box_tet_mesh([size, size, size], [cells, cells, cells])
     nodes[:, :2] -= size / 2
     base = np.flatnonzero(nodes[:, 2] < 1e-9)
-    block = scene.create_soft_actor("block", sdp.create_tet_mesh_shape(nodes, tets),
-                                    material={"youngsModulus": E, "poissonRatio": 0.3, "density": 500, "damping": 0.01},
-                                    fixed_nodes=base)
+    block = soft_actor(scene, "block", sdp.create_tet_mesh_shape(nodes, tets),
+                       material=soft_material(youngs_modulus=E, poisson_ratio=0.3, density=500, stiffness_damping=0.01),
+                       fixed_nodes=base)
     return block, nodes
 
 
 def test_rigid_sphere_rests_on_a_soft_block(scene):
     block, nodes = soft_block(scene)
-    sphere = scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.03), is_static=False, mass=1.0,
+    sphere = scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.03), is_static=False, mass=1.0,
                                       world_from_local=sdp.TransformRT(translation=[0, 0, 0.1 + 0.03 + 0.002]))
     for a in (block, sphere):
         a.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
@@ -47,10 +48,10 @@ def test_rigid_sphere_rests_on_a_soft_block(scene):
     f_block = block.get_contact_force_from_actor_world(sphere)
     assert f_sphere[2] == pytest.approx(weight, rel=0.01)
     np.testing.assert_allclose(f_block, -f_sphere, rtol=1e-5, atol=1e-5)
-    np.testing.assert_allclose(block.get_node_contact_forces_world().sum(axis=0), block.get_contact_force_world(),
+    np.testing.assert_allclose(node_contact_forces_world(block, len(nodes)).sum(axis=0), block.get_contact_force_world(),
                                rtol=1e-5, atol=1e-5)
     # the block is pressed in under the sphere: its top centre sank
-    x = block.get_node_positions_world()
+    x = node_positions_world(block)
     top = np.flatnonzero(nodes[:, 2] > 0.1 - 1e-9)
     centre = top[np.argmin(np.linalg.norm(nodes[top, :2], axis=1))]
     assert x[centre, 2] < 0.1 - 2e-4
@@ -58,22 +59,23 @@ def test_rigid_sphere_rests_on_a_soft_block(scene):
 
 
 def test_duck_reacts_to_a_pressing_sphere_and_dents(scene):
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     duck = scene.get_actor(sdp.prefab.add_to_scene(str(DUCK), "/duck", scene).actors[0])
+    duck.register_query(sdp.QueryType.NODE_POSITIONS)
     for _ in range(100):  # it settles under its own weight first
         scene.step(0.004)
-    rest = duck.get_node_positions_world().copy()
+    rest = node_positions_world(duck)
     # the highest surface point near the seed's press point (x = -0.30, y = 0)
     near = np.linalg.norm(rest[:, :2] - [-0.30, 0.0], axis=1) < 0.01
     top = rest[near, 2].max()
     radius, mass, push = 0.015, 0.01, 1.0
     # a ball on a vertical slider above the press point (the seed's arm holds its ball likewise)
-    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
-             {"name": "ball", "parentLink": 0, "mass": mass, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
-              "shape": {"sphere": {"radius": radius, "center": [0, 0, 0]}}}]
-    joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [-0.30, 0, top + radius + 0.001]}},
-              {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
-    slider = scene.create_articulated_actor("slider", links, joints)
+    links = [link("base", mass=1.0, moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3]),
+             link("ball", parent=0, mass=mass, moment_of_inertia=[1e-6, 0, 0, 1e-6, 0, 1e-6],
+                  shape=sdp.create_sphere_shape([0, 0, 0], radius))]
+    joints = [joint("weld", "hard", at=[-0.30, 0, top + radius + 0.001]),
+              joint("slide", "prismatic", axis=[0, 0, 1])]
+    slider = articulation(scene, "slider", links, joints)
     ball = scene.get_actor(slider.get_nested_link_actors()[1])
     slider.set_external_forces_on_dofs([0], [-push])
     for a in (duck, ball):
@@ -88,7 +90,7 @@ def test_duck_reacts_to_a_pressing_sphere_and_dents(scene):
     # a dent under the ball, not a sunk duck: the ball's bottom sits below the settled surface by
     # Hertz's indentation of a rigid sphere into an elastic half-space, (9 F^2 / (16 E*^2 R))^(1/3),
     # E* = E / (1 - nu^2), within +-50 % (a finite body, 7 mm elements)
-    x = duck.get_node_positions_world()
+    x = node_positions_world(duck)
     sink = rest[:, 2] - x[:, 2]
     xf = sdp.DynamicArrayTransformRT(2)
     slider.get_articulated_link_transforms(xf)
@@ -105,7 +107,7 @@ def test_duck_reacts_to_a_pressing_sphere_and_dents(scene):
 
 def test_box_dropped_on_soft_block_does_not_gain_energy(scene):
     block, _ = soft_block(scene, cells=4)
-    box = scene.create_rigid_actor("box", sdp.create_box_shape([0.02, 0.02, 0.02]), is_static=False, mass=0.2,
+    box = scene.create_rigid_actor(name="box", shape=sdp.create_box_shape([0.02, 0.02, 0.02]), is_static=False, mass=0.2,
                                    world_from_local=sdp.TransformRT(translation=[0, 0, 0.15]))
     heights = []
     for _ in range(150):

@@ -1,5 +1,5 @@
 """Soft bodies: Newton iterations reuse the element Hessians of elements that hardly deformed
-(SolverParams.soft_hessian_reuse_strain), and the factorization of an earlier iteration: after
+(SolverParams.implicit_step.soft_hessian_reuse_strain), and the factorization of an earlier iteration: after
 the first, an iteration's Newton system is solved by conjugate gradients preconditioned by the
 last factorization (SolverStats.soft_factorizations counts the factorizations).
 
@@ -27,6 +27,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
+from conftest import articulation, joint, link, node_positions_world
 from test_soft_contact import soft_block
 
 DT, STEPS = 0.004, 60
@@ -38,15 +39,15 @@ def press(reuse_strain):
     scene = sdp.create_scene("reuse")
     scene.set_gravity([0, 0, -9.81])
     params = scene.get_solver_params()
-    params.soft_hessian_reuse_strain = reuse_strain
+    params.implicit_step.soft_hessian_reuse_strain = reuse_strain
     scene.set_solver_params(params)
     block, nodes = soft_block(scene, size=0.1, cells=5, E=1e5)
-    links = [{"name": "base", "mass": 1.0, "momentOfInertia": [1e-3, 0, 0, 1e-3, 0, 1e-3]},
-             {"name": "ball", "parentLink": 0, "mass": MASS, "momentOfInertia": [1e-6, 0, 0, 1e-6, 0, 1e-6],
-              "shape": {"sphere": {"radius": RADIUS, "center": [0, 0, 0]}}}]
-    joints = [{"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, 0.1 + RADIUS + 0.001]}},
-              {"name": "slide", "type": "Prismatic", "axis": [0, 0, 1]}]
-    slider = scene.create_articulated_actor("slider", links, joints)
+    links = [link("base", mass=1.0, moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3]),
+             link("ball", parent=0, mass=MASS, moment_of_inertia=[1e-6, 0, 0, 1e-6, 0, 1e-6],
+                  shape=sdp.create_sphere_shape([0, 0, 0], RADIUS))]
+    joints = [joint("weld", "hard", at=[0, 0, 0.1 + RADIUS + 0.001]),
+              joint("slide", "prismatic", axis=[0, 0, 1])]
+    slider = articulation(scene, "slider", links, joints)
     ball = scene.get_actor(slider.get_nested_link_actors()[1])
     ball.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     slider.set_external_forces_on_dofs([0], [-PUSH])
@@ -54,11 +55,11 @@ def press(reuse_strain):
     for _ in range(STEPS):
         scene.step(DT)
         stats = scene.get_solver_stats()
-        assert stats.converged
+        assert stats.convergence_status == sdp.ConvergenceStatus.CONVERGED
         hessians.append(stats.soft_element_hessians)
-        iterations.append(stats.total_newton_iterations)
+        iterations.append(stats.total_non_linear_iters)
         factorizations.append(stats.soft_factorizations)
-    result = {"x": block.get_node_positions_world().copy(), "ball_z": float(ball.get_root_transform().translation[2]),
+    result = {"x": node_positions_world(block), "ball_z": float(ball.get_root_transform().translation[2]),
               "force": np.array(ball.get_contact_force_world(), dtype=float), "hessians": np.array(hessians),
               "iterations": np.array(iterations), "factorizations": np.array(factorizations), "tets": 6 * 5**3}
     sdp.destroy_scene(scene)
@@ -66,8 +67,9 @@ def press(reuse_strain):
 
 
 def test_reused_element_hessians_give_the_same_steps_for_fewer_hessians(engine):
-    reused, exact = press(sdp.SolverParams().soft_hessian_reuse_strain), press(0.0)
-    assert sdp.SolverParams().soft_hessian_reuse_strain > 0
+    default = sdp.SolverParams().implicit_step.soft_hessian_reuse_strain
+    reused, exact = press(default), press(0.0)
+    assert default > 0
     # the same motion (the block dents by about 2 mm under the ball)
     assert reused["ball_z"] == pytest.approx(exact["ball_z"], abs=1e-6)
     np.testing.assert_allclose(reused["x"], exact["x"], rtol=0, atol=1e-5)
@@ -103,6 +105,6 @@ def test_later_newton_iterations_are_solved_by_preconditioned_cg(engine):
 def test_reuse_strain_is_validated(scene):
     params = scene.get_solver_params()
     for bad in (-1e-3, float("nan"), float("inf")):
-        params.soft_hessian_reuse_strain = bad
-        with pytest.raises(sdp.Error, match="soft_hessian_reuse_strain"):
+        params.implicit_step.soft_hessian_reuse_strain = bad
+        with pytest.raises(sdp.Error, match="implicit_step.soft_hessian_reuse_strain"):
             scene.set_solver_params(params)

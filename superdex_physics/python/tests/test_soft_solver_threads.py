@@ -22,12 +22,12 @@ def threads():
 sdp.initialize(num_worker_threads=0)
 scene = sdp.create_scene("threads")
 scene.set_gravity([0, 0, -9.81])
-scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
 sdp.prefab.add_to_scene(sys.argv[1], "/duck", scene)
 before = threads()
 for _ in range(3):
     scene.step(0.004)
-assert scene.get_solver_stats().total_newton_iterations > 0
+assert scene.get_solver_stats().total_non_linear_iters > 0
 # the process's OpenMP runtime, as CHOLMOD loaded it (the same instance, already in the process)
 gomp = ctypes.CDLL("libgomp.so.1", mode=os.RTLD_NOLOAD)
 print("THREADS", before, threads(), gomp.omp_get_max_active_levels())

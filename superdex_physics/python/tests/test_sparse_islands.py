@@ -18,7 +18,7 @@ def run(dense_max_dofs):
     scene = sdp.create_scene("stack")
     scene.set_gravity([0, 0, -G])
     p = scene.get_solver_params()
-    p.dense_island_max_dofs = dense_max_dofs
+    p.implicit_step.dense_island_max_dofs = dense_max_dofs
     scene.set_solver_params(p)
     ground, boxes = stack(scene)
     boxes[0].register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)

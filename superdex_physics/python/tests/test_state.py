@@ -58,13 +58,16 @@ def test_restore_state_replays_bitwise(scene):
     captured_at = scene.get_total_simulation_time()
     state = scene.capture_state()
     first = run(scene, actors, AFTER)
-    scene.restore_state(state)
+    scene.restore_state(state, release_immediately=False)
     assert scene.get_total_simulation_time() == captured_at
     second = run(scene, actors, AFTER)
     np.testing.assert_array_equal(second, first)
-    # the state object stays valid: restoring it twice replays the same again
-    scene.restore_state(state)
+    # a state kept at restore stays valid: restoring it twice replays the same again
+    scene.restore_state(state, release_immediately=True)
     np.testing.assert_array_equal(run(scene, actors, AFTER), first)
+    # ... and one released at restore is gone
+    with pytest.raises(sdp.Error):
+        scene.restore_state(state, release_immediately=False)
 
 
 def test_restore_puts_back_the_captured_poses(scene):
@@ -75,19 +78,20 @@ def test_restore_puts_back_the_captured_poses(scene):
     state = scene.capture_state()
     run(scene, actors, 20)
     assert not np.array_equal(snapshot(actors), at_capture)
-    scene.restore_state(state)
+    scene.restore_state(state, release_immediately=True)
     np.testing.assert_array_equal(snapshot(actors), at_capture)
 
 
 def test_bytes_round_trip_same_scene_and_fresh_scene(engine):
-    """capture_state_to_bytes gives bytes; restoring them into the same scene, or into a fresh
+    """capture_state_to_bytes appends the state's bytes to a bytearray; restoring them into the same scene, or into a fresh
     scene built by the same creation sequence, replays the 100 steps bitwise identically."""
     scene = sdp.create_scene("original")
     scene.set_gravity([0, 0, -9.81])
     actors = build(scene)
     run(scene, actors, BEFORE)
-    blob = scene.capture_state_to_bytes()
-    assert isinstance(blob, bytes) and len(blob) > 0
+    blob = bytearray()
+    scene.capture_state_to_bytes(blob)
+    assert len(blob) > 0
     first = run(scene, actors, AFTER)
 
     scene.restore_state_from_bytes(blob)
@@ -106,7 +110,9 @@ def test_corrupt_bytes_raise(scene):
     refused with sdp.Error, and the scene keeps stepping afterwards."""
     actors = build(scene)
     run(scene, actors, 10)
-    blob = scene.capture_state_to_bytes()
+    blob = bytearray()
+    scene.capture_state_to_bytes(blob)
+    blob = bytes(blob)
     garbage = np.random.default_rng(0).integers(0, 256, len(blob), dtype=np.uint8).tobytes()
     for bad in (b"", blob[: len(blob) // 2], blob[:-1], garbage, b"superdex" * 4):
         with pytest.raises(sdp.Error):
@@ -118,11 +124,15 @@ def test_state_of_a_different_scene_is_refused(engine):
     """A state captured from a scene with other actors cannot describe this one: restoring it
     raises sdp.Error instead of silently scrambling bodies."""
     scene = sdp.create_scene("s")
+    scene.set_gravity([0, 0, -9.81])
     build(scene)
     scene.step(DT)
     other = sdp.create_scene("other")
+    other.set_gravity([0, 0, -9.81])
     build(other)
     add_box(other, "extra", [2.0, 0, 0.5])
     other.step(DT)
+    blob = bytearray()
+    other.capture_state_to_bytes(blob)
     with pytest.raises(sdp.Error):
-        scene.restore_state_from_bytes(other.capture_state_to_bytes())
+        scene.restore_state_from_bytes(blob)

@@ -136,6 +136,13 @@ void validate(const ArticulatedActorParams& p, const std::string& where) {
     if (j.inertia) jc.non_negative("inertia", *j.inertia);
     if (j.min_limit) jc.finite_vector("min_limit", *j.min_limit);
     if (j.max_limit) jc.finite_vector("max_limit", *j.max_limit);
+    // a 1-DOF joint's limits are their components along its axis (named here by their params
+    // fields: the articulation model's own check names a bot file's minLimit)
+    if ((j.type == ArticulatedJointType::Revolute || j.type == ArticulatedJointType::Prismatic) && j.min_limit && j.max_limit) {
+      const Real3 axis = j.axis.normalized();
+      const real lower = axis.dot(*j.min_limit), upper = axis.dot(*j.max_limit);
+      if (lower > upper) jc.fail("min_limit", "the lower limit " + value_text(lower) + " exceeds the upper limit " + value_text(upper));
+    }
     jc.non_negative("limit_stiffness", j.limit_stiffness);
     jc.non_negative("limit_damping", j.limit_damping);
   }

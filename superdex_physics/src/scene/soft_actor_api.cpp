@@ -286,12 +286,19 @@ void Scene::add_boundary_condition_nodes_world(ActorHandle h, std::span<const in
   if (positions.size() != 3 * nodes.size())
     throw Error(std::string(what) + ": node_positions_world must hold 3 values per node (" + std::to_string(3 * nodes.size()) + "), got " +
                 std::to_string(positions.size()));
+  // checked here, so that errors name this call's arguments rather than the DOF form's
+  const int num_nodes = static_cast<int>(soft_of(scene_data(handle_), h, what).state.x.size() / 3);
   std::vector<int> dofs;
   dofs.reserve(3 * nodes.size());
   for (size_t k = 0; k < nodes.size(); ++k) {
     if (nodes[k] < 0) throw Error(std::string(what) + ": node_indices[" + std::to_string(k) + "] = " + std::to_string(nodes[k]) + " is negative");
+    if (nodes[k] >= num_nodes)
+      throw Error(std::string(what) + ": node_indices[" + std::to_string(k) + "] = " + std::to_string(nodes[k]) + " is out of range (" +
+                  std::to_string(num_nodes) + " nodes)");
     for (int c = 0; c < 3; ++c) dofs.push_back(3 * nodes[k] + c);
   }
+  for (size_t k = 0; k < positions.size(); ++k)
+    if (!std::isfinite(positions[k])) throw Error(std::string(what) + ": node_positions_world[" + std::to_string(k) + "] is not finite");
   add_boundary_condition_dofs_world(h, dofs, positions, permanent);
 }
 

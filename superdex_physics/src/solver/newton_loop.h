@@ -188,6 +188,9 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
   // the line search's last trial evaluates the smooth gradient at its point; when that point is
   // the next iterate, the gradient carries over instead of being evaluated again
   bool smooth_grad_at_v = false;
+  // the last step was shorter than rel_step_tolerance: the solve stops (Stopped) once the residual
+  // at the iterate it reached has been evaluated, unless that residual has converged
+  bool step_stalled = false;
   for (int it = 0; it <= params.max_newton_iterations; ++it) {
     if (m > 0) {
       alg.J_mul(out.v, vc);
@@ -237,6 +240,7 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       out.status = ConvergenceStatus::Diverged;
       break;
     }
+    if (step_stalled) break;
     if (params.stop_if_no_improvement && out.residual >= previous_residual) break;
     previous_residual = out.residual;
     if (params.max_elapsed_time_seconds > 0 &&
@@ -360,10 +364,9 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
       out.status = ConvergenceStatus::Converged;
       break;
     }
-    if (params.rel_step_tolerance > 0 && alpha * dv.norm() <= params.rel_step_tolerance * out.v.norm()) {
-      out.iterations = it + 1;
-      break;  // Stopped: the step no longer moves the solution
-    }
+    // the step no longer moves the solution: Stopped after the residual at the new iterate (whose
+    // drift corrections may have changed) says whether it converged
+    if (params.rel_step_tolerance > 0 && alpha * dv.norm() <= params.rel_step_tolerance * out.v.norm()) step_stalled = true;
   }
   return out;
 }
