@@ -130,7 +130,7 @@ void BM_CollideBoxBox(benchmark::State& st) {
   const sp::BoxShape a{Vec3(0.05, 0.05, 0.05)}, b{Vec3(0.05, 0.05, 0.05)};
   const sp::SpatialTransform Xa{sp::quat_exp(Vec3(0.1, -0.05, 0.2)).toRotationMatrix(), Vec3(0, 0, 0.05)};
   const sp::SpatialTransform Xb{sp::quat_exp(Vec3(-0.1, 0.15, 0.6)).toRotationMatrix(), Vec3(0.01, 0.02, 0.148)};
-  std::vector<sp::ContactPoint> out;
+  std::vector<sp::ShapeContact> out;
   for (auto _ : st) {
     out.clear();
     sp::collide_box_box(a, Xa, b, Xb, real(0.01), out);
@@ -147,7 +147,11 @@ struct Pile {
     sp::initialize(0);
     scene = sp::create_scene("pile");
     scene.set_gravity(Vec3(0, 0, -9.81));
-    scene.create_rigid_actor("ground", sp::create_shape(sp::PlaneShape{}), true, sp::Transform::identity(), {}, {});
+    sp::RigidActorParams ground;
+    ground.name = "ground";
+    ground.shape = sp::create_shape(sp::PlaneShape{});
+    ground.is_static = true;
+    scene.create_rigid_actor(ground);
     const sp::ShapeHandle box = sp::create_shape(sp::BoxShape{Vec3(0.05, 0.05, 0.05)});
     std::mt19937 rng(0);
     std::uniform_real_distribution<double> u(-0.15, 0.15);
@@ -156,7 +160,12 @@ struct Pile {
       sp::Transform X;
       X.translation = Vec3((i % 5 - 2) * 0.12 + 0.06 * layer, (i / 5 - 2) * 0.12 + 0.06 * layer, 0.1 + 0.15 * layer);
       X.rotation = sp::quat_exp(Vec3(u(rng), u(rng), u(rng)));
-      scene.create_rigid_actor("box" + std::to_string(k), box, false, X, {}, real(1.0));
+      sp::RigidActorParams p;
+      p.name = "box" + std::to_string(k);
+      p.shape = box;
+      p.world_from_local = X;
+      p.mass = real(1.0);
+      scene.create_rigid_actor(p);
     }
     for (int k = 0; k < 500; ++k) scene.step(real(0.004));
   }
@@ -180,7 +189,7 @@ void BM_StepPile50(benchmark::State& st) {
   Pile pile;
   for (auto _ : st) pile.scene.step(real(0.004));
   st.counters["contacts"] = pile.scene.solver_stats().num_contacts;
-  st.counters["newton_iterations"] = pile.scene.solver_stats().total_newton_iterations;
+  st.counters["newton_iterations"] = pile.scene.solver_stats().total_non_linear_iters;
 }
 BENCHMARK(BM_StepPile50)->Unit(benchmark::kMillisecond);
 

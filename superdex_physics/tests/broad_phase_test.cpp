@@ -79,17 +79,17 @@ auto links_of(const C& c) {
 }
 
 TEST_F(ContactOrderTest, ContactsComeInTheOrderOfTheirLinksPlaneContactsIncluded) {
-  Scene scene = create_scene("order");
+  Scene scene = z_up_scene("order");
   // the ground first (body 0): a box's ground contact (box, 0, 0, 0) then sorts before its
   // contacts with the bodies above it, which the sweep finds before the plane's pairs
-  scene.create_rigid_actor("ground", create_shape(PlaneShape{}), true, Transform::identity(), std::nullopt, std::nullopt);
+  scene.create_rigid_actor(static_params("ground", create_shape(PlaneShape{})));
   const ShapeHandle box = create_shape(BoxShape{Vec3::Constant(real(0.1))});
   const ShapeHandle ball = create_shape(SphereShape{Vec3::Zero(), real(0.08)});
   for (int column = 0; column < 3; ++column)
     for (int level = 0; level < 3; ++level) {
       Transform X;
       X.translation = Vec3(0.35 * column, 0.01 * level, 0.1 + 0.2 * level);
-      scene.create_rigid_actor("box", level == 1 && column == 1 ? ball : box, false, X, std::nullopt, real(1));
+      scene.create_rigid_actor(rigid_params("box", level == 1 && column == 1 ? ball : box, X, real(1)));
     }
   // a two-link chain lying on the ground, across the columns: contacts on both of its links
   ArticulationDesc chain;

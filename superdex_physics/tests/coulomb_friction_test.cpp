@@ -18,7 +18,7 @@ class CoulombFrictionTest : public EngineTest {
   void push(double force, double& x, double& v) {
     ArticulationDesc desc = one_dof_desc(JointType::Prismatic, Vec3::UnitX(), kM, Vec3::Zero(), Vec3::Constant(real(0.01)));
     desc.joints[1].coulomb_friction = kFc;
-    Scene scene = create_scene("slider");
+    Scene scene = z_up_scene("slider");
     const ActorHandle slider = scene.create_articulated_actor(desc, "slider");
     scene.set_external_forces_on_dofs(slider, {0}, {real(force)});
     for (int n = 0; n < 1000; ++n) scene.step(kDt);

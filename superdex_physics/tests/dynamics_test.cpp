@@ -85,7 +85,7 @@ class DynamicsTest : public EngineTest {
 };
 
 TEST_F(DynamicsTest, MassMatrixIsSymmetricPositiveDefinite) {
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, robot(0.05));
   const MatX M = scene.mass_matrix(art);
   ASSERT_EQ(M.rows(), kNv);
@@ -96,7 +96,7 @@ TEST_F(DynamicsTest, MassMatrixIsSymmetricPositiveDefinite) {
 
 TEST_F(DynamicsTest, MassMatrixColumnsEqualInverseDynamics) {
   const ArticulationDesc desc = robot(0);
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const MatX M = scene.mass_matrix(make(scene, desc));
   // M e_k = ID(q, v = 0, a = e_k, g = 0)
   PrivateArticulation p(desc, test_pose(), VecX::Zero(kNv));
@@ -109,7 +109,7 @@ TEST_F(DynamicsTest, MassMatrixColumnsEqualInverseDynamics) {
 TEST_F(DynamicsTest, InverseDynamicsIsConsistentWithMassMatrixWithArmature) {
   // dynamics.h documents inverse_dynamics as tau = M(q) a + c(q, v), and M carries the armature
   const ArticulationDesc desc = robot(0.05);
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, desc);
   const MatX M = scene.mass_matrix(art);
   const VecX c = scene.bias_forces(art);
@@ -121,7 +121,7 @@ TEST_F(DynamicsTest, InverseDynamicsIsConsistentWithMassMatrixWithArmature) {
 
 TEST_F(DynamicsTest, MassMatrixEqualsSumOfLinkJacobianInertias) {
   const ArticulationDesc desc = robot(0.05);
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, desc);
   const std::vector<ActorHandle> links = scene.nested_link_actors(art);
   const std::vector<Transform> X = scene.link_transforms(art);
@@ -148,7 +148,7 @@ TEST_F(DynamicsTest, SingleFreeBodyMassMatrixEqualsItsJacobianInertia) {
   desc.links = {make_link("body", -1, 2.5, Vec3(0.07, -0.03, 0.12), Vec3(0.02, 0.03, 0.04))};
   desc.links[0].moment_of_inertia = std::array<real, 6>{0.03, 0.004, -0.003, 0.025, 0.002, 0.035};
   desc.joints = {make_joint("j0", JointType::Free)};
-  Scene scene = create_scene("free body");
+  Scene scene = z_up_scene("free body");
   const ActorHandle art = scene.create_articulated_actor(desc, "body");
   VecX pose(6);
   pose << 0.3, -0.2, 1.0, 0.4, -0.9, 0.7;
@@ -165,7 +165,7 @@ TEST_F(DynamicsTest, SingleFreeBodyMassMatrixEqualsItsJacobianInertia) {
 
 TEST_F(DynamicsTest, GravityForcesEqualComJacobianTransposeTimesWeight) {
   const ArticulationDesc desc = robot(0);
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, desc);
   scene.set_joint_velocities(art, VecX::Zero(kNv));
   const std::vector<ActorHandle> links = scene.nested_link_actors(art);
@@ -183,7 +183,7 @@ TEST_F(DynamicsTest, GravityForcesEqualComJacobianTransposeTimesWeight) {
 
 TEST_F(DynamicsTest, EnergyRateEqualsPower) {
   const ArticulationDesc desc = robot(0.05);
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, desc);
   const ArticulationModel model = build_articulation_model(desc, "robot");
   VecX q0(model.nq);
@@ -219,7 +219,7 @@ TEST_F(DynamicsTest, EnergyRateEqualsPower) {
 }
 
 TEST_F(DynamicsTest, ForwardDynamicsSatisfiesEquationsOfMotion) {
-  Scene scene = create_scene("dynamics");
+  Scene scene = z_up_scene("dynamics");
   const ActorHandle art = make(scene, robot(0.05));
   VecX tau(kNv);
   for (int k = 0; k < kNv; ++k) tau[k] = 2 * std::sin(0.7 * k);
@@ -231,7 +231,7 @@ TEST_F(DynamicsTest, ForwardDynamicsSatisfiesEquationsOfMotion) {
 TEST_F(DynamicsTest, PendulumForwardDynamicsMatchesAnalytic) {
   // I_pivot theta'' = tau - m g L sin(theta), COM at distance L below the pivot
   const double m = 1.5, L = 0.8, i_com = 0.02, theta = 0.7, tau = 0.9;
-  Scene scene = create_scene("pendulum_fd");
+  Scene scene = z_up_scene("pendulum_fd");
   const ActorHandle p = scene.create_articulated_actor(
       one_dof_desc(JointType::Revolute, Vec3::UnitY(), m, Vec3(0, 0, -L), Vec3::Constant(i_com)), "pendulum");
   scene.set_pose(p, VecX::Constant(1, theta));
@@ -250,7 +250,7 @@ TEST_F(DynamicsTest, WeldedLinkAddsItsInertiaAndOnlyItsOwnWeight) {
     desc.links.push_back(make_link("tip", 1, m2, Vec3::Zero(), Vec3::Constant(i2)));
     desc.links.back().has_gravity = tip_gravity;
     desc.joints.push_back(make_joint("tip_weld", JointType::Hard, Vec3::UnitZ(), Transform{Quat::Identity(), Vec3(0, 0, -L2)}));
-    Scene scene = create_scene("welded_tip");
+    Scene scene = z_up_scene("welded_tip");
     const ActorHandle p = scene.create_articulated_actor(desc, "pendulum");
     scene.set_pose(p, VecX::Constant(1, theta));
     const double inertia = i_com + m * L * L + i2 + m2 * L2 * L2;

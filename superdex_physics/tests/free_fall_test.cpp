@@ -15,11 +15,11 @@ constexpr double kT = 1.0;    // simulated time (s)
 
 /// |simulated height - analytic height| after kT seconds at step dt.
 double height_error(double dt) {
-  Scene scene = create_scene("free_fall");
+  Scene scene = z_up_scene("free_fall");
   const ShapeHandle ball = create_shape(SphereShape{Vec3::Zero(), real(0.1)});
   Transform X_WL;
   X_WL.translation = Vec3(0, 0, kX0);
-  const ActorHandle body = scene.create_rigid_actor("ball", ball, false, X_WL, std::nullopt, std::nullopt);
+  const ActorHandle body = scene.create_rigid_actor(rigid_params("ball", ball, X_WL));
   scene.set_velocity(body, Vec3(0, 0, kV0), Vec3::Zero());
   const int steps = static_cast<int>(std::lround(kT / dt));
   for (int n = 0; n < steps; ++n) scene.step(dt);
@@ -48,9 +48,9 @@ TEST_F(FreeFallTest, ErrorIsFirstOrderInDt) {
 }
 
 TEST_F(FreeFallTest, VelocityFollowsGravity) {
-  Scene scene = create_scene("free_fall_velocity");
+  Scene scene = z_up_scene("free_fall_velocity");
   const ShapeHandle ball = create_shape(SphereShape{Vec3::Zero(), real(0.1)});
-  const ActorHandle body = scene.create_rigid_actor("ball", ball, false, Transform::identity(), std::nullopt, std::nullopt);
+  const ActorHandle body = scene.create_rigid_actor(rigid_params("ball", ball));
   scene.set_velocity(body, Vec3(1, 0, kV0), Vec3::Zero());
   for (int n = 0; n < 1000; ++n) scene.step(1e-3);
   // v(t) = v0 + g t exactly for any first-order integrator with constant force
@@ -72,11 +72,9 @@ void spin(double dt, double& com_error, double& momentum_change, double& travell
   const ActorHandle body = scene.create_articulated_actor(desc, "spinner");
   scene.set_velocity(body, Vec3(0.5, 0, 0), Vec3(1.0, 2.0, -0.5));
   auto com = [&] { return Vec3(scene.root_transform(body) * com_L); };
-  // COM velocity v_origin + w x r and angular momentum R I R^T w, from the reported state
-  auto com_velocity = [&] {
-    const Vec6 V = scene.velocity(body);
-    return Vec3(V.head<3>() + V.tail<3>().cross(scene.root_transform(body).rotation * com_L));
-  };
+  // COM velocity (Scene::velocity reports the centre of mass's) and angular momentum R I R^T w,
+  // from the reported state
+  auto com_velocity = [&] { return Vec3(scene.velocity(body).head<3>()); };
   auto momentum = [&] {
     const Mat3 R = scene.root_transform(body).rotation.toRotationMatrix();
     return Vec3(R * inertia.asDiagonal() * R.transpose() * scene.velocity(body).tail<3>());

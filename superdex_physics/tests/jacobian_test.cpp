@@ -105,17 +105,22 @@ TEST_F(JacobianTest, NonAncestorColumnsAreZeroAndRootHandleGivesLinkZero) {
 }
 
 TEST_F(JacobianTest, MapsJointVelocitiesToReportedLinkVelocity) {
+  const ArticulationDesc desc = branched_chain();
   Scene scene = create_scene("jacobian_velocity");
-  const ActorHandle art = scene.create_articulated_actor(branched_chain(), "chain");
+  const ActorHandle art = scene.create_articulated_actor(desc, "chain");
   const int nv = scene.num_dofs(art);
   scene.set_pose(art, test_pose(nv));
   VecX v(nv);
   for (int k = 0; k < nv; ++k) v[k] = std::sin(1.7 * k + 0.3);
   scene.set_joint_velocities(art, v);
-  // J v is the (linear, angular) world velocity of each link origin
-  for (ActorHandle l : scene.nested_link_actors(art)) {
-    const Vec6 expected = scene.link_jacobian(l) * v;
-    EXPECT_LE((scene.velocity(l) - expected).norm(), 1e-12 * (1 + expected.norm()));
+  // J v is the (linear, angular) world velocity of each link origin; Scene::velocity reports
+  // its centre of mass's: v_origin + w x (R com_L)
+  const std::vector<ActorHandle> links = scene.nested_link_actors(art);
+  for (size_t i = 0; i < links.size(); ++i) {
+    Vec6 expected = scene.link_jacobian(links[i]) * v;
+    const Vec3 r_W = scene.link_transform(art, static_cast<int>(i)).rotation * *desc.links[i].center_of_mass;
+    expected.head<3>() += expected.tail<3>().cross(r_W);
+    EXPECT_LE((scene.velocity(links[i]) - expected).norm(), 1e-12 * (1 + expected.norm())) << "link " << i;
   }
 }
 

@@ -5,7 +5,6 @@
 /// stiffness k deflects by torque / k under a static load.
 
 #include "test_helpers.h"
-#include "solver/step_settings.h"
 
 namespace superdex::physics::test {
 namespace {
@@ -26,7 +25,7 @@ TEST_F(JointLimitsTest, RigidLimitStopsFallingArmAtLargeStep) {
   ArticulationDesc desc = horizontal_arm();
   desc.joints[1].max_limit = Vec3(0, upper, 0);  // limit value = axis . vector
   desc.default_pose = {-1.0};                     // arm raised: it swings 1.5 rad down onto the limit
-  Scene scene = create_scene("rigid_limit");
+  Scene scene = z_up_scene("rigid_limit");
   const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
   double max_penetration = 0;
   for (int n = 0; n < 160; ++n) {  // 4 s
@@ -39,7 +38,7 @@ TEST_F(JointLimitsTest, RigidLimitStopsFallingArmAtLargeStep) {
   // at rest against the limit
   EXPECT_NEAR(scene.pose(arm)[0], upper, 0.01);
   EXPECT_LT(std::abs(scene.joint_velocities(arm)[0]), 1e-6);
-  EXPECT_TRUE(scene.solver_stats().converged);
+  EXPECT_EQ(scene.solver_stats().convergence_status, ConvergenceStatus::Converged);
 }
 
 TEST_F(JointLimitsTest, StiffViscousFrictionIsStableAndMonotone) {
@@ -47,7 +46,7 @@ TEST_F(JointLimitsTest, StiffViscousFrictionIsStableAndMonotone) {
   ArticulationDesc desc = one_dof_desc(JointType::Revolute, Vec3::UnitY(), kM, Vec3(0, 0, -kL), Vec3::Constant(kICom));
   desc.joints[1].viscous_friction = damping;
   desc.default_pose = {theta0};
-  Scene scene = create_scene("stiff_damper");
+  Scene scene = z_up_scene("stiff_damper");
   const ActorHandle p = scene.create_articulated_actor(desc, "pendulum");
   const int steps = 400;  // 10 s
   double prev = theta0;
@@ -77,7 +76,7 @@ TEST_F(JointLimitsTest, CompliantLimitDeflectsByTorqueOverStiffness) {
   desc.joints[1].limit_damping = 30;
   // a constant torque pushing into the upper, then into the lower limit
   for (const auto& [torque, limit] : {std::pair{5.0, 0.3}, std::pair{-4.0, -0.2}}) {
-    Scene scene = create_scene("compliant_limit");
+    Scene scene = z_up_scene("compliant_limit");
     scene.set_gravity(Vec3::Zero());
     const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
     scene.set_external_forces_on_dofs(arm, {0}, {real(torque)});
@@ -94,7 +93,7 @@ TEST_F(JointLimitsTest, CompliantLimitHoldsGravityLoad) {
   desc.joints[1].max_limit = Vec3(0, 0, 0);
   desc.joints[1].limit_stiffness = k;
   desc.joints[1].limit_damping = 40;
-  Scene scene = create_scene("compliant_limit_gravity");
+  Scene scene = z_up_scene("compliant_limit_gravity");
   const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
   for (int n = 0; n < 500; ++n) scene.step(dt);
   // gravity torque m g L cos(delta) ~ m g L for the small deflection delta
@@ -119,7 +118,7 @@ ArticulationDesc two_link_arm(real elbow) {
 }
 
 // Limit rows that the free motion keeps far from acting are left out of the solve
-// (StepSettings::defer_inactive_joint_limits). Here the elbow rests, so its free motion leaves
+// (ImplicitStepParams::defer_inactive_joint_limits). Here the elbow rests, so its free motion leaves
 // both rows out; a stiff shoulder drive whips the arm, and the elbow's reaction in that solve
 // would cross a limit: the island is solved again with the rows. The elbow must hold within its
 // limits, and every step must equal the one that keeps all rows in the solve.
@@ -128,10 +127,10 @@ TEST_F(JointLimitsTest, DeferredLimitRowsGiveTheSameStepAsKeepingThemAll) {
   // runs 0 and 1: every limit row in every solve, and deferred rows; run 2: no elbow limits
   std::array<std::vector<VecX>, 3> q, v;
   for (int run = 0; run < 3; ++run) {
-    Scene scene = create_scene("arm_" + std::to_string(run));
+    Scene scene = z_up_scene("arm_" + std::to_string(run));
     scene.set_gravity(Vec3::Zero());
-    StepSettings params = scene.solver_params();
-    params.defer_inactive_joint_limits = run == 1;
+    SolverParams params = scene.solver_params();
+    params.implicit_step.defer_inactive_joint_limits = run == 1;
     scene.set_solver_params(params);
     ArticulationDesc desc = two_link_arm(elbow);
     if (run == 2) desc.joints[2].min_limit = desc.joints[2].max_limit = std::nullopt;
@@ -145,7 +144,7 @@ TEST_F(JointLimitsTest, DeferredLimitRowsGiveTheSameStepAsKeepingThemAll) {
       scene.step(dt);
       q[run].push_back(scene.pose(arm));
       v[run].push_back(scene.joint_velocities(arm));
-      ASSERT_TRUE(scene.solver_stats().converged) << "run " << run << ", step " << n;
+      ASSERT_EQ(scene.solver_stats().convergence_status, ConvergenceStatus::Converged) << "run " << run << ", step " << n;
     }
   }
   const real tolerance = kUsesDoublePrecision ? real(1e-9) : real(2e-4);

@@ -41,7 +41,7 @@ double measure_period(Scene& scene, ActorHandle pendulum, double duration) {
 class PendulumTest : public EngineTest {};
 
 TEST_F(PendulumTest, SmallAmplitudePeriodMatchesPhysicalPendulum) {
-  Scene scene = create_scene("pendulum");
+  Scene scene = z_up_scene("pendulum");
   const double i_com = 0.4 * kM * 0.05 * 0.05;  // a solid ball of radius 5 cm
   const double theta0 = 0.05;
   const ActorHandle p = make_pendulum(scene, i_com, theta0);
@@ -55,14 +55,14 @@ TEST_F(PendulumTest, SmallAmplitudePeriodMatchesPhysicalPendulum) {
 }
 
 TEST_F(PendulumTest, PointMassPeriodIsTwoPiSqrtLOverG) {
-  Scene scene = create_scene("point_pendulum");
+  Scene scene = z_up_scene("point_pendulum");
   const ActorHandle p = make_pendulum(scene, 1e-8, 0.05);
   const double t_point = 2 * kPi * std::sqrt(kL / kG);
   EXPECT_NEAR(measure_period(scene, p, 5.3 * t_point), t_point, 1e-3 * t_point);
 }
 
 TEST_F(PendulumTest, EnergyDriftBelowOnePercentOverTwentySeconds) {
-  Scene scene = create_scene("pendulum_energy");
+  Scene scene = z_up_scene("pendulum_energy");
   const double i_com = 0.4 * kM * 0.05 * 0.05;
   const double theta0 = 0.5;
   const ActorHandle p = make_pendulum(scene, i_com, theta0);

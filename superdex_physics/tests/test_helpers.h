@@ -1,13 +1,15 @@
 #pragma once
 /// @file test_helpers.h
 /// Shared pieces of the GoogleTest suites: an engine fixture (initialize / shutdown around
-/// every test) and small builders for link and joint descriptions.
+/// every test), a Z-up scene, params of rigid actors, and small builders for link and joint
+/// descriptions.
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "superdex/physics/articulation_desc.h"
@@ -17,7 +19,7 @@
 namespace superdex::physics::test {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kG = 9.81;  // the engine's default gravity magnitude
+constexpr double kG = 9.81;  // the magnitude of the Z-up gravity the suites set (z_up_scene)
 
 /// Starts a single-threaded engine before each test and shuts it down after.
 class EngineTest : public ::testing::Test {
@@ -25,6 +27,34 @@ class EngineTest : public ::testing::Test {
   void SetUp() override { initialize(0); }
   void TearDown() override { shutdown(); }
 };
+
+/// A new scene with gravity (0, 0, -kG): the suites' worlds are Z-up (robot files are), while a
+/// new scene's default gravity is SuperDex's (0, -9.8, 0) (kDefaultGravity).
+inline Scene z_up_scene(const std::string& name) {
+  Scene scene = create_scene(name);
+  scene.set_gravity(Vec3(0, 0, real(-kG)));
+  return scene;
+}
+
+/// The params of a dynamic rigid actor carrying `shape` at X_WL: its mass `mass` (kg) when
+/// given, else from the default density (kDefaultDensity) and the shape's volume; centre of
+/// mass and inertia from the shape, contact params at their defaults, layer "".
+inline RigidActorParams rigid_params(const std::string& name, const ShapeHandle& shape, const Transform& X_WL = Transform::identity(),
+                                     std::optional<real> mass = std::nullopt) {
+  RigidActorParams p;
+  p.name = name;
+  p.shape = shape;
+  p.world_from_local = X_WL;
+  p.mass = mass;
+  return p;
+}
+
+/// The params of a static rigid actor carrying `shape` at X_WL.
+inline RigidActorParams static_params(const std::string& name, const ShapeHandle& shape, const Transform& X_WL = Transform::identity()) {
+  RigidActorParams p = rigid_params(name, shape, X_WL);
+  p.is_static = true;
+  return p;
+}
 
 /// A link with explicit mass, centre of mass and diagonal inertia about the COM.
 inline LinkDesc make_link(const std::string& name, int parent, real mass, const Vec3& com, const Vec3& inertia_diag) {

@@ -1,6 +1,6 @@
 /// @file validation_test.cpp
 /// Misuse raises superdex::Error with a message naming the offending field or argument:
-/// bad articulation descriptions, bad force arguments, unknown handles, bad dt and a
+/// bad articulation descriptions, bad force arguments, unknown handles, a bad time step and a
 /// destroyed scene.
 
 #include <gmock/gmock.h>
@@ -138,11 +138,25 @@ TEST_F(ValidationTest, StateReadsIntoVectorsAndOneLinkTransform) {
   EXPECT_ERROR(scene().link_transform(art, -1), "link_transform", "link -1");
 }
 
-TEST_F(ValidationTest, StepRejectsNonPositiveDt) {
-  EXPECT_ERROR(scene().step(0), "dt");
-  EXPECT_ERROR(scene().step(-0.01), "dt");
-  EXPECT_ERROR(scene().step(std::numeric_limits<real>::quiet_NaN()), "dt");
+TEST_F(ValidationTest, StepRejectsNegativeOrNonFiniteTimeStep) {
+  EXPECT_ERROR(scene().step(-0.01), "time_step_sec", "-0.01");
+  EXPECT_ERROR(scene().step(std::numeric_limits<real>::quiet_NaN()), "time_step_sec", "nan");
+  EXPECT_ERROR(scene().step(std::numeric_limits<real>::infinity()), "time_step_sec", "inf");
   EXPECT_EQ(scene().total_simulation_time(), 0);
+}
+
+TEST_F(ValidationTest, ZeroStepIsAcceptedAndChangesNoState) {
+  // a zero step (SuperDex's way to make registered queries readable) moves nothing
+  const ActorHandle art = scene().create_articulated_actor(valid_chain(), "chain");
+  VecX v0(2);
+  v0 << real(1.5), real(-2);
+  scene().set_joint_velocities(art, v0);
+  const VecX q0 = scene().pose(art);
+  EXPECT_NO_THROW(scene().step(0));
+  EXPECT_EQ(scene().pose(art), q0);
+  EXPECT_EQ(scene().joint_velocities(art), v0);
+  EXPECT_EQ(scene().total_simulation_time(), 0);
+  EXPECT_EQ(scene().last_time_step(), 0);
 }
 
 TEST_F(ValidationTest, SceneUnusableAfterDestroy) {

@@ -30,6 +30,14 @@ using physics::Vec3;
 using physics::VecX;
 using ::testing::HasSubstr;
 
+// a new scene with the Z-up gravity the pendulum swings under (a new scene's default gravity
+// is along -Y: parallel to its joint axes, it would exert no torque)
+Scene z_up_scene(const std::string& name) {
+  Scene scene = physics::create_scene(name);
+  scene.set_gravity(Vec3(0, 0, real(-9.81)));
+  return scene;
+}
+
 // a welded base and a double pendulum swinging about y under gravity: 2 DOFs, 3 links
 ActorHandle add_pendulum(Scene& scene) {
   ArticulationDesc d;
@@ -74,7 +82,7 @@ class Batch : public ::testing::Test {
   std::vector<SceneBatchMember> make_members(int n) {
     std::vector<SceneBatchMember> m;
     for (int k = 0; k < n; ++k) {
-      Scene scene = physics::create_scene("s" + std::to_string(k));
+      Scene scene = z_up_scene("s" + std::to_string(k));
       m.push_back({scene, add_pendulum(scene), 0});
     }
     return m;
@@ -84,7 +92,7 @@ class Batch : public ::testing::Test {
 TEST_F(Batch, ServoScenesOnTwoThreadsEqualOneSceneSteppedByHand) {
   const SceneBatchSpec spec = servo_spec();
   SceneBatch batch(spec, make_members(3));
-  Scene ref = physics::create_scene("reference");
+  Scene ref = z_up_scene("reference");
   const ActorHandle art = add_pendulum(ref);
   servo::VelocityServoLaw laws[2];
   for (int j = 0; j < 2; ++j) laws[j].params = {spec.servo_k_p[j], spec.servo_k_i[j], spec.servo_effort_limit[j], spec.servo_profile_accel[j]};
