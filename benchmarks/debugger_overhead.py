@@ -21,14 +21,14 @@ DUCK = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_recumbent_full.moc
 
 
 def boxes(scene):
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     for i in range(20):
-        scene.create_rigid_actor(f"box_{i}", sdp.create_box_shape([0.1, 0.1, 0.1]), mass=1.0,
+        scene.create_rigid_actor(name=f"box_{i}", shape=sdp.create_box_shape([0.1, 0.1, 0.1]), mass=1.0,
                                  world_from_local=sdp.TransformRT(translation=[0.3 * (i % 5), 0.3 * (i // 5), 0.1]))
 
 
 def duck(scene):
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     sdp.prefab.add_to_scene(str(DUCK), str(REPO / "assets"), scene)
 
 

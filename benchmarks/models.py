@@ -20,7 +20,7 @@ inertia (armature). Shapes are {"sphere": {"radius"}}, {"box": {"halfExtents"}} 
 {"capsule": {"radius", "halfLength"}}, each with optional "center" and "rotation".
 
 What each simulator cannot express the same way is handled here once:
-- Friction combination: SuperDex combines two surfaces harmonically, MuJoCo by the maximum,
+- Friction combination: SuperDex combines two surfaces by their geometric mean, MuJoCo by the maximum,
   Bullet by the product. With one coefficient mu for every surface, SuperDex and MuJoCo get mu
   and PyBullet gets sqrt(mu) per surface, so every pair has mu.
 - Bullet's default linear and angular damping of every body (0.04) is switched off, and so are
@@ -33,6 +33,7 @@ What each simulator cannot express the same way is handled here once:
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import tempfile
@@ -133,6 +134,36 @@ def inertia_matrix(link):
 # ---------------------------------------------------------------- SuperDex
 
 
+def superdex_articulation(scene, sdp, name, links, joints, world_from_root=None, default_pose=None):
+    """An articulated actor from link and joint dicts in the .superdex_bot format (FORMATS.md).
+
+    SuperDex's ArticulatedLinkParams carry a shape in the link frame only, while these dicts place
+    their shapes with a center and rotation in it: the dicts are written as a bot file and built by
+    superdex.robotics (create_bot, no components), which keeps each shape's pose as the file says."""
+    import superdex.robotics as sdr
+
+    doc = {"name": name, "links": links, "joints": joints}
+    if default_pose is not None:
+        doc["defaultPose"] = [float(x) for x in default_pose]
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, f"{name}.superdex_bot")
+        with open(path, "w") as f:
+            json.dump(doc, f)
+        prefab = sdr.load_bot_prefab_from_file(path)
+    if world_from_root is not None:
+        prefab.world_from_root = world_from_root
+    # the context only keeps the bot's (empty) component lists: the actor stays with the scene
+    return sdr.create_bot(scene, prefab, sdr.create_context()).get_articulated_actor()
+
+
+def node_positions_world(actor):
+    """(n, 3) world positions (m) of a SuperDex soft actor's nodes: its local node positions
+    placed by its frame. Needs the actor's NODE_POSITIONS query (registered before the last step)."""
+    local = np.asarray(actor.get_node_positions_local(), dtype=np.float64).reshape(-1, 3)
+    X_WL = actor.get_root_transform()
+    return local @ quat_xyzw_to_matrix(np.asarray(X_WL.rotation, dtype=np.float64)).T + np.asarray(X_WL.translation, dtype=np.float64)
+
+
 def build_superdex(scene_desc, sdp, scene=None, name="bench", offset=(0.0, 0.0, 0.0)):
     """Adds the description to a SuperDex scene (created when None). Returns (scene, actors by name).
     `offset` translates everything (independent copies side by side)."""
@@ -144,8 +175,8 @@ def build_superdex(scene_desc, sdp, scene=None, name="bench", offset=(0.0, 0.0, 
     ground = scene_desc.get("ground")
     if ground is not None and not np.any(off):
         actors["ground"] = scene.create_rigid_actor(
-            "ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True,
-            contact={"coulombFrictionCoefficient": ground["friction"]})
+            name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True,
+            contact=sdp.ContactParams(coulomb_friction_coefficient=ground["friction"]))
     for b in scene_desc.get("bodies", []):
         kind, s = shape_kind(b["shape"])
         shape = (sdp.create_box_shape(s["halfExtents"]) if kind == "box" else
@@ -153,16 +184,18 @@ def build_superdex(scene_desc, sdp, scene=None, name="bench", offset=(0.0, 0.0, 
                  sdp.create_capsule_shape(s["radius"], s["halfLength"]))
         xf = sdp.TransformRT(rotation=sdp.Quaternion(*b.get("rotation", [0, 0, 0, 1])),
                              translation=list(np.asarray(b["position"], dtype=np.float64) + off))
-        actors[b["name"]] = scene.create_rigid_actor(
-            b["name"], shape, is_static=b.get("static", False), world_from_local=xf,
-            mass=None if b.get("static", False) else b["mass"],
-            contact={"coulombFrictionCoefficient": b.get("friction", 0.5)})
+        static = b.get("static", False)
+        params = sdp.RigidActorParams(name=b["name"], shape=shape, is_static=static, world_from_local=xf,
+                                      contact=sdp.ContactParams(coulomb_friction_coefficient=b.get("friction", 0.5)))
+        if not static:
+            params.mass = b["mass"]
+        actors[b["name"]] = scene.create_rigid_actor(params)
     for a in scene_desc.get("articulations", []):
         root = a.get("world_from_root", {})
         xf = sdp.TransformRT(rotation=sdp.Quaternion(*root.get("rotation", [0, 0, 0, 1])),
                              translation=list(np.asarray(root.get("translation", [0, 0, 0]), dtype=np.float64) + off))
-        actors[a["name"]] = scene.create_articulated_actor(a["name"], a["links"], a["joints"], world_from_root=xf,
-                                                           default_pose=a.get("default_pose"))
+        actors[a["name"]] = superdex_articulation(scene, sdp, a["name"], a["links"], a["joints"], world_from_root=xf,
+                                                  default_pose=a.get("default_pose"))
     return scene, actors
 
 

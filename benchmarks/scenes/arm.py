@@ -125,7 +125,7 @@ class SuperDexArm:
 
     def observe(self):
         self.arm.get_articulated_link_transforms(self.xforms)
-        x = self.xforms[BALL_LINK].translation.astype(np.float64)
+        x = np.asarray(self.xforms[BALL_LINK].translation, dtype=np.float64)
         self.ball.get_articulated_jacobian(self.jac)
         self.arm.get_articulated_joint_velocities(self.qd)
         return x, self.jac_rows[0:3].astype(np.float64), self.qd.astype(np.float64)
@@ -137,7 +137,7 @@ class SuperDexArm:
         self.scene.step(self.dt)
 
     def contact_force(self):
-        return self.ball.get_contact_force_world().astype(np.float64)
+        return np.asarray(self.ball.get_contact_force_world(), dtype=np.float64)
 
     def time(self):
         return self.scene.get_total_simulation_time()

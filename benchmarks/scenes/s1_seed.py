@@ -26,6 +26,7 @@ import warnings
 import numpy as np
 
 from benchmarks.harness import Timer
+from benchmarks.models import node_positions_world
 from benchmarks.scenes import arm
 
 NUMBER = 1
@@ -59,7 +60,9 @@ def build(seed, ctx, prefab, duck_asset=None):
     duck = physics.prefab.add_to_scene(
         prefab_path=str(physics.paths.resolve_asset(duck_asset or seed.DUCK_LAMP_ASSET)), root_path=str(physics.paths.get_assets_root()),
         scene=scene, params=physics.prefab.PrefabParams(name="duck_lamp"))
-    return scene, bot, scene.get_actor(duck.actors[0])
+    duck = scene.get_actor(duck.actors[0])
+    duck.register_query(physics.QueryType.NODE_POSITIONS)  # for the final check on its top
+    return scene, bot, duck
 
 
 def run_seed_loop(seed, steps, duck_asset=None):
@@ -184,6 +187,6 @@ def run_case(case):
     bot_actor.get_articulated_link_transforms(xf)
     ball = np.array(xf[arm.BALL_LINK].translation, dtype=np.float64)
     checks.update({"ball_x": float(ball[0]), "ball_z": float(ball[2]),
-                   "duck_top_z": float(duck.get_node_positions_world()[:, 2].max())})
+                   "duck_top_z": float(node_positions_world(duck)[:, 2].max())})
     seed.physics.shutdown()
     return {"wall": wall, "steps": steps, "sim_time": steps / seed.CONTROL_RATE_HZ, "checks": checks}

@@ -68,7 +68,7 @@ class SuperDex:
         self.bot = sdr.create_bot(scene, prefab, ctx)
         self.bot.create_controller("BASIC_JSC_PD", "pd", {"kp": panda.KP, "kd": panda.KD, "saturation": efforts, "target_pose": TARGET})
         self.scene, self.arm = scene, self.bot.get_articulated_actor()
-        self.tips = [scene.get_actor(h) for h in self.arm.get_nested_link_actors()[-2:]]
+        self.tips = [scene.get_actor(h) for h in list(self.arm.get_nested_link_actors())[-2:]]
         for tip in self.tips:
             tip.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
 

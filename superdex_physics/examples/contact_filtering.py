@@ -3,14 +3,15 @@ ones fall through to the ground, their twins land on top.
 
 Two filters (API.md, "Scene"):
 
-- by actor pair: scene.enable_actor_contact_symmetric(a, b, False) switches contact off between two
-  actors. The ball "ghost_ball" falls through its pedestal and lands on the ground inside it;
+- by actor pair: scene.enable_actor_contact_symmetric(a, b, False, IncludeNestedActors.NO) switches
+  contact off between two actors. The ball "ghost_ball" falls through its pedestal and lands on the ground inside it;
   "solid_ball", dropped the same way onto an identical pedestal without the filter, comes to rest
   on top of it.
-- by layer: every actor has a layer (0..63, create_rigid_actor(..., layer=...)), and
-  scene.enable_layer_contact_symmetric(la, lb, False) switches contact off between two layers. A
-  static shelf sits on layer 2 and contact between layers 1 and 2 is off: the balls on layer 1 fall
-  through the shelf to the ground (layer 0), the ball on layer 3 stays on the shelf.
+- by layer: every actor has a contact layer, named by a string (create_rigid_actor(..., layer="..."),
+  "" the default layer), and scene.enable_layer_contact_symmetric(la, lb, False) switches contact off
+  between two layers. A static shelf sits on layer "shelf" and contact between layers "ghost" and
+  "shelf" is off: the balls on layer "ghost" fall through the shelf to the ground (the default
+  layer), the ball on layer "solid" stays on the shelf.
 
 Everything else keeps touching: the pedestals and every ball still rest on the ground. (In a bot file,
 "contactOverrides": [{"linkA", "linkB", "enable": false}] does the same for two links of a robot,
@@ -41,35 +42,35 @@ PEDESTAL_MASS = 2.0  # kg
 SHELF_TOP = 0.4  # m
 SHELF_HALF = [0.25, 0.25, 0.02]  # m
 DROP_HEIGHT = 0.8  # m, every ball starts with its centre here
-GHOST_LAYER, SHELF_LAYER, SOLID_LAYER = 1, 2, 3
+GHOST_LAYER, SHELF_LAYER, SOLID_LAYER = "ghost", "shelf", "solid"
 FRICTION = 0.5
 
 
 def build_scene(scene: sdp.Scene) -> dict:
-    material = {"coulombFrictionCoefficient": FRICTION}
-    ground = scene.create_rigid_actor("ground", sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
+    material = sdp.ContactParams(coulomb_friction_coefficient=FRICTION)
+    ground = scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
                                       is_static=True, contact=material)
     ball_shape = sdp.create_sphere_shape(center=[0, 0, 0], radius=RADIUS)
     cube = sdp.create_box_shape([PEDESTAL_HALF] * 3)
 
-    def ball(name, x, y, layer=0):
-        return scene.create_rigid_actor(name, ball_shape, mass=BALL_MASS, layer=layer, contact=material,
+    def ball(name, x, y, layer=""):
+        return scene.create_rigid_actor(name=name, shape=ball_shape, mass=BALL_MASS, layer=layer, contact=material,
                                         world_from_local=sdp.TransformRT(translation=[x, y, DROP_HEIGHT]))
 
     def pedestal(name, x, y):
-        return scene.create_rigid_actor(name, cube, mass=PEDESTAL_MASS, contact=material,
+        return scene.create_rigid_actor(name=name, shape=cube, mass=PEDESTAL_MASS, contact=material,
                                         world_from_local=sdp.TransformRT(translation=[x, y, PEDESTAL_HALF]))
 
     # 1. by actor pair
     ghost_pedestal = pedestal("ghost_pedestal", 0.0, -0.3)
     ghost_ball = ball("ghost_ball", 0.0, -0.3)
-    scene.enable_actor_contact_symmetric(ghost_ball, ghost_pedestal, False)
+    scene.enable_actor_contact_symmetric(ghost_ball, ghost_pedestal, False, sdp.IncludeNestedActors.NO)
     solid_pedestal = pedestal("solid_pedestal", 0.0, 0.3)
     solid_ball = ball("solid_ball", 0.0, 0.3)
 
-    # 2. by layer: the shelf is static, on layer 2; layers 1 and 2 do not touch
+    # 2. by layer: the shelf is static, on layer "shelf"; layers "ghost" and "shelf" do not touch
     scene.enable_layer_contact_symmetric(GHOST_LAYER, SHELF_LAYER, False)
-    shelf = scene.create_rigid_actor("shelf", sdp.create_box_shape(SHELF_HALF), is_static=True, layer=SHELF_LAYER,
+    shelf = scene.create_rigid_actor(name="shelf", shape=sdp.create_box_shape(SHELF_HALF), is_static=True, layer=SHELF_LAYER,
                                      contact=material,
                                      world_from_local=sdp.TransformRT(translation=[0.8, 0.0, SHELF_TOP - SHELF_HALF[2]]))
     layer_balls = [ball("layer1_ball_a", 0.7, -0.1, GHOST_LAYER), ball("layer1_ball_b", 0.9, 0.1, GHOST_LAYER),

@@ -23,18 +23,20 @@ def inertia_of_rod(mass: float, length: float, radius: float = 0.02) -> list[flo
 def create_double_pendulum(scene: sdp.Scene, length: float = 0.5, mass: float = 1.0) -> sdp.Actor:
     """Two rods hanging from a fixed pivot 2 m above the ground, hinged about Y."""
     links = [
-        {"name": "base", "mass": 1.0, "momentOfInertia": [0.01, 0, 0, 0.01, 0, 0.01]},
-        {"name": "upper", "parentLink": 0, "mass": mass, "centerOfMass": [length / 2, 0, 0],
-         "momentOfInertia": inertia_of_rod(mass, length)},
-        {"name": "lower", "parentLink": 1, "mass": mass, "centerOfMass": [length / 2, 0, 0],
-         "momentOfInertia": inertia_of_rod(mass, length)},
+        sdp.ArticulatedLinkParams(name="base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+        sdp.ArticulatedLinkParams(name="upper", parent_link=0, mass=mass, center_of_mass=[length / 2, 0, 0],
+                                  moment_of_inertia=inertia_of_rod(mass, length)),
+        sdp.ArticulatedLinkParams(name="lower", parent_link=1, mass=mass, center_of_mass=[length / 2, 0, 0],
+                                  moment_of_inertia=inertia_of_rod(mass, length)),
     ]
     joints = [
-        {"name": "weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, 2.0]}},
-        {"name": "shoulder", "type": "Revolute", "axis": [0, 1, 0]},
-        {"name": "elbow", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [length, 0, 0]}},
+        sdp.ArticulatedJointParams(name="weld", type=sdp.ArticulatedJointType.HARD,
+                                   parent_link_from_joint=sdp.TransformRT(translation=[0, 0, 2.0])),
+        sdp.ArticulatedJointParams(name="shoulder", type=sdp.ArticulatedJointType.REVOLUTE, axis=[0, 1, 0]),
+        sdp.ArticulatedJointParams(name="elbow", type=sdp.ArticulatedJointType.REVOLUTE, axis=[0, 1, 0],
+                                   parent_link_from_joint=sdp.TransformRT(translation=[length, 0, 0])),
     ]
-    return scene.create_articulated_actor("double_pendulum", links, joints)
+    return scene.create_articulated_actor(name="double_pendulum", links=links, joints=joints)
 
 
 def main() -> None:

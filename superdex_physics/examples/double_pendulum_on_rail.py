@@ -1,6 +1,6 @@
 """A double pendulum on a cart that slides freely on a horizontal rail.
 
-The articulation, built from link and joint dicts (the .superdex_bot fields, FORMATS.md):
+The articulation, built from ArticulatedLinkParams and ArticulatedJointParams:
 
     rail (welded 1.5 m up) --prismatic along X--> cart --revolute about Y--> upper rod
                                                       --revolute about Y--> lower rod
@@ -49,28 +49,37 @@ def rod_inertia(mass: float, length: float) -> list[float]:
 
 def create_cart_pendulum(scene: sdp.Scene) -> sdp.Actor:
     (upper, m1, l1), (lower, m2, l2) = RODS
+
+    def joint(name, type, axis=(0, 0, 0), at=(0, 0, 0)):
+        return sdp.ArticulatedJointParams(name=name, type=type, axis=list(axis), parent_link_from_joint=sdp.TransformRT(translation=list(at)))
+
     links = [
-        {"name": "rail", "mass": 10.0, "momentOfInertia": [1, 0, 0, 1, 0, 1],
-         "shape": {"box": {"halfExtents": [1.5, 0.02, 0.02]}}},
-        {"name": "cart", "parentLink": 0, "mass": CART_MASS, "momentOfInertia": [0.004, 0, 0, 0.009, 0, 0.009],
-         "shape": {"box": {"halfExtents": [0.1, 0.06, 0.04]}}},
+        sdp.ArticulatedLinkParams(name="rail", mass=10.0, moment_of_inertia=[1, 0, 0, 1, 0, 1],
+                                  shape=sdp.create_box_shape([1.5, 0.02, 0.02])),
+        sdp.ArticulatedLinkParams(name="cart", parent_link=0, mass=CART_MASS, moment_of_inertia=[0.004, 0, 0, 0.009, 0, 0.009],
+                                  shape=sdp.create_box_shape([0.1, 0.06, 0.04])),
     ]
+    # a rod's link frame is at its centre, half its length below its joint (a link's shape is
+    # centred on its frame): its centre of mass is the frame's origin, its capsule along z
     for i, (name, mass, length) in enumerate(RODS):
-        links.append({"name": name, "parentLink": i + 1, "mass": mass, "centerOfMass": [0, 0, -length / 2],
-                      "momentOfInertia": rod_inertia(mass, length),
-                      "shape": {"capsule": {"radius": ROD_RADIUS, "halfLength": length / 2 - ROD_RADIUS,
-                                            "center": [0, 0, -length / 2]}}})
+        links.append(sdp.ArticulatedLinkParams(
+            name=name, parent_link=i + 1, parent_joint_from_link=sdp.TransformRT(translation=[0, 0, -length / 2]),
+            mass=mass, center_of_mass=[0, 0, 0], moment_of_inertia=rod_inertia(mass, length),
+            shape=sdp.create_capsule_shape(radius=ROD_RADIUS, half_length=length / 2 - ROD_RADIUS)))
     joints = [
-        {"name": "rail_weld", "type": "Hard", "parentLinkFromJoint": {"translation": [0, 0, RAIL_HEIGHT]}},
-        {"name": "slider", "type": "Prismatic", "axis": [1, 0, 0]},
+        joint("rail_weld", sdp.ArticulatedJointType.HARD, at=[0, 0, RAIL_HEIGHT]),
+        joint("slider", sdp.ArticulatedJointType.PRISMATIC, axis=[1, 0, 0]),
         # the pendulum hangs 0.1 m in front of the rail (Y does not enter the planar motion)
-        {"name": "shoulder", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0, 0.1, 0]}},
-        {"name": "elbow", "type": "Revolute", "axis": [0, 1, 0], "parentLinkFromJoint": {"translation": [0, 0, -l1]}},
+        joint("shoulder", sdp.ArticulatedJointType.REVOLUTE, axis=[0, 1, 0], at=[0, 0.1, 0]),
+        # the upper rod's end: half its length below its centre
+        joint("elbow", sdp.ArticulatedJointType.REVOLUTE, axis=[0, 1, 0], at=[0, 0, -l1 / 2]),
     ]
+    actor = scene.create_articulated_actor(name="cart_double_pendulum", links=links, joints=joints)
     # links joined by a joint never collide; keep the others (rail, cart, rods) from touching too
-    no_contact = [("rail", upper), ("rail", lower), ("cart", lower)]
-    overrides = [{"linkA": a, "linkB": b, "enable": False} for a, b in no_contact]
-    actor = scene.create_articulated_actor("cart_double_pendulum", links, joints, contact_overrides=overrides)
+    names = ["rail", "cart"] + [name for name, _, _ in RODS]
+    link_actors = dict(zip(names, actor.get_nested_link_actors()))
+    for a, b in [("rail", upper), ("rail", lower), ("cart", lower)]:
+        scene.enable_actor_contact_symmetric(link_actors[a], link_actors[b], False, sdp.IncludeNestedActors.NO)
     actor.set_articulated_pose_from_joints(INITIAL_POSE)
     return actor
 
@@ -87,20 +96,10 @@ def energy_and_momentum(actor: sdp.Actor) -> tuple[float, float]:
     actor.get_articulated_link_transforms(xforms)
     potential = 0.0
     for i, (_, mass, length) in enumerate(RODS):
-        link = xforms[2 + i]
-        R = quaternion_matrix(np.array(link.rotation, dtype=np.float64))
-        com = np.array(link.translation, dtype=np.float64) + R @ [0, 0, -length / 2]
+        com = np.array(xforms[2 + i].translation, dtype=np.float64)  # a rod's frame is at its centre
         potential += mass * GRAVITY * com[2]
     Mv = M @ v
     return 0.5 * float(v @ Mv) + potential, float(Mv[0])
-
-
-def quaternion_matrix(q) -> np.ndarray:
-    """3 x 3 rotation matrix of a unit quaternion [x, y, z, w]."""
-    x, y, z, w = q / np.linalg.norm(q)
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def run(seconds: float = 5.0, dt: float = 0.001, debugger: bool = False) -> dict:

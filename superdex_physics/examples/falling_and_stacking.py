@@ -41,8 +41,8 @@ FRICTION = 0.6
 
 def build_scene(scene: sdp.Scene) -> dict:
     """Adds the ground, the cubes and the balls; returns them by role."""
-    material = {"coulombFrictionCoefficient": FRICTION}
-    ground = scene.create_rigid_actor("ground", sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
+    material = sdp.ContactParams(coulomb_friction_coefficient=FRICTION)
+    ground = scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
                                       is_static=True, contact=material)
     box_shape = sdp.create_box_shape([HALF, HALF, HALF])
     boxes = []
@@ -50,10 +50,10 @@ def build_scene(scene: sdp.Scene) -> dict:
         x, y = SHIFTS[i]
         z = GAP + HALF + i * (2 * HALF + GAP)
         pose = sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([0, 0, 1], i * TWIST), translation=[x, y, z])
-        boxes.append(scene.create_rigid_actor(f"box_{i}", box_shape, world_from_local=pose, mass=BOX_MASS,
+        boxes.append(scene.create_rigid_actor(name=f"box_{i}", shape=box_shape, world_from_local=pose, mass=BOX_MASS,
                                               contact=material))
     ball_shape = sdp.create_sphere_shape(center=[0, 0, 0], radius=BALL_RADIUS)
-    balls = [scene.create_rigid_actor(f"ball_{i}", ball_shape, world_from_local=sdp.TransformRT(translation=list(start)),
+    balls = [scene.create_rigid_actor(name=f"ball_{i}", shape=ball_shape, world_from_local=sdp.TransformRT(translation=list(start)),
                                       mass=BALL_MASS, contact=material)
              for i, start in enumerate(BALL_STARTS)]
     # contact forces are computed for actors that ask for them

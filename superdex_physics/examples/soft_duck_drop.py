@@ -4,8 +4,8 @@ The duck lamp (assets/prefabs/duck_lamp) is a tetrahedral finite-element body of
 (Neo-Hookean, E = 100 kPa). It is loaded with sdp.prefab.add_to_scene from the full finite-element
 twin of the seed's prefab (the seed's duck is a reduced soft body, which cannot be released), 3 cm
 higher and centred on the origin. The prefab pins the duck's flat belly
-(its "fixedRegion") so that it stays put under the seed's arm; this example releases those nodes
-so the whole body falls. The elastic body and its frictional contact with the ground are solved
+(its "fixedRegion") so that it stays put under the seed's arm; this example loads a copy of the
+prefab without that region (nodes pinned at creation stay pinned), so the whole body falls. The elastic body and its frictional contact with the ground are solved
 together in every implicit step.
 
 The summary follows the fall: the lowest and mean node heights, the fastest node, and the ground's
@@ -21,6 +21,9 @@ the run to a file (superdex.physics.debugger).
 """
 
 import argparse
+import json
+import tempfile
+from pathlib import Path
 
 import numpy as np
 
@@ -34,17 +37,40 @@ PREFAB_OFFSET_X = -0.3  # m: where the prefab places the duck (under the seed's 
 
 def add_duck(scene: sdp.Scene, height: float) -> sdp.Actor:
     """Loads the duck-lamp prefab with its belly `height` above the ground, centred on the origin,
-    and frees the nodes the prefab pins."""
-    instance = sdp.prefab.add_to_scene(
-        prefab_path=str(sdp.paths.resolve_asset(DUCK_LAMP_ASSET)),
-        root_path=str(sdp.paths.get_assets_root()),
-        scene=scene,
-        params=sdp.prefab.PrefabParams(name="duck_lamp", translation=[-PREFAB_OFFSET_X, 0.0, height]),
-    )
-    duck = scene.get_actor(instance.actors[0])
+    without the nodes the prefab pins."""
+    root = Path(sdp.paths.get_assets_root()).resolve()
+    prefab_path = Path(sdp.paths.resolve_asset(DUCK_LAMP_ASSET))
+    prefab = json.loads(prefab_path.read_text())
     # the prefab pins its belly (fixedRegion) to stand in the seed's scene; dropped, it is free
-    duck.remove_boundary_condition_nodes(duck.get_boundary_condition_nodes())
+    for soft in prefab["actors"]["soft"]:
+        soft.pop("fixedRegion", None)
+        soft.pop("fixedNodes", None)
+        # the copy lives elsewhere: its mesh by its path under the assets root
+        soft["shape"] = (prefab_path.parent / soft["shape"]).resolve().relative_to(root).as_posix()
+    with tempfile.TemporaryDirectory() as folder:
+        free_prefab = Path(folder) / prefab_path.name
+        free_prefab.write_text(json.dumps(prefab))
+        instance = sdp.prefab.add_to_scene(
+            prefab_path=str(free_prefab),
+            root_path=str(root),
+            scene=scene,
+            params=sdp.prefab.PrefabParams(name="duck_lamp", translation=[-PREFAB_OFFSET_X, 0.0, height]),
+        )
+    duck = scene.get_actor(instance.actors[0])
+    duck.register_query(sdp.QueryType.NODE_POSITIONS)
     return duck
+
+
+def node_positions_world(actor: sdp.Actor) -> np.ndarray:
+    """(n, 3) world positions of the duck's nodes: its local node positions (the NODE_POSITIONS
+    query) placed by its frame."""
+    local = np.asarray(actor.get_node_positions_local(), dtype=np.float64).reshape(-1, 3)
+    X_WL = actor.get_root_transform()
+    x, y, z, w = np.asarray(X_WL.rotation, dtype=np.float64)
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    return local @ R.T + np.asarray(X_WL.translation, dtype=np.float64)
 
 
 def run(seconds: float = 0.4, dt: float = 0.004, height: float = 0.03, debugger: bool = False,
@@ -57,12 +83,13 @@ def run(seconds: float = 0.4, dt: float = 0.004, height: float = 0.03, debugger:
     try:
         scene = sdp.create_scene("Soft duck drop")
         scene.set_gravity([0, 0, -GRAVITY])
-        ground = scene.create_rigid_actor("ground", sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
-                                          is_static=True, contact={"coulombFrictionCoefficient": 0.8})
+        ground = scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape(normal=[0, 0, 1], distance=0),
+                                          is_static=True, contact=sdp.ContactParams(coulomb_friction_coefficient=0.8))
         duck = add_duck(scene, height)
         for actor in (ground, duck):
             actor.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
-        released = np.array(duck.get_node_positions_world(), dtype=np.float64)
+        scene.step(0.0)  # runs no physics: fills the queries with the state at release
+        released = node_positions_world(duck)
         previous = released.copy()
         velocities = np.zeros_like(released)
         history = []
@@ -72,7 +99,7 @@ def run(seconds: float = 0.4, dt: float = 0.004, height: float = 0.03, debugger:
         steps = int(round(seconds / dt))
         for k in range(1, steps + 1):
             scene.step(dt)
-            nodes = np.array(duck.get_node_positions_world(), dtype=np.float64)
+            nodes = node_positions_world(duck)
             velocities = (nodes - previous) / dt  # the implicit step's end velocity: x+ = x + dt v+
             previous = nodes
             if on_step is not None:

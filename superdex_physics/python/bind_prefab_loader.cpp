@@ -1,6 +1,5 @@
 // The native side of superdex.physics.prefab: loading .mochi_prefab files into a scene.
 
-#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
@@ -20,8 +19,8 @@ void export_prefab_loader(nb::module_& m) {
           std::vector<std::string> warnings;
           PrefabResult r = add_prefab_to_scene(prefab_path, root_path, scene, params, &warnings);
           for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
-          // the constraint handles as a list of ints (a vector of them has no Python type)
-          return nb::make_tuple(nb::cast(r.actors), to_list(r.constraints));
+          // Python lists: the constraint ids (std::vector<std::int64_t>) have no DynamicArray type
+          return nb::make_tuple(to_list(r.actors), to_list(r.constraints));
         },
         "prefab_path"_a, "root_path"_a, "scene"_a, "name"_a, "scale"_a, "world_from_prefab"_a.none(), "apply_scene_settings"_a);
 }

@@ -74,10 +74,12 @@ ComponentHandle handle_of(nb::handle obj, const char* what) {
   return h;
 }
 
+// Handle lists are Python lists of typed handles (no std::vector caster here: the physics
+// bindings bind vectors of their element types as DynamicArrays).
 template <ComponentKind K>
-std::vector<TypedHandle<K>> typed(const std::vector<ComponentHandle>& hs) {
-  std::vector<TypedHandle<K>> out;
-  for (ComponentHandle h : hs) out.push_back({h});
+nb::list typed(const std::vector<ComponentHandle>& hs) {
+  nb::list out;
+  for (ComponentHandle h : hs) out.append(nb::cast(TypedHandle<K>{h}));
   return out;
 }
 
@@ -89,16 +91,16 @@ ActorHandle actor_or_zero(nb::handle a, const char* what) { return a.is_none() ?
 
 // Bot component lists filtered by name or type.
 template <ComponentKind K>
-std::vector<TypedHandle<K>> bot_find(const PyBot& b, const std::string& value, bool by_type) {
+nb::list bot_find(const PyBot& b, const std::string& value, bool by_type) {
   Context& ctx = b.ctx();
   const auto& rec = ctx.bot(b.handle);
   const auto& list = K == ComponentKind::Controller ? rec.controllers : K == ComponentKind::Sensor ? rec.sensors : rec.actuators;
-  std::vector<TypedHandle<K>> out;
+  std::vector<ComponentHandle> found;
   for (ComponentHandle h : list) {
     const auto& c = ctx.component(K, h);
-    if ((by_type ? c.type : c.name) == value) out.push_back({h});
+    if ((by_type ? c.type : c.name) == value) found.push_back(h);
   }
-  return out;
+  return typed<K>(found);
 }
 
 // Run-time parameters: a Python component's configure(dict), or a C++ component's JSON.

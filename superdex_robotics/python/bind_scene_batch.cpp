@@ -59,6 +59,44 @@ T* array_buffer(nb::handle obj, const std::string& arg, const std::vector<size_t
   return static_cast<T*>(a.data());
 }
 
+// The spec's per-column lists as Python lists. No std::vector caster is included here (the physics
+// bindings bind vectors of their element types as DynamicArrays, std::vector<double> only in the
+// double build), so the fields are read from any sequence or array of numbers and given back as
+// lists of Python numbers, in both builds alike.
+template <class T>
+nb::list to_py_list(const std::vector<T>& values) {
+  nb::list l;
+  for (const T& x : values) l.append(nb::cast(x));
+  return l;
+}
+
+template <class T>
+std::vector<T> from_py_sequence(nb::handle obj, const std::string& field) {
+  if (!nb::hasattr(obj, "__iter__") || nb::isinstance<nb::str>(obj))
+    throw Error("SceneBatchSpec." + field + ": expected a sequence of numbers, got " + nb::inst_name(obj).c_str());
+  std::vector<T> out;
+  size_t i = 0;
+  for (nb::handle item : nb::iter(obj)) {
+    T x;
+    if constexpr (std::is_integral_v<T>) {
+      if (!nb::try_cast(nb::module_::import_("operator").attr("index")(item), x))
+        throw Error("SceneBatchSpec." + field + "[" + std::to_string(i) + "]: expected an integer, got " + nb::inst_name(item).c_str());
+    } else if (!nb::try_cast(nb::float_(item), x)) {
+      throw Error("SceneBatchSpec." + field + "[" + std::to_string(i) + "]: expected a number, got " + nb::inst_name(item).c_str());
+    }
+    out.push_back(x);
+    ++i;
+  }
+  return out;
+}
+
+template <class T>
+void def_list_field(nb::class_<SceneBatchSpec>& c, const char* name, std::vector<T> SceneBatchSpec::*field, const char* doc) {
+  const std::string field_name = name;
+  c.def_prop_rw(name, [field](const SceneBatchSpec& s) { return to_py_list(s.*field); },
+                [field, field_name](SceneBatchSpec& s, nb::handle v) { s.*field = from_py_sequence<T>(v, field_name); }, doc);
+}
+
 }  // namespace
 
 void export_scene_batch(nb::module_& m) {
@@ -83,20 +121,19 @@ void export_scene_batch(nb::module_& m) {
       .def_rw("force_target", &BatchTask::force_target, "CIRCLE_TRACKING: force to hold on the prop (N)")
       .def_rw("force_weight", &BatchTask::force_weight, "weight of the reward's force term (GOAL_REACH: m/N)");
 
-  nb::class_<SceneBatchSpec>(m, "SceneBatchSpec", "The model shared by every scene of a SceneBatch (units: rad, rad/s, N m, s).")
-      .def(nb::init<>())
-      .def_rw("mode", &SceneBatchSpec::mode)
-      .def_rw("action_dofs", &SceneBatchSpec::action_dofs, "DOF index moved by each action column")
-      .def_rw("action_low", &SceneBatchSpec::action_low, "per column lower clip (rad/s); empty: no clipping")
-      .def_rw("action_high", &SceneBatchSpec::action_high)
-      .def_rw("servo_k_p", &SceneBatchSpec::servo_k_p, "VELOCITY_SERVO: N m s/rad per column")
-      .def_rw("servo_k_i", &SceneBatchSpec::servo_k_i, "VELOCITY_SERVO: N m/rad per column")
-      .def_rw("servo_effort_limit", &SceneBatchSpec::servo_effort_limit, "VELOCITY_SERVO: N m per column")
-      .def_rw("servo_profile_accel", &SceneBatchSpec::servo_profile_accel, "VELOCITY_SERVO: rad/s^2 per column (0: no ramp)")
-      .def_rw("drive_stiffness", &SceneBatchSpec::drive_stiffness, "VELOCITY_DRIVE: N m/rad per column")
-      .def_rw("drive_damping", &SceneBatchSpec::drive_damping, "VELOCITY_DRIVE: N m s/rad per column")
-      .def_rw("drive_max_effort", &SceneBatchSpec::drive_max_effort, "VELOCITY_DRIVE: N m per column (< 0: unbounded)")
-      .def_rw("observed_link", &SceneBatchSpec::observed_link, "link index E whose origin p_WE is observed")
+  nb::class_<SceneBatchSpec> spec(m, "SceneBatchSpec", "The model shared by every scene of a SceneBatch (units: rad, rad/s, N m, s).");
+  spec.def(nb::init<>()).def_rw("mode", &SceneBatchSpec::mode);
+  def_list_field(spec, "action_dofs", &SceneBatchSpec::action_dofs, "DOF index moved by each action column");
+  def_list_field(spec, "action_low", &SceneBatchSpec::action_low, "per column lower clip (rad/s); empty: no clipping");
+  def_list_field(spec, "action_high", &SceneBatchSpec::action_high, "");
+  def_list_field(spec, "servo_k_p", &SceneBatchSpec::servo_k_p, "VELOCITY_SERVO: N m s/rad per column");
+  def_list_field(spec, "servo_k_i", &SceneBatchSpec::servo_k_i, "VELOCITY_SERVO: N m/rad per column");
+  def_list_field(spec, "servo_effort_limit", &SceneBatchSpec::servo_effort_limit, "VELOCITY_SERVO: N m per column");
+  def_list_field(spec, "servo_profile_accel", &SceneBatchSpec::servo_profile_accel, "VELOCITY_SERVO: rad/s^2 per column (0: no ramp)");
+  def_list_field(spec, "drive_stiffness", &SceneBatchSpec::drive_stiffness, "VELOCITY_DRIVE: N m/rad per column");
+  def_list_field(spec, "drive_damping", &SceneBatchSpec::drive_damping, "VELOCITY_DRIVE: N m s/rad per column");
+  def_list_field(spec, "drive_max_effort", &SceneBatchSpec::drive_max_effort, "VELOCITY_DRIVE: N m per column (< 0: unbounded)");
+  spec.def_rw("observed_link", &SceneBatchSpec::observed_link, "link index E whose origin p_WE is observed")
       .def_rw("dt", &SceneBatchSpec::dt, "physics step (s)")
       .def_rw("substeps", &SceneBatchSpec::substeps, "physics steps per batch step")
       .def_rw("task", &SceneBatchSpec::task, "the task whose observation columns and reward each step writes (BatchTask)");
@@ -130,7 +167,8 @@ void export_scene_batch(nb::module_& m) {
       .def_prop_ro("params_size", &SceneBatch::params_size, "task parameters per scene")
       .def(
           "reset",
-          [](SceneBatch& b, const std::vector<int>& indices, nb::handle q0, nb::handle obs_out, nb::handle params) {
+          [](SceneBatch& b, nb::handle indices_arg, nb::handle q0, nb::handle obs_out, nb::handle params) {
+            const std::vector<int> indices = read_indices(indices_arg, "SceneBatch.reset: indices");
             const size_t rows = indices.size(), n = b.action_size(), p = b.params_size();
             const double* q = q0.is_none() ? nullptr : array_buffer<const double>(q0, "SceneBatch.reset: q0", {rows, n}, false);
             real* obs = array_buffer<real>(obs_out, "SceneBatch.reset: obs_out", {size_t(b.num_scenes()), size_t(b.obs_size())}, true);

@@ -127,6 +127,18 @@ physics::ArticulatedDofInfo joint_dofs_of_link(const Scene& scene, ActorHandle l
   return scene.articulated_shape_info(art).dof_info.at(scene.link_index(link));
 }
 
+physics::Vec6 link_origin_velocity(const Scene& scene, ActorHandle link) {
+  physics::Vec6 V = scene.velocity(link);
+  const Vec3 r_W = scene.root_transform(link).rotation * Vec3(scene.center_of_mass_local(link));
+  V.head<3>() -= Vec3(V.tail<3>()).cross(r_W);
+  return V;
+}
+
+Vec3 contact_torque_about_origin(const Scene& scene, ActorHandle link) {
+  const Vec3 r_W = scene.root_transform(link).rotation * Vec3(scene.center_of_mass_local(link));
+  return Vec3(scene.contact_torque(link)) + r_W.cross(Vec3(scene.contact_force(link)));
+}
+
 int single_dof_of_link(const Scene& scene, ActorHandle link, const std::string& where) {
   const physics::ArticulatedDofInfo d = joint_dofs_of_link(scene, link, where);
   if (d.size() != 1) {

@@ -58,6 +58,12 @@ physics::ArticulatedDofInfo joint_dofs_of_link(const Scene& scene, ActorHandle l
 int single_dof_of_link(const Scene& scene, ActorHandle link, const std::string& where);
 // Number of DOFs of the articulation's root joint (6 free, 0 welded).
 int root_dofs(const Scene& scene, ActorHandle articulation);
+// A link's velocity as (velocity of its origin (m/s), angular velocity (rad/s)), world: the engine
+// reports its centre of mass's (Scene::velocity).
+physics::Vec6 link_origin_velocity(const Scene& scene, ActorHandle link);
+// The total contact torque on a link about its origin (N m, world): the engine reports it about
+// the centre of mass (Scene::contact_torque). Needs the link's TotalContactForce query.
+Vec3 contact_torque_about_origin(const Scene& scene, ActorHandle link);
 // Link index by name; throws naming the known links.
 int link_index_by_name(const Scene& scene, ActorHandle articulation, const std::string& name, const std::string& where);
 

@@ -111,7 +111,7 @@ class OscPdController final : public ControllerComponent {
     // target pose and velocity in world: the target rides on the base
     const Vec3 p_WT = X_WB * p_BT_;
     const Quat R_WT = X_WB.rotation * R_BT_;
-    const Vec6 V_WB = scene_.velocity(links_[base_]);
+    const Vec6 V_WB = link_origin_velocity(scene_, links_[base_]);
     const Vec3 v_WT = V_WB.head<3>() + V_WB.tail<3>().cross(p_WT - X_WB.translation);
 
     // errors and task force

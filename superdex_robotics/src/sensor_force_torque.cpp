@@ -135,7 +135,7 @@ class ForceTorqueSensor final : public SensorComponent {
       // contact torque about the link origin, moved to O (independent of the origin used)
       const Vec3 f_c = scene_.contact_force(m.actor);
       F_ext += f_c;
-      T_ext += scene_.contact_torque(m.actor) + X[m.index].translation.cross(f_c);
+      T_ext += contact_torque_about_origin(scene_, m.actor) + X[m.index].translation.cross(f_c);
     }
     const real inv_dt = static_cast<real>(1.0 / elapsed);
     const Vec3 F_W = (mom.P - P_prev_) * inv_dt - F_ext;
@@ -172,7 +172,7 @@ class ForceTorqueSensor final : public SensorComponent {
     Momentum out{Vec3::Zero(), Vec3::Zero()};
     for (const Member& m : subtree_) {
       const Transform& X_WL = X[m.index];
-      const Vec6 V = scene_.velocity(m.actor);
+      const Vec6 V = link_origin_velocity(scene_, m.actor);
       const Mat3 R = X_WL.rotation.toRotationMatrix();
       const Vec3 r_W = R * m.mass.com_L;
       const Vec3 v_c = V.head<3>() + V.tail<3>().cross(r_W);

@@ -50,14 +50,14 @@ class ImuSensor final : public SensorComponent {
     const Vec3 a_W = (v_W - v_prev_) / static_cast<real>(elapsed);
     const Quat R_SW = (scene_.root_transform(link_).rotation * X_LS_.rotation).conjugate();
     signal_.head<3>() = R_SW * (a_W - scene_.gravity());
-    signal_.tail<3>() = R_SW * Vec3(scene_.velocity(link_).tail<3>());
+    signal_.tail<3>() = R_SW * Vec3(link_origin_velocity(scene_, link_).tail<3>());
     v_prev_ = v_W;
     t_prev_ = tick.time;
   }
 
   // world velocity of the sensor origin: v_origin + w x (R_WL p_LS)
   Vec3 point_velocity() const {
-    const Vec6 V_W = scene_.velocity(link_);
+    const Vec6 V_W = link_origin_velocity(scene_, link_);
     const Vec3 r_W = scene_.root_transform(link_).rotation * X_LS_.translation;
     return V_W.head<3>() + Vec3(V_W.tail<3>()).cross(r_W);
   }

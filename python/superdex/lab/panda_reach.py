@@ -35,7 +35,7 @@ STIFFNESS = [600.0, 600.0, 600.0, 600.0, 250.0, 150.0, 50.0]
 DAMPING = [30.0, 30.0, 30.0, 30.0, 10.0, 10.0, 5.0]
 TCP_LINK = "panda_hand_tcp"
 FINGER_OPENING = 0.02  # m per finger
-ROBOT_LAYER = 1
+ROBOT_LAYER = "panda"  # the robot's contact layer: its links touch the table, not each other
 TABLE_HALF_EXTENTS = [0.15, 0.3, 0.02]  # m
 TABLE_CENTER = [0.45, 0.0, 0.38]  # m, world: top at 0.40
 GOAL_LOW = np.array([0.35, -0.2, 0.40])  # m, world
@@ -62,8 +62,6 @@ class PandaReachEnv(SuperDexEnv):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the URDF's extra collision elements and mimic joints
             self._prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf_path()))
-        for link in self._prefab.links:
-            link.layer = ROBOT_LAYER
         self._link_names = [link.name for link in self._prefab.links]
         self._efforts = [j.effort_limit for j in self._prefab.joints if j.name.startswith("panda_joint") and j.effort_limit > 0]
         super().__init__(control_hz, sim_multiple, episode_steps, render_mode, num_worker_threads)
@@ -74,6 +72,7 @@ class PandaReachEnv(SuperDexEnv):
         ctx = sdr.create_context()
         bot = sdr.create_bot(scene, self._prefab, ctx)
         arm = bot.get_articulated_actor()
+        arm.set_contact_layer(ROBOT_LAYER)  # every link's
         pose = np.zeros(arm.get_num_dofs(), dtype=np_real)
         pose[:7] = READY
         pose[7:] = FINGER_OPENING

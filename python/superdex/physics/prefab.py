@@ -26,14 +26,22 @@ class PrefabInstance:
     constraints: list = field(default_factory=list)
 
 
+def _value(cls, value, field_name):
+    """A Quaternion or Real3 from a PrefabParams field (None: identity / zero); Error names the field."""
+    if value is None:
+        return cls()
+    try:
+        return cls(value)
+    except (TypeError, ValueError) as e:
+        raise _m.Error(f"PrefabParams.{field_name}: {e}") from None
+
+
 def add_to_scene(prefab_path, root_path, scene, params: PrefabParams | None = None) -> PrefabInstance:
     """Loads a prefab into `scene`; paths starting with ./ are relative to the prefab file, other
     relative paths to `root_path`. All or nothing: on an Error no actor of it remains."""
     params = params or PrefabParams()
-    # TransformRT takes no None: unset parts are the identity's
-    rotation = params.rotation if params.rotation is not None else _m.Quaternion(0, 0, 0, 1)
-    translation = params.translation if params.translation is not None else [0.0, 0.0, 0.0]
-    transform = _m.TransformRT(rotation=rotation, translation=translation)
+    transform = _m.TransformRT(rotation=_value(_m.Quaternion, params.rotation, "rotation"),
+                               translation=_value(_m.Real3, params.translation, "translation"))
     actors, constraints = _m._add_prefab_to_scene(
         str(Path(prefab_path)), str(Path(root_path)), scene, params.name, float(params.scale), transform,
         bool(params.apply_scene_settings))

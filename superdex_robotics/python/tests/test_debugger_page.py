@@ -141,7 +141,8 @@ import sys
 import superdex.physics as sdp
 sdp.initialize()
 scene = sdp.create_scene("recorded")
-scene.create_rigid_actor("ball", sdp.create_sphere_shape([0, 0, 0], 0.1))
+scene.set_gravity([0, 0, -9.81])  # Z-up, as the page shows it
+scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1))
 sdp.start_recording(sys.argv[1], 0.0)
 for _ in range(20):
     scene.step(0.01)

@@ -70,7 +70,7 @@ def test_force_mode_settles_at_the_force_target_on_a_compliant_block(scene, tmp_
     top = p0[2] - 0.02 - 0.005
     scene.create_rigid_actor(name="block", shape=sdp.create_box_shape(half_extents=[0.05, 0.05, 0.02]),
                              world_from_local=sdp.TransformRT(translation=[p0[0], p0[1], top - 0.02]), is_static=True,
-                             contact={"stiffness": 2000.0, "dissipationTimeScale": 0.02})
+                             contact=sdp.ContactParams(contact_stiffness=2000.0, dissipation_time_scale=0.02))
     target = p0 - np.array([0.0, 0.0, 0.03])
     bot.create_controller("HYBRID_FORCE_VELOCITY", "hybrid",
                           {"link": "ball", "axes": [0, 2], "kp": 5.0, "kf": 0.05, "force_target": 0.5, "target_position": target.tolist()})

@@ -42,7 +42,7 @@ def box_link(name, sensors, parent=None):
 
 
 def test_contact_force_of_links_resting_on_a_table_is_their_weight(scene, tmp_path):
-    scene.create_rigid_actor("table", sdp.create_box_shape([1.0, 1.0, 0.1]), is_static=True,
+    scene.create_rigid_actor(name="table", shape=sdp.create_box_shape([1.0, 1.0, 0.1]), is_static=True,
                              world_from_local=sdp.TransformRT(translation=[0, 0, -0.1]))
     # two equal boxes welded side by side, turned 90 degrees about x: each carries half of the
     # bot's weight, by symmetry

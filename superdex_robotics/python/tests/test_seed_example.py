@@ -169,8 +169,13 @@ def test_sensor_reads_the_contact_force_the_solver_applied(monkeypatch, tmp_path
 
     def compute_signal(self):
         reading = original(self)
-        points = self.actor.get_contact_points_world()  # this link's side of every contact record
-        applied = np.sum([np.asarray(p.force, dtype=np.float64) for p in points], axis=0) if points else np.zeros(3)
+        # every contact record of this link: its force is on actor_a from actor_b
+        link = self.actor.get_handle()
+        points = self.actor.get_contact_points_world()
+        applied = np.zeros(3)
+        for p in points:
+            assert link in (p.actor_a, p.actor_b)
+            applied += np.asarray(p.force, dtype=np.float64) * (1.0 if p.actor_a == link else -1.0)
         compared.append((reading.astype(np.float64), applied))
         return reading
 

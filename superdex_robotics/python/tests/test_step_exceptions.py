@@ -83,11 +83,11 @@ def user_controller_compute(controller):
     return {"effort": [0.0, 0.0]}
 
 
-def user_pre_step(scene, dt):
+def user_pre_step(info):
     FAIL["pre_step"].check()
 
 
-def user_post_step(scene, dt):
+def user_post_step(info):
     FAIL["post_step"].check()
 
 

@@ -60,7 +60,9 @@ def fingerprint(scene):
     """Every actor's pose and velocity, and the arm's joint state, as bytes (handles differ between
     runs: they come from one engine-wide counter)."""
     parts = []
-    for actor in scene.get_actors():
+    actors = []
+    scene.for_each_actor(lambda actor: actors.append(actor) if not actor.is_nested_link_actor() else None)
+    for actor in actors:
         t = actor.get_root_transform()
         parts += [np.array(t.translation), np.array(t.rotation)]
         if actor.get_type() == sdp.ActorType.ARTICULATED:
@@ -74,9 +76,9 @@ def run_scene(index):
     """Builds scene `index` (its own shapes, bot and pile), steps it, returns its final state."""
     scene = sdp.create_scene(f"scene {index}")
     scene.set_gravity([0, 0, -9.81])
-    scene.create_rigid_actor("ground", sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     for k in range(3):
-        scene.create_rigid_actor(f"box{k}", sdp.create_box_shape([0.05, 0.05, 0.05]), mass=0.2 + 0.1 * index,
+        scene.create_rigid_actor(name=f"box{k}", shape=sdp.create_box_shape([0.05, 0.05, 0.05]), mass=0.2 + 0.1 * index,
                                  world_from_local=sdp.TransformRT(translation=[0.4, 0.01 * k, 0.06 + 0.11 * k]))
     ctx = sdr.create_context()
     sdr.register_python_sensor(ctx, "MY_CONTACT_FORCE_SENSOR", Sensor)
@@ -85,7 +87,7 @@ def run_scene(index):
     bot = sdr.create_bot(scene, sdr.load_bot_prefab_from_file(str(resolve_asset(EXAMPLE_BOT))), ctx)
     bot.create_controller("PY", "py")
     sensor = sdr.get_python_sensor(ctx, bot.find_sensors_by_name("force_sensor")[0])
-    scene.register_post_step_callback("count", lambda s, dt: None)
+    scene.register_post_step_callback("count", lambda info: None)
     for _ in range(STEPS):
         scene.step(0.005 + 0.001 * index)
     state = fingerprint(scene)

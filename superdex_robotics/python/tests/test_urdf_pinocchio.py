@@ -286,7 +286,7 @@ def test_links_and_joints_match_the_urdf(robot: Robot):
     types = urdf_types(robot.urdf)
     for joint in robot.prefab.joints:
         if not model.existJointName(joint.name):  # fixed joints are frames in Pinocchio
-            assert joint.type == sdp.JointType.HARD, joint.name
+            assert joint.type == sdp.ArticulatedJointType.HARD, joint.name
             continue
         jid = model.getJointId(joint.name)
         k = model.idx_vs[jid]
@@ -297,9 +297,9 @@ def test_links_and_joints_match_the_urdf(robot: Robot):
         assert joint.viscous_friction == pytest.approx(model.damping[k], rel=1e-12), joint.name
         assert joint.coulomb_friction == pytest.approx(model.friction[k], rel=1e-12), joint.name
         if types[joint.name] == "continuous":
-            assert joint.type == sdp.JointType.REVOLUTE and joint.min_limit is None and joint.max_limit is None
+            assert joint.type == sdp.ArticulatedJointType.REVOLUTE and joint.min_limit is None and joint.max_limit is None
             continue
-        expected_type = sdp.JointType.PRISMATIC if types[joint.name] == "prismatic" else sdp.JointType.REVOLUTE
+        expected_type = sdp.ArticulatedJointType.PRISMATIC if types[joint.name] == "prismatic" else sdp.ArticulatedJointType.REVOLUTE
         assert joint.type == expected_type, joint.name
         lower = float(axis @ np.asarray(joint.min_limit, dtype=float))
         upper = float(axis @ np.asarray(joint.max_limit, dtype=float))
