@@ -160,6 +160,13 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     Transform X_PJ = jd.parent_link_from_joint;
     X_PJ.rotation.normalize();
     j.X_PJ = SpatialTransform::from(X_PJ);
+    const Vec3& p_JL = desc.links[i].joint_from_link;
+    if (!p_JL.allFinite()) r.fail(at("links", i, "jointFromLink"), "must be finite");
+    // a welded link's offset is constant: part of its joint's placement
+    if (jd.type == JointType::Hard || jd.type == JointType::Cycle || jd.type == JointType::Invalid)
+      j.X_PJ = j.X_PJ * SpatialTransform{Mat3::Identity(), p_JL};
+    else
+      j.p_JL = p_JL;
     if (jd.type == JointType::Revolute || jd.type == JointType::Prismatic) {
       if (!jd.axis.allFinite() || jd.axis.norm() < real(1e-9)) r.fail(at("joints", i, "axis"), "must be a finite, non-zero vector");
       j.axis = jd.axis.normalized();
@@ -202,6 +209,8 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       case JointType::Hard:
       default: break;
     }
+    // a rotation w about the joint origin moves the link origin, p_JL away, at w x p_JL
+    for (int c = 0; c < j.nv; ++c) j.S.col(c).head<3>() += Vec3(j.S.col(c).tail<3>()).cross(j.p_JL);
   }
   m.nq = q_offset;
   m.nv = v_offset;

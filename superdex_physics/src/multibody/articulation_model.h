@@ -18,6 +18,7 @@ struct JointModel {
   JointType type = JointType::Hard;
   Vec3 axis = Vec3::UnitZ();   // unit axis in the joint frame (revolute, prismatic)
   SpatialTransform X_PJ;       // joint frame in the parent link frame (in the base frame for the root)
+  Vec3 p_JL = Vec3::Zero();    // child link origin in the moving joint frame (same axes); Hard joints fold it into X_PJ
   int q_offset = 0, nq = 0;    // position coordinates: 1 (revolute, prismatic), 4 (spherical quat xyzw), 7 (free: p, quat)
   int v_offset = 0, nv = 0;    // velocity coordinates (DOFs)
   Mat6 S = Mat6::Zero();       // motion subspace in the child link frame, first nv columns used

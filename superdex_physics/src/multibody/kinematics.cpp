@@ -36,7 +36,7 @@ void update_kinematics(const ArticulationModel& model, const VecX& q, const VecX
     const JointModel& j = model.joints[i];
     const int p = model.parent[i];
     const SpatialTransform X_J = joint_transform(j, q.data() + j.q_offset);
-    kin.X_PL[i] = j.X_PJ * X_J;
+    kin.X_PL[i] = j.X_PJ * X_J * SpatialTransform{Mat3::Identity(), j.p_JL};
     kin.S[i] = j.S;
     // a Free joint's linear velocity is in the joint (parent) frame: rotate it into the link frame
     if (j.type == JointType::Free) kin.S[i].topLeftCorner<3, 3>() = X_J.R.transpose();

@@ -80,6 +80,7 @@ struct LinkInput {
   std::optional<real> density, mass;
   std::optional<Real3> center_of_mass;
   std::optional<Real6> moment_of_inertia;
+  Vec3 joint_from_link = Vec3::Zero();  // link origin in its joint's frame (m)
 };
 
 // The link description, and the density a mass and a shape imply. A moment of inertia that is
@@ -129,6 +130,7 @@ LinkDesc link_desc(const LinkInput& in, const std::string& where, real& density_
     }
     link.center_of_mass = in.center_of_mass ? *in.center_of_mass : bounded ? shape_mass_properties(*shape, 1).center_of_mass : Vec3::Zero();
   }
+  link.joint_from_link = in.joint_from_link;
   if (shape) {
     const ColliderGeometry c = collider_geometry(*shape, in.collider_type, in.is_static, where);
     if (c.shape) {
@@ -249,6 +251,7 @@ ActorHandle Scene::create_articulated_actor(const ArticulatedActorParams& p) {
     in.mass = l.mass;
     in.center_of_mass = l.center_of_mass;
     in.moment_of_inertia = l.moment_of_inertia;
+    in.joint_from_link = l.parent_joint_from_link.translation;
     if (in.shape && !in.shape->geometry) throw Error(lw + ".shape: it has no geometry a rigid link can carry");
     if (in.shape && std::holds_alternative<PlaneShape>(*in.shape->geometry)) throw Error(lw + ".shape: a plane cannot be a link's shape");
     warn_unused_contact_fields(l.contact, lw);

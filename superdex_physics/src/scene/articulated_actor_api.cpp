@@ -94,7 +94,7 @@ void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL
     const int p = m.parent[i];
     const SpatialTransform X_WP = p < 0 ? a.state.X_W_base : SpatialTransform::from(Transform{X_WL[p].rotation.normalized(), X_WL[p].translation});
     const SpatialTransform X_W_child = SpatialTransform::from(Transform{X_WL[i].rotation.normalized(), X_WL[i].translation});
-    const SpatialTransform X_J = (X_WP * j.X_PJ).inverse() * X_W_child;
+    const SpatialTransform X_J = (X_WP * j.X_PJ).inverse() * X_W_child * SpatialTransform{Mat3::Identity(), -j.p_JL};
     switch (j.type) {
       case JointType::Revolute: pose[j.v_offset] = rotation_vector(Quat(X_J.R)).dot(j.axis); break;
       case JointType::Prismatic: pose[j.v_offset] = X_J.p.dot(j.axis); break;

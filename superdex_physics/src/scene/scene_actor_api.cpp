@@ -79,7 +79,7 @@ void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
   const SpatialTransform X = SpatialTransform::from(X_WL);
   if (root.type == JointType::Free) {
     // X_WL = X_W_base * X_PJ * X_J(q): solve for the free joint's position
-    const SpatialTransform X_J = (a.state.X_W_base * root.X_PJ).inverse() * X;
+    const SpatialTransform X_J = (a.state.X_W_base * root.X_PJ).inverse() * X * SpatialTransform{Mat3::Identity(), -root.p_JL};
     const Quat q(X_J.R);
     a.state.q.segment<3>(root.q_offset) = X_J.p;
     a.state.q.segment<4>(root.q_offset + 3) = q.normalized().coeffs();
@@ -104,7 +104,9 @@ void Scene::set_velocity(ActorHandle h, const Vec3& v_W, const Vec3& w_W) {
   // velocity in the free joint's parent frame, angular velocity in the body frame
   const Mat3 R_WP = (a.state.X_W_base * a.model.joints[0].X_PJ).R;
   const Vec3 r_W = a.kin.X_WL[0].R * a.model.inertia[0].com;
-  a.state.v.segment<3>(0) = R_WP.transpose() * (v_W - w_W.cross(r_W));
+  // and the joint origin's, the link origin's minus w x p_JL (the link moves with the joint's axes)
+  const Vec3 p_JL_W = a.kin.X_WL[0].R * a.model.joints[0].p_JL;
+  a.state.v.segment<3>(0) = R_WP.transpose() * (v_W - w_W.cross(r_W) - w_W.cross(p_JL_W));
   a.state.v.segment<3>(3) = a.kin.X_WL[0].R.transpose() * w_W;
   refresh_kinematics(a);
 }
@@ -240,20 +242,20 @@ ArticulatedShapeInfo Scene::articulated_shape_info(ActorHandle h) const {
       default: break;
     }
     info.dof_info.push_back(d);
-    // the link frame coincides with its joint frame at rest; root-from-link composes the
-    // parent-from-joint transforms down the tree
+    // at rest the link frame is its joint frame moved by joint_from_link; root-from-link
+    // composes parent-from-joint and joint-from-link down the tree
     Transform X_PJ = jd.parent_link_from_joint;
     X_PJ.rotation.normalize();
     info.parent_link_from_joint.push_back(X_PJ);
-    info.joint_from_child_link.push_back(Transform{});
+    info.joint_from_child_link.push_back(Transform{Quaternion::Identity(), a.model.desc.links[i].joint_from_link});
     info.joint_min_limits.push_back(j.has_lower ? Real3(j.lower * j.axis) : Real3::Constant(-inf));
     info.joint_max_limits.push_back(j.has_upper ? Real3(j.upper * j.axis) : Real3::Constant(inf));
   }
   info.root_from_links_at_rest.resize(a.model.num_links);
   for (int i : a.model.order) {
     const int parent = a.model.parent[i];
-    info.root_from_links_at_rest[i] =
-        parent < 0 ? info.parent_link_from_joint[i] : compose(info.root_from_links_at_rest[parent], info.parent_link_from_joint[i]);
+    const Transform X_PL = compose(info.parent_link_from_joint[i], info.joint_from_child_link[i]);
+    info.root_from_links_at_rest[i] = parent < 0 ? X_PL : compose(info.root_from_links_at_rest[parent], X_PL);
   }
   return info;
 }

@@ -103,6 +103,9 @@ struct LinkDesc {
   Vec3 render_model_scale = Vec3::Ones();
   /// Pose of the shape in the link frame (inline primitives: their "center" and "rotation").
   Transform link_from_shape;
+  /// Origin of this link's frame in its joint's frame (m), which rotates with the joint: the
+  /// link frame is the joint frame moved by this (no rotation). Zero: the frames coincide.
+  Vec3 joint_from_link = Vec3::Zero();
   /// Contact parameters of the link's surface.
   ContactParams contact;
   /// Collision layer, 0..63 (see Scene::enable_layer_contact).
