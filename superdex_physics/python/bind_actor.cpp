@@ -6,6 +6,7 @@
 #include <nanobind/stl/string.h>
 
 #include "bind_actor.h"
+#include "bind_model_view.h"
 #include "bind_container.h"
 
 namespace superdex::python {
@@ -65,6 +66,13 @@ void export_actor(nb::module_& m) {
            "of a dynamic rigid actor.")
       .def("get_reference_shape", [](const Actor& a) { return a.scene.reference_shape(a.handle); },
            "A new reference to the shape the actor was made from.")
+      .def("get_mesh", [](const Actor& a) { return shared_view(a.scene.meshes(a.handle).mesh); },
+           "The simulation mesh in the actor frame: a soft actor's tetrahedra, a rigid actor's compact triangle surface;\n"
+           "empty for primitives. The view keeps the data alive.")
+      .def("get_surface_mesh", [](const Actor& a) { return shared_view(a.scene.meshes(a.handle).surface); },
+           "The compact triangle surface (only the nodes it uses, in increasing order of their mesh index).")
+      .def("get_visual_mesh", [](const Actor& a) { return shared_view(a.scene.meshes(a.handle).visual); },
+           "The model's visual mesh; empty when it has none.")
       .def("get_contact_layer", [](const Actor& a) { return a.scene.contact_layer(a.handle); }, "Empty for the default layer.")
       .def("set_contact_layer", [](Actor& a, const std::string& layer) { a.scene.set_contact_layer(a.handle, layer); }, "layer"_a)
       .def("get_num_dofs", [](const Actor& a) { return a.scene.num_dofs(a.handle); }, "0 for static actors.")

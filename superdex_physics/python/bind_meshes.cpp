@@ -1,9 +1,11 @@
-// Mesh shapes from Python: create_tri_mesh_shape (numpy arrays) and load_shape_from_file
-// (.mochi.h5, .obj, .stl, .ply with an optional baked scale and transform).
+// Mesh and model shapes from Python: create_tri/tet_mesh_shape (numpy arrays), create_mesh_shape,
+// create_model_shape, load_shape_from_file/bytes (with an optional baked scale and transform),
+// and the meshes of a shape (get_shape_mesh, ..._surface_mesh, ..._visual_mesh).
 
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
+#include "bind_model_view.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/mesh_shape.h"
 
@@ -87,6 +89,30 @@ Vec3 read_scale(nb::handle obj, const std::string& arg) {
   return s;
 }
 
+// A bake from optional Python arguments: a scale (a number or 3), then a TransformRT.
+ShapeBake read_bake(nb::handle bake_scale, nb::handle bake_transform, const std::string& where) {
+  ShapeBake bake;
+  bake.scale = read_scale(bake_scale, where + ": bake_scale");
+  const Transform X = read_transform(bake_transform, where + ": bake_transform");
+  bake.rotation = X.rotation;
+  bake.translation = X.translation;
+  return bake;
+}
+
+// A MeshData or ModelData from the object itself or from its view.
+MeshData mesh_data_of(nb::handle h, const std::string& where) {
+  if (View<MeshData>* v = nullptr; nb::try_cast(h, v, false) && v) return *v->source;
+  MeshData* d = nullptr;
+  if (nb::try_cast(h, d, false) && d) return *d;
+  throw Error(where + ": expected a MeshData or MeshDataView");
+}
+ModelData model_data_of(nb::handle h, const std::string& where) {
+  if (View<ModelData>* v = nullptr; nb::try_cast(h, v, false) && v) return *v->source;
+  ModelData* d = nullptr;
+  if (nb::try_cast(h, d, false) && d) return *d;
+  throw Error(where + ": expected a ModelData or ModelDataView");
+}
+
 }  // namespace
 
 void export_meshes(nb::module_& m) {
@@ -113,18 +139,64 @@ void export_meshes(nb::module_& m) {
           } catch (const std::exception&) {
             throw Error(where + ": file_path: expected a str or os.PathLike");
           }
-          ShapeBake bake;
-          bake.scale = read_scale(bake_scale, where + ": bake_scale");
-          const Transform X = read_transform(bake_transform, where + ": bake_transform");
-          bake.rotation = X.rotation;
-          bake.translation = X.translation;
-          // tetrahedra make a tet-mesh shape (for soft actors); other files a rigid shape
-          if (std::optional<TetMesh> tets = read_tet_mesh_file(path, bake))
-            return create_tet_mesh_shape(std::move(*tets), path);
-          return create_shape(load_shape_file(path, bake));
+          return load_shape_from_file(path, read_bake(bake_scale, bake_transform, where));
         }, "file_path"_a, "bake_scale"_a.none() = nb::none(), "bake_transform"_a.none() = nb::none(),
-        "A shape from a .mochi.h5, .obj, .stl or .ply file. bake_scale (a number or 3 numbers) and then\n"
-        "bake_transform (TransformRT) are applied to the vertices before the distance grid is computed.");
+        "A shape from a .mochi.json, .mochi.h5, .obj, .off, .stl or .ply file. bake_scale (a number or 3 numbers) and\n"
+        "then bake_transform (TransformRT) are applied to the model before anything is computed from it.");
+  m.def("load_shape_from_bytes", [](nb::handle file_data, nb::handle format, nb::handle bake_scale, nb::handle bake_transform) {
+          const std::string where = "load_shape_from_bytes";
+          std::string bytes;
+          try {
+            nb::bytes b(nb::module_::import_("builtins").attr("bytes")(file_data));
+            bytes.assign(b.c_str(), b.size());
+          } catch (const std::exception&) {
+            throw Error(where + ": file_data: expected bytes, a bytearray or an array of bytes");
+          }
+          MeshFileType type = MeshFileType::Legacy;
+          if (!format.is_none()) {
+            if (PyBool_Check(format.ptr()) == 0 && nb::try_cast(format, type, false)) {
+              // a MeshFileType
+            } else if (PyLong_Check(format.ptr()) && nb::cast<int>(format) >= 0 && nb::cast<int>(format) <= static_cast<int>(MeshFileType::OBJ))
+              type = static_cast<MeshFileType>(nb::cast<int>(format));
+            else
+              throw Error(where + ": format: expected a MeshFileType (LEGACY, PLY, OFF, STL or OBJ)");
+          }
+          return load_shape_from_bytes(bytes, type, read_bake(bake_scale, bake_transform, where));
+        }, "file_data"_a, "format"_a.none() = nb::none(), "bake_scale"_a.none() = nb::none(), "bake_transform"_a.none() = nb::none(),
+        "A shape from the bytes of a file. format: MeshFileType (LEGACY, the default, tells HDF5 from JSON by its\n"
+        "signature); bake_scale and bake_transform as load_shape_from_file.");
+  m.def("create_mesh_shape", [](nb::handle mesh, nb::kwargs kwargs) {
+          std::optional<MeshData> data;
+          if (!mesh.is_none()) {
+            if (kwargs.size() > 0) throw Error("create_mesh_shape: give either mesh or its fields as keywords, not both");
+            data = mesh_data_of(mesh, "create_mesh_shape: mesh");
+          } else {
+            data = nb::cast<MeshData>(nb::module_::import_("superdex.physics").attr("MeshData")(**kwargs));
+          }
+          ModelData model;
+          model.mesh = std::move(*data);
+          return create_model_shape(std::move(model), "create_mesh_shape");
+        }, "mesh"_a.none() = nb::none(), "kwargs"_a,
+        "A shape from a MeshData (or MeshDataView, or its fields as keywords): tetrahedra (4 nodes per element), triangles\n"
+        "(3) or a polyline (2). The data is copied.");
+  m.def("create_model_shape", [](nb::handle model, nb::kwargs kwargs) {
+          std::optional<ModelData> data;
+          if (!model.is_none()) {
+            if (kwargs.size() > 0) throw Error("create_model_shape: give either model or its fields as keywords, not both");
+            data = model_data_of(model, "create_model_shape: model");
+          } else {
+            data = nb::cast<ModelData>(nb::module_::import_("superdex.physics").attr("ModelData")(**kwargs));
+          }
+          return create_model_shape(std::move(*data), "create_model_shape");
+        }, "model"_a.none() = nb::none(), "kwargs"_a,
+        "The shape a ModelData (or ModelDataView, or its fields as keywords) describes: a mesh, a box, a plane or a\n"
+        "sphere. The data is copied.");
+  m.def("get_shape_mesh", [](const ShapeHandle& shape) { return shared_view(shape_meshes(shape, "get_shape_mesh").mesh); }, "shape"_a,
+        "The shape's main mesh (tetrahedra, triangles or a polyline); empty for primitives. The view keeps the data alive.");
+  m.def("get_shape_surface_mesh", [](const ShapeHandle& shape) { return shared_view(shape_meshes(shape, "get_shape_surface_mesh").surface); },
+        "shape"_a, "The compact triangle surface: only the nodes it uses, in increasing order of their mesh index; empty for primitives.");
+  m.def("get_shape_visual_mesh", [](const ShapeHandle& shape) { return shared_view(shape_meshes(shape, "get_shape_visual_mesh").visual); },
+        "shape"_a, "The shape's visual mesh; empty when the model has none.");
 }
 
 }  // namespace superdex::python

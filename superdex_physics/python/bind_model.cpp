@@ -16,6 +16,7 @@
 
 #include "bind_common.h"
 #include "bind_container.h"
+#include "bind_model_view.h"
 #include "struct_binder.h"
 #include "superdex/physics/model.h"
 #include "superdex/physics/params/actor_params.h"
@@ -23,44 +24,6 @@
 namespace superdex::python {
 
 namespace {
-
-// A Python object kept alive from C++; released with the GIL held.
-std::shared_ptr<void> hold(nb::handle obj) {
-  PyObject* p = obj.ptr();
-  Py_INCREF(p);
-  return std::shared_ptr<void>(p, [](void* q) {
-    nb::gil_scoped_acquire gil;
-    Py_DECREF(static_cast<PyObject*>(q));
-  });
-}
-
-// A read-only view of a Src owned elsewhere (`keep` keeps it alive) or by the view itself.
-template <class Src>
-struct View {
-  std::shared_ptr<void> keep;
-  const Src* source = nullptr;
-  bool owned = false;  // `source` is the view's own copy
-
-  View(std::shared_ptr<void> k, const Src* s, bool o) : keep(std::move(k)), source(s), owned(o) {}
-  // A view of a default Src (what DynamicArrayXView(n) fills with): never a null source.
-  View() : View(owning(Src{})) {}
-
-  static View owning(Src value) {
-    auto p = std::make_shared<Src>(std::move(value));
-    return View(p, p.get(), true);
-  }
-  // A view of the part `part` of an object kept alive by `keep`.
-  template <class Part>
-  View<Part> child(const Part& part) const {
-    return View<Part>(keep, &part, false);
-  }
-  // The view's own, writable copy of its values.
-  Src& detach() {
-    if (!owned) *this = owning(*source);
-    return const_cast<Src&>(*source);
-  }
-  bool operator==(const View& o) const { return *source == *o.source; }
-};
 
 using SkinningDataView = View<SkinningData>;
 using BlendingDataView = View<BlendingData>;

@@ -284,7 +284,7 @@ def _set(obj, path, value):
 
 
 def _mesh_case(path, value):
-    return lambda: _set(single_tet(), path, value)
+    return lambda: _set(single_tet(), path, value() if callable(value) else value)
 
 
 def _sdf(**kw):
@@ -311,16 +311,16 @@ VALIDATION_CASES = [
     (_mesh_case("mesh.coordinates", [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, math.nan]), "mesh.coordinates[11]: must be finite"),
     (_mesh_case("mesh.connectivity", [0, 1, 2]), "mesh.connectivity: must hold 4 values per element, got 3"),
     (_mesh_case("mesh.connectivity", [0, 1, 2, 40]), "mesh.connectivity[3]: node 40 out of range (4 nodes)"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=0)), "mesh.skinning.weights_per_node: must be >= 1, got 0"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=1, indices=[0] * 4, weights=[1] * 3)),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=0)), "mesh.skinning.weights_per_node: must be >= 1, got 0"),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=1, indices=[0] * 4, weights=[1] * 3)),
      "mesh.skinning.weights: must have 4 values (1 per node), got 3"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=1, indices=[0] * 3, weights=[1] * 4)),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=1, indices=[0] * 3, weights=[1] * 4)),
      "mesh.skinning.indices: must have 4 values (1 per node), got 3"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=1, indices=[0] * 4, weights=[1, 1, math.inf, 1])),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=1, indices=[0] * 4, weights=[1, 1, math.inf, 1])),
      "mesh.skinning.weights[2]: must be finite"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=1, indices=[0, 0, -1, 0], weights=[1] * 4)),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=1, indices=[0, 0, -1, 0], weights=[1] * 4)),
      "mesh.skinning.indices[2]: index -1 out of range (must be >= 0)"),
-    (_mesh_case("mesh.skinning", sdp.SkinningData(weights_per_node=2, indices=[0] * 8, weights=[0.5, 0.5, 0.5, 0.6, 1, 0, 0, 1])),
+    (_mesh_case("mesh.skinning", lambda: sdp.SkinningData(weights_per_node=2, indices=[0] * 8, weights=[0.5, 0.5, 0.5, 0.6, 1, 0, 0, 1])),
      "mesh.skinning.weights: the weights of node 1 sum to 1.1"),
     # polylines
     (lambda: sdp.ModelData(mesh=sdp.MeshData(nodes_per_element=2, coordinates=[0, 0, 0, 1, 0, 0, 2, 0, 0], connectivity=[0, 1, 2, 1])),

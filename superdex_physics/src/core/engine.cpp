@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <sstream>
 #include <mutex>
 #include <thread>
 
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
-#include "shape/tet_mesh_surface.h"
+#include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/recording.h"
 
@@ -172,9 +174,7 @@ void ShapeHandle::set_value(std::int64_t value) {
 
 ShapeHandle create_shape(const ShapeGeometry& geometry) {
   validate_shape(geometry, "create_shape");
-  auto data = std::make_shared<ShapeData>();
-  data->geometry = geometry;
-  return register_shape(std::move(data), "create_shape");
+  return register_shape(shape_from_geometry(geometry), "create_shape");
 }
 
 void release_shape(const ShapeHandle& shape) {
@@ -248,27 +248,77 @@ ShapeGeometry shape_geometry(const ShapeHandle& shape) {
 }
 
 ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where) {
-  const int n = static_cast<int>(mesh.nodes.size());
-  if (mesh.tets.empty()) throw Error(where + ": the tet mesh has no tetrahedra");
-  for (int i = 0; i < n; ++i)
-    if (!mesh.nodes[i].allFinite()) throw Error(where + ": node " + std::to_string(i) + " has non-finite coordinates");
-  for (size_t t = 0; t < mesh.tets.size(); ++t) {
-    const auto& tet = mesh.tets[t];
-    for (int k = 0; k < 4; ++k)
-      if (tet[k] < 0 || tet[k] >= n)
-        throw Error(where + ": tetrahedron " + std::to_string(t) + " refers to node " + std::to_string(tet[k]) + ", out of range (" +
-                    std::to_string(n) + " nodes)");
-    Mat3 D;
-    D << mesh.nodes[tet[1]] - mesh.nodes[tet[0]], mesh.nodes[tet[2]] - mesh.nodes[tet[0]], mesh.nodes[tet[3]] - mesh.nodes[tet[0]];
-    const real volume = D.determinant() / 6;
-    const real scale = std::max({D.col(0).norm(), D.col(1).norm(), D.col(2).norm()});
-    if (volume < 0) throw Error(where + ": tetrahedron " + std::to_string(t) + " is inverted (negative volume)");
-    if (!(volume > real(1e-9) * scale * scale * scale)) throw Error(where + ": tetrahedron " + std::to_string(t) + " is degenerate (volume ~ 0)");
+  return register_shape(shape_from_tet_mesh(std::move(mesh), where), "create_tet_mesh_shape");
+}
+
+ShapeHandle create_model_shape(ModelData model, const std::string& where) {
+  return register_shape(shape_from_model(std::move(model), where), "create_model_shape");
+}
+
+namespace {
+
+// The file cache's key: the path, a newline, then the bake's numbers.
+std::string cache_key(const std::string& path, const ShapeBake& bake) {
+  std::ostringstream os;
+  os.precision(17);
+  os << path << '\n' << bake.scale.transpose() << ' ' << bake.rotation.coeffs().transpose() << ' ' << bake.translation.transpose();
+  return os.str();
+}
+
+// The model with the bake applied (scale, then rotation, then translation).
+ModelData baked(ModelData model, const ShapeBake& bake, const std::string& where) {
+  if (bake.is_identity()) return model;
+  if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) throw Error(where + ": bake scale must be positive and finite");
+  if (!bake.translation.allFinite() || !bake.rotation.coeffs().allFinite() || bake.rotation.norm() < real(1e-6))
+    throw Error(where + ": bake transform must be finite with a non-zero rotation quaternion");
+  model::bake_transform(model, bake.scale, bake.rotation.normalized(), bake.translation);
+  return model;
+}
+
+bool has_suffix(std::string path, const std::string& suffix) {
+  std::transform(path.begin(), path.end(), path.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake) {
+  const std::string key = cache_key(path, bake);
+  if (auto cached = cached_shape(key)) return register_shape(std::move(cached), "load_shape_from_file");
+  std::shared_ptr<const ShapeData> data;
+  if (has_suffix(path, ".h5")) {
+    // tetrahedra make a tet-mesh shape (for soft actors); other .mochi.h5 files a rigid shape
+    if (std::optional<TetMesh> tets = read_tet_mesh_file(path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
+    else data = shape_from_geometry(load_shape_file(path, bake));
+  } else if (has_suffix(path, ".obj") || has_suffix(path, ".stl") || has_suffix(path, ".ply")) {
+    data = shape_from_geometry(load_shape_file(path, bake));
+  } else if (has_suffix(path, ".json") || has_suffix(path, ".off")) {
+    data = shape_from_model(baked(model::load_from_file(path), bake, path), path);
+  } else {
+    const size_t dot = path.find_last_of('.');
+    const std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos ? "" : path.substr(dot);
+    throw Error(path + ": unknown shape file extension '" + ext + "' (expected .mochi.json, .mochi.h5, .obj, .off, .stl or .ply)");
   }
-  auto data = std::make_shared<ShapeData>();
-  data->tet_mesh = std::make_shared<const TetMesh>(std::move(mesh));
-  data->geometry = tet_mesh_boundary_shape(*data->tet_mesh, where);
-  return register_shape(std::move(data), "create_tet_mesh_shape");
+  cache_shape(key, data);
+  return register_shape(std::move(data), "load_shape_from_file");
+}
+
+ShapeHandle load_shape_from_bytes(std::string_view bytes, MeshFileType type, const ShapeBake& bake) {
+  const std::string where = "load_shape_from_bytes";
+  ModelData model;
+  try {
+    model = model::load_from_bytes(bytes, type);
+  } catch (const Error& e) {
+    throw Error(where + ": file_data: " + e.what());
+  }
+  return register_shape(shape_from_model(baked(std::move(model), bake, where), where), "load_shape_from_bytes");
+}
+
+ShapeMeshes shape_meshes(const ShapeHandle& shape, const std::string& where) {
+  const std::shared_ptr<const ShapeData> data = shape_data(shape, where);
+  // each pointer shares ownership of the whole shape data
+  auto part = [&](const std::optional<MeshData>& m) { return m ? std::shared_ptr<const MeshData>(data->model, &*m) : nullptr; };
+  return ShapeMeshes{part(data->model->mesh), data->surface, part(data->model->visual_mesh)};
 }
 
 std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape) {

@@ -247,6 +247,19 @@ ShapeHandle Scene::reference_shape(ActorHandle h) const {
   return add_shape_reference_to(std::move(data));
 }
 
+ShapeMeshes Scene::meshes(ActorHandle h) const {
+  SceneData& s = scene_data(handle_);
+  ActorRef r = lookup(s, h, "get_mesh");
+  std::shared_ptr<const ShapeData> data;
+  if (r.soft) data = r.soft->shape;
+  else if (r.link >= 0 || r.articulation->is_rigid) data = r.articulation->links[std::max(r.link, 0)].shape;
+  if (!data) return {};
+  auto visual = data->model->visual_mesh ? std::shared_ptr<const MeshData>(data->model, &*data->model->visual_mesh) : nullptr;
+  // a soft body simulates the model's tetrahedra; a rigid body its surface
+  if (r.soft && data->model->mesh) return ShapeMeshes{std::shared_ptr<const MeshData>(data->model, &*data->model->mesh), data->surface, visual};
+  return ShapeMeshes{data->surface, data->surface, visual};
+}
+
 std::vector<real> Scene::points_distance_to_surface(ActorHandle h, std::span<const Real3> points_W) const {
   SceneData& s = scene_data(handle_);
   ActorRef r = lookup(s, h, "get_points_distance_to_surface");

@@ -16,6 +16,7 @@
 
 #include "multibody/articulation_model.h"
 #include "scene/actor_records.h"
+#include "shape/shape_data.h"
 #include "soft/soft_body.h"
 #include "superdex/physics/engine.h"
 #include "superdex/physics/scene.h"
@@ -27,17 +28,6 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 class SparseNewtonSystem;  // sparse_newton_system.h
 struct IslandWorkspace;    // island_solver.h
 struct StepWorkspace;      // step_workspace.h
-
-// What a registered shape holds: its geometry as a rigid body carries it (primitives, or a
-// triangle mesh: a tet mesh's boundary) and, for tet meshes, the volume mesh soft bodies use.
-struct ShapeData {
-  std::optional<ShapeGeometry> geometry;
-  std::shared_ptr<const TetMesh> tet_mesh;
-};
-struct ShapeEntry {
-  std::shared_ptr<const ShapeData> data;
-  int references = 1;  // the ShapeHandles that name it
-};
 
 struct Articulation {
   ActorHandle handle = 0;

@@ -9,9 +9,13 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "superdex/physics/handles.h"
+#include "superdex/physics/mochi_h5.h"
+#include "superdex/physics/model.h"
+#include "superdex/physics/shape_meshes.h"
 #include "superdex/physics/shape.h"
 
 namespace superdex::physics {
@@ -87,6 +91,21 @@ ShapeGeometry shape_geometry(const ShapeHandle& shape);
 ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where);
 /// The tet mesh of a live tet-mesh shape; throws if `shape` is not one.
 std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape);
+
+/// Registers the shape a model describes (model::validate first; errors name `where` and the
+/// field): a tetrahedral mesh (soft actors; rigid ones take its boundary), a triangle mesh, a
+/// box, a sphere or a plane. Polylines and distance grids alone make a shape no actor can carry.
+ShapeHandle create_model_shape(ModelData model, const std::string& where = "create_model_shape");
+/// A shape from a file: .mochi.json, .json and .off through model::load_from_file; .mochi.h5,
+/// .obj, .stl and .ply through their readers. The bake (scale, then rotation, then translation)
+/// is applied to the model before anything is computed from it. With the file cache enabled the
+/// shape's data is kept, keyed by path and bake, and a second load reuses it.
+ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake = {});
+/// A shape from the bytes of a file of the given type, then baked as load_shape_from_file.
+ShapeHandle load_shape_from_bytes(std::string_view data, MeshFileType type = MeshFileType::Legacy, const ShapeBake& bake = {});
+
+/// A live shape's meshes; throws naming `where` for an invalid or released handle.
+ShapeMeshes shape_meshes(const ShapeHandle& shape, const std::string& where);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "superdex/physics/shape_meshes.h"
 #include "superdex/physics/articulation_desc.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/params/actor_params.h"
@@ -299,6 +300,10 @@ class Scene {
   Aabb aabb_world(ActorHandle actor) const;
   /// A new reference to the shape the actor was made from (rigid actors, links, soft actors).
   ShapeHandle reference_shape(ActorHandle actor) const;
+  /// The meshes of the actor's shape, in its local frame: `mesh` is the simulation mesh (a soft
+  /// actor's tetrahedra; a rigid actor's or link's compact surface), `surface` the compact surface,
+  /// `visual` the model's visual mesh; null where there is none (primitives, whole articulations).
+  ShapeMeshes meshes(ActorHandle actor) const;
   /// Signed distance (m, negative inside) of world points to the actor's collider surface.
   std::vector<real> points_distance_to_surface(ActorHandle actor, std::span<const Real3> points_W) const;
   /// The values of DOFs (empty: all); rigid: COM position (m) and rotation vector (rad) of X_WL;
