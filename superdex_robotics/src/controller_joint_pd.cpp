@@ -36,8 +36,9 @@ VecX per_dof(const std::vector<real>& v, int n, real fallback, const char* field
   if (v.empty()) return VecX::Constant(n, fallback);
   if (v.size() == 1) return VecX::Constant(n, v[0]);
   if (static_cast<int>(v.size()) != n)
-    throw Error(std::string("BASIC_JSC_PD.set_params: params.") + field + ": expected 1 or " + std::to_string(n) +
-                " values (one per joint DOF), got " + std::to_string(v.size()));
+    throw Error(std::string("BASIC_JSC_PD.set_params: params.") + field + ": expected " +
+                (n == 1 ? std::string("1 value") : "1 or " + std::to_string(n) + " values") + " (one per joint DOF), got " +
+                std::to_string(v.size()));
   VecX out(n);
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(v[i])) throw Error(std::string("BASIC_JSC_PD.set_params: params.") + field + "[" + std::to_string(i) + "]: must be finite");
