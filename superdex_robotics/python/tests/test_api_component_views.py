@@ -47,7 +47,7 @@ def test_actor_less_sensor_identity_and_pose(scene):
     assert (view.get_name(), view.get_type_name()) == ("fixed", CAMERA)
     assert view.get_actor() is None and view.get_owning_bot() is None
     assert view.get_parent_from_sensor() == sdp.TransformRT()
-    pose = sdp.TransformRT(rotation=sdp.Quaternion([0.0, 0.0, 0.7071068, 0.7071068]), translation=[0.5, -1.0, 2.0])
+    pose = sdp.TransformRT(rotation=sdp.Quaternion([0.0, 0.0, 1.0, 0.0]), translation=[0.5, -1.0, 2.0])
     view.set_parent_from_sensor(pose)
     # a second view of the same sensor sees the change: views hold a handle, not a copy
     assert ctx.get_sensor(handle).get_parent_from_sensor() == pose
