@@ -110,16 +110,17 @@ void export_component_views(nb::module_& m) {
       .def_static("type_name", [] { return std::string(ControllerBasicJscPd::kTypeName); })
       .def("get_params", [](const JscPdControllerView& v) { return impl_as<ControllerBasicJscPd>(v, "get_params").params(); },
            "The gains in use, one value per joint DOF.")
-      .def("set_params", [](const JscPdControllerView& v, const ControllerBasicJscPdParams& p) {
-             impl_as<ControllerBasicJscPd>(v, "set_params").set_params(p);
-           }, "params"_a, "Replaces the gains (empty: defaults, one value: every joint DOF).");
+      .def("set_params", [](const JscPdControllerView& v, nb::handle p) {
+             impl_as<ControllerBasicJscPd>(v, "set_params")
+                 .set_params(object_of<ControllerBasicJscPdParams>(p, "set_params: params", "a ControllerBasicJscPdParams"));
+           }, "params"_a.none(), "Replaces the gains (empty: defaults, one value: every joint DOF).");
 
   nb::class_<CameraSensorView, SensorView>(m, "CameraSensor", "SENSOR_CAMERA: intrinsics and mounting for renderers.")
       .def_static("type_name", [] { return std::string(CameraSensor::kTypeName); })
       .def("get_params", [](const CameraSensorView& v) { return impl_as<CameraSensor>(v, "get_params").params(); })
-      .def("set_params", [](const CameraSensorView& v, const CameraSensorParams& p) {
-             impl_as<CameraSensor>(v, "set_params").set_params(p);
-           }, "params"_a, "Validates, then replaces the params (Error names the field).");
+      .def("set_params", [](const CameraSensorView& v, nb::handle p) {
+             impl_as<CameraSensor>(v, "set_params").set_params(object_of<CameraSensorParams>(p, "set_params: params", "a CameraSensorParams"));
+           }, "params"_a.none(), "Validates, then replaces the params (Error names the field).");
 }
 
 }  // namespace superdex::python

@@ -186,6 +186,26 @@ void def_kind(nb::module_& m, nb::class_<PyContext>& ctx_cls, nb::class_<PyBot>&
            }, "handle"_a, "The view of one of this bot's components, or None for an invalid or stale handle.");
 }
 
+// The link actor of the bot's link named `link` (Error naming the bot's links otherwise).
+ActorHandle link_actor_by_name(const robotics::BotRecord& rec, const std::string& link, const std::string& where) {
+  const auto& links = rec.prefab.articulation.links;
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i].name == link) return rec.scene.nested_link_actors(rec.articulation)[i];
+  std::string names;
+  for (const auto& l : links) names += (names.empty() ? "" : ", ") + l.name;
+  throw Error(where + ": bot '" + rec.prefab.name() + "' has no link '" + link + "' (links: " + names + ")");
+}
+
+// The name of the bot link a component is attached to, or None (no actor, or not one of its links).
+nb::object link_name_of(const PyBot& b, ComponentKind kind, ComponentHandle h) {
+  const auto& rec = b.ctx().bot(b.handle);
+  const ActorHandle actor = b.ctx().component(kind, h).actor;
+  const auto links = rec.scene.nested_link_actors(rec.articulation);
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i] == actor) return nb::str(rec.prefab.articulation.links[i].name.c_str());
+  return nb::none();
+}
+
 // A component created through a bot: attached to `actor` (the bot's articulation for a
 // controller), params resolved against the bot file's folder, listed among the bot's components.
 ComponentHandle bot_create(PyBot& b, ComponentKind kind, const std::string& type_name, nb::handle actor,
@@ -193,7 +213,9 @@ ComponentHandle bot_create(PyBot& b, ComponentKind kind, const std::string& type
   Context& ctx = b.ctx();
   auto& rec = ctx.bot(b.handle);
   const std::string what = std::string("create_") + kind_title(kind) + "('" + name + "')";
-  const ActorHandle target = kind == ComponentKind::Controller ? rec.articulation : actor_or_zero(actor, (what + ": actor").c_str());
+  const ActorHandle target = kind == ComponentKind::Controller ? rec.articulation
+                             : nb::isinstance<nb::str>(actor)    ? link_actor_by_name(rec, nb::cast<std::string>(actor), what + ": link")
+                                                                 : actor_or_zero(actor, (what + ": actor").c_str());
   ComponentArgs args{rec.scene, target, creation_params(params, rec.prefab.base_dir, what + ": params"), &rec.prefab};
   const ComponentHandle h = ctx.create(kind, type_name, args, name, b.handle);
   auto& bot = ctx.bot(b.handle);
@@ -290,10 +312,18 @@ void export_robotics(nb::module_& parent) {
            }, "type_name"_a, "name"_a = "", "params"_a.none() = "")
       .def("create_sensor", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              return SensorHandle{bot_create(b, ComponentKind::Sensor, type_name, actor, name, params)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
+           "Creates a sensor on one of the bot's links: `actor` is the link actor or the link's name.")
       .def("create_actuator", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              return ActuatorHandle{bot_create(b, ComponentKind::Actuator, type_name, actor, name, params)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
+           "Creates a actuator on one of the bot's links: `actor` is the link actor or the link's name.")
+      .def("get_sensor_link_name", [](const PyBot& b, nb::handle h) {
+             return link_name_of(b, ComponentKind::Sensor, handle_of<ComponentKind::Sensor>(h, "get_sensor_link_name"));
+           }, "handle"_a, "The name of the link the sensor is attached to, or None.")
+      .def("get_actuator_link_name", [](const PyBot& b, nb::handle h) {
+             return link_name_of(b, ComponentKind::Actuator, handle_of<ComponentKind::Actuator>(h, "get_actuator_link_name"));
+           }, "handle"_a, "The name of the link the actuator is attached to, or None.")
       .def("reset", [](PyBot& b) { b.ctx().reset_components(b.handle); },
            "Calls reset() on the bot's components and restarts its pipeline's timing.")
       .def("set_pipeline_enabled", [](PyBot& b, nb::handle enabled) { b.ctx().set_pipeline_mode(b.handle, pipeline_mode(enabled)); },

@@ -132,3 +132,29 @@ def test_component_created_on_a_bot_actor_belongs_to_the_bot(scene):
     sdr.destroy_bot(scene, bot)
     assert not ctx.is_valid_sensor(sensor) and not ctx.is_valid_actuator(actuator)
     assert ctx.is_valid_sensor(loose)
+
+
+def test_bot_components_by_link_name(scene):
+    ctx = sdr.create_context()
+    bot = sdr.create_bot(scene, sdr.load_bot_prefab_from_file(str(resolve_asset(FR3))), ctx)
+    handle = bot.create_sensor(CAMERA, "fr3_link7", "wrist")
+    assert bot.get_sensor_link_name(handle) == "fr3_link7"
+    link7 = scene.get_actor(bot.get_articulated_actor().get_nested_link_actors()[7])
+    assert ctx.get_sensor(handle).get_actor() == link7
+    with pytest.raises(sdp.Error, match=r"link: bot 'fr3' has no link 'hand' \(links: fr3_link0, .*fr3_link7\)"):
+        bot.create_sensor(CAMERA, "hand", "nowhere")
+    loose = ctx.create_sensor(CAMERA, None, "loose")
+    assert bot.get_sensor_link_name(loose) is None
+
+
+def test_set_params_refuses_other_types_naming_the_argument(scene):
+    ctx = sdr.create_context()
+    camera = ctx.get_sensor(ctx.create_sensor(CAMERA, None, "cam"))
+    with pytest.raises(sdp.Error, match="set_params: params: expected a CameraSensorParams, got .*ControllerBasicJscPdParams"):
+        camera.set_params(sdr.ControllerBasicJscPdParams())
+    with pytest.raises(sdp.Error, match="set_params: params: expected a CameraSensorParams"):
+        camera.set_params(None)
+    bot = sdr.create_bot(scene, sdr.load_bot_prefab_from_file(str(resolve_asset(FR3))), ctx)
+    jsc = ctx.get_controller(bot.create_controller(sdr.ControllerBasicJscPd.type_name(), "jsc"))
+    with pytest.raises(sdp.Error, match="set_params: params: expected a ControllerBasicJscPdParams"):
+        jsc.set_params({"kp": 1})
