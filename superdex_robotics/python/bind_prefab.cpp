@@ -12,13 +12,20 @@ NB_MAKE_OPAQUE(std::vector<superdex::physics::LinkDesc>)
 NB_MAKE_OPAQUE(std::vector<superdex::physics::JointDesc>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::ComponentDecl>)
 NB_MAKE_OPAQUE(std::vector<std::vector<superdex::robotics::ComponentDecl>>)
+NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotSensorPrefab>)
+NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotActuatorPrefab>)
 
 
 #include "bind_common.h"
+#include "bind_container.h"
+#include "struct_binder.h"
 
 namespace superdex::python {
 
 using robotics::BotPrefab;
+using robotics::BotActuatorPrefab;
+using robotics::BotLinkPrefab;
+using robotics::BotSensorPrefab;
 using robotics::ComponentDecl;
 
 namespace {
@@ -27,6 +34,43 @@ nb::object optional_vec3(const std::optional<Vec3>& v) { return v ? nb::cast(num
 std::optional<Vec3> read_optional_vec3(nb::handle h, const char* what) {
   if (h.is_none()) return std::nullopt;
   return read_vec3(h, what);
+}
+
+// Keyword construction through the bound properties (their conversions and checks), on an
+// instance built aside so that a rejected keyword leaves nothing half-made.
+template <class T>
+void init_from_kwargs(T* self, const nb::kwargs& kwargs, const std::string& type_name) {
+  T t;
+  {
+    nb::object view = nb::cast(&t, nb::rv_policy::reference);
+    for (auto [key, value] : kwargs) {
+      const std::string k = nb::cast<std::string>(key);
+      if (k.empty() || k[0] == '_' || !nb::hasattr(view.type(), k.c_str()))
+        throw Error(type_name + "(): unknown field '" + k + "'");
+      try {
+        nb::setattr(view, k.c_str(), value);
+      } catch (nb::python_error& e) {
+        throw Error(type_name + "(): " + k + ": " + e.what());
+      }
+    }
+  }
+  new (self) T(std::move(t));
+}
+
+// A list of T from any iterable of T; Error names `what` and the index of a wrong element.
+template <class T>
+std::vector<T> list_of(nb::handle items, const std::string& what, const char* expected) {
+  if (!nb::isinstance<nb::iterable>(items) || nb::isinstance<nb::str>(items)) throw Error(what + ": expected a list of " + expected);
+  std::vector<T> out;
+  size_t i = 0;
+  for (nb::handle item : nb::iter(items)) {
+    T* p = nullptr;
+    if (!nb::try_cast<T*>(item, p) || !p)
+      throw Error(what + "[" + std::to_string(i) + "]: expected a " + expected + ", got " + nb::inst_name(item).c_str());
+    out.push_back(*p);
+    ++i;
+  }
+  return out;
 }
 
 }  // namespace
@@ -42,10 +86,25 @@ void export_prefab(nb::module_& m) {
       .def_rw("params", &ComponentDecl::params)
       .def("__repr__", [](const ComponentDecl& d) { return "ComponentDecl(type='" + d.type + "', name='" + d.name + "')"; });
   nb::bind_vector<std::vector<ComponentDecl>, nb::rv_policy::reference_internal>(m, "ComponentDeclList");
+
+  StructBinder<BotSensorPrefab>(m, "BotSensorPrefab", "A sensor declared on a link (BotLinkPrefab.sensors).")
+      .field("type", &BotSensorPrefab::type, "registered sensor type, e.g. \"SENSOR_CAMERA\"")
+      .field("name", &BotSensorPrefab::name, "instance name")
+      .field("parent_from_sensor", &BotSensorPrefab::parent_from_sensor, "the sensor frame in the link frame")
+      .field("params", &BotSensorPrefab::params, "inline JSON, a JSON file path relative to the bot file, or empty")
+      .done();
+  StructBinder<BotActuatorPrefab>(m, "BotActuatorPrefab", "An actuator declared on a link (BotLinkPrefab.actuators).")
+      .field("type", &BotActuatorPrefab::type, "registered actuator type")
+      .field("name", &BotActuatorPrefab::name, "instance name")
+      .field("params", &BotActuatorPrefab::params, "inline JSON, a JSON file path relative to the bot file, or empty")
+      .done();
+  nb::bind_vector<std::vector<BotSensorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotSensorPrefab");
+  nb::bind_vector<std::vector<BotActuatorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotActuatorPrefab");
   nb::bind_vector<std::vector<std::vector<ComponentDecl>>, nb::rv_policy::reference_internal>(m, "ComponentDeclLists");
 
   nb::class_<LinkDesc>(m, "LinkDesc", "One link of a bot (fields of the .superdex_bot format).")
       .def(nb::init<>())
+      .def("__init__", [](LinkDesc* self, nb::kwargs kw) { init_from_kwargs(self, kw, "LinkDesc"); })
       .def_rw("name", &LinkDesc::name)
       .def_rw("parent_link", &LinkDesc::parent_link, "index of the parent link, -1 for the root")
       .def_rw("mass", &LinkDesc::mass, "kg, or None to compute it from density and shape")
@@ -69,8 +128,9 @@ void export_prefab(nb::module_& m) {
       .def("__repr__", [](const LinkDesc& l) { return "LinkDesc('" + l.name + "')"; });
   nb::bind_vector<std::vector<LinkDesc>, nb::rv_policy::reference_internal>(m, "LinkDescList");
 
-  nb::class_<JointDesc>(m, "JointDesc", "One joint of a bot (fields of the .superdex_bot format).")
+  nb::class_<JointDesc>(m, "JointDesc", "One joint of a bot (fields of the .superdex_bot format); SuperDex API name BotJointPrefab.")
       .def(nb::init<>())
+      .def("__init__", [](JointDesc* self, nb::kwargs kw) { init_from_kwargs(self, kw, "BotJointPrefab"); })
       .def_rw("name", &JointDesc::name)
       .def_rw("type", &JointDesc::type)
       .def_prop_rw("axis", [](const JointDesc& j) { return numpy_copy(j.axis.data(), {3}); },
@@ -90,7 +150,31 @@ void export_prefab(nb::module_& m) {
       .def("__repr__", [](const JointDesc& j) { return "JointDesc('" + j.name + "')"; });
   nb::bind_vector<std::vector<JointDesc>, nb::rv_policy::reference_internal>(m, "JointDescList");
 
+  nb::class_<BotLinkPrefab, LinkDesc>(m, "BotLinkPrefab", "A link with the sensors and actuators declared on it (BotPrefab.add_link).")
+      .def(nb::init<>())
+      .def("__init__", [](BotLinkPrefab* self, nb::kwargs kw) { init_from_kwargs(self, kw, "BotLinkPrefab"); })
+      .def_prop_rw("sensors", [](BotLinkPrefab& l) -> std::vector<BotSensorPrefab>& { return l.sensors; },
+                   [](BotLinkPrefab& l, nb::handle v) { l.sensors = list_of<BotSensorPrefab>(v, "BotLinkPrefab.sensors", "BotSensorPrefab"); },
+                   nb::rv_policy::reference_internal, "sensors declared on this link")
+      .def_prop_rw("actuators", [](BotLinkPrefab& l) -> std::vector<BotActuatorPrefab>& { return l.actuators; },
+                   [](BotLinkPrefab& l, nb::handle v) {
+                     l.actuators = list_of<BotActuatorPrefab>(v, "BotLinkPrefab.actuators", "BotActuatorPrefab");
+                   }, nb::rv_policy::reference_internal, "actuators declared on this link")
+      .def("__repr__", [](const BotLinkPrefab& l) {
+        return "BotLinkPrefab('" + l.name + "', " + std::to_string(l.sensors.size()) + " sensors, " +
+               std::to_string(l.actuators.size()) + " actuators)";
+      });
+
   nb::class_<BotPrefab>(m, "BotPrefab", "A robot description; edit it before create_bot.")
+      .def(nb::init<>(), "An empty bot: add links with add_link.")
+      .def("add_link", [](BotPrefab& p, nb::handle link, nb::handle joint) {
+             robotics::add_link(p, object_of<BotLinkPrefab>(link, "add_link: link", "a BotLinkPrefab"),
+                                joint.is_none() ? JointDesc{} : object_of<JointDesc>(joint, "add_link: joint", "a BotJointPrefab"));
+           }, "link"_a.none(), "joint"_a.none(),
+           "Appends a link, the joint attaching it to link.parent_link (the world for the first link), and\n"
+           "the sensors and actuators declared on it.")
+      .def("get_link_prefab", [](const BotPrefab& p, int i) { return robotics::link_prefab(p, i); }, "index"_a,
+           "A copy of link `index` with the sensors and actuators declared on it.")
       .def_prop_rw("name", [](const BotPrefab& p) { return p.articulation.name; },
                    [](BotPrefab& p, std::string n) { p.articulation.name = std::move(n); })
       .def_prop_rw("links", [](BotPrefab& p) -> std::vector<LinkDesc>& { return p.articulation.links; },

@@ -1,10 +1,14 @@
 // superdex.robotics: the context and its registries, Python components held by a C++ adapter
 // (python_component.h), typed component handles, bots and their pipelines, the bot loaders.
 
+#include <algorithm>
+
 #include <nanobind/stl/string.h>
 
 #include "bind_common.h"
+#include "bind_robotics_types.h"
 #include "python_component.h"
+#include "superdex/physics/engine.h"
 #include "superdex/robotics/context.h"
 
 namespace superdex::python {
@@ -21,27 +25,6 @@ void export_prefab(nb::module_& m);
 
 namespace {
 
-// A component handle tagged with its kind, so that a sensor handle cannot be used as an actuator's.
-template <ComponentKind K>
-struct TypedHandle {
-  ComponentHandle value = 0;
-};
-using ControllerHandle = TypedHandle<ComponentKind::Controller>;
-using SensorHandle = TypedHandle<ComponentKind::Sensor>;
-using ActuatorHandle = TypedHandle<ComponentKind::Actuator>;
-
-// The Python-side context: the C++ context plus nothing else; components keep Python objects.
-struct PyContext {
-  Context ctx;
-};
-
-// A bot as seen from Python: its context (kept alive) and handle.
-struct PyBot {
-  nb::object context;  // PyContext
-  BotHandle handle = 0;
-  Context& ctx() const { return nb::cast<PyContext&>(context).ctx; }
-};
-
 const char* kind_title(ComponentKind k) {
   switch (k) {
     case ComponentKind::Controller: return "controller";
@@ -51,40 +34,26 @@ const char* kind_title(ComponentKind k) {
   return "?";
 }
 
-template <ComponentKind K>
-void bind_handle(nb::module_& m, const char* name) {
-  using H = TypedHandle<K>;
-  nb::class_<H>(m, name)
-      .def_ro("value", &H::value)
-      .def("__int__", [](const H& h) { return h.value; })
-      .def("__index__", [](const H& h) { return h.value; })
-      .def("__eq__", [](const H& a, const H& b) { return a.value == b.value; })
-      .def("__hash__", [](const H& h) { return h.value; })
-      .def("__repr__", [name](const H& h) { return std::string(name) + "(" + std::to_string(h.value) + ")"; });
-}
-
-// The handle of kind K from a typed handle or an int; a handle of another kind is refused.
-template <ComponentKind K>
-ComponentHandle handle_of(nb::handle obj, const char* what) {
-  if (nb::isinstance<TypedHandle<K>>(obj)) return nb::cast<TypedHandle<K>&>(obj).value;
-  for (bool other : {nb::isinstance<ControllerHandle>(obj), nb::isinstance<SensorHandle>(obj), nb::isinstance<ActuatorHandle>(obj)})
-    if (other) throw Error(std::string(what) + ": expected a " + kind_title(K) + " handle, got " + nb::inst_name(obj).c_str());
-  ComponentHandle h;
-  if (!nb::try_cast(obj, h)) throw Error(std::string(what) + ": expected a " + kind_title(K) + " handle");
-  return h;
-}
-
 // Handle lists are Python lists of typed handles (no std::vector caster here: the physics
 // bindings bind vectors of their element types as DynamicArrays).
 template <ComponentKind K>
 nb::list typed(const std::vector<ComponentHandle>& hs) {
   nb::list out;
-  for (ComponentHandle h : hs) out.append(nb::cast(TypedHandle<K>{h}));
+  for (ComponentHandle h : hs) out.append(nb::cast(TypedHandle<K>(h)));
   return out;
 }
 
 void emit(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
+}
+
+// A bot handle from a BotHandle or an int; other handles are refused.
+BotHandle bot_handle_of(nb::handle obj, const char* what) {
+  if (nb::isinstance<BotHandleValue>(obj)) return nb::cast<RoboticsHandle&>(obj).value;
+  BotHandle h;
+  if (nb::isinstance<RoboticsHandle>(obj) || nb::isinstance<nb::bool_>(obj) || !nb::try_cast(obj, h))
+    throw Error(std::string(what) + ": expected a BotHandle, got " + nb::inst_name(obj).c_str());
+  return h;
 }
 
 ActorHandle actor_or_zero(nb::handle a, const char* what) { return a.is_none() ? ActorHandle() : actor_handle_of(a, what); }
@@ -119,11 +88,20 @@ void configure_component(Context& ctx, ComponentKind kind, ComponentHandle h, nb
   fn(nb::isinstance<nb::str>(params) ? nb::module_::import_("json").attr("loads")(params) : nb::borrow(params));
 }
 
-// Params given to create_*: a dict (written as JSON) or a string (inline JSON or a file path,
-// relative to `base_dir`).
+// Params given to a bot's create_*: a dict (written as JSON) or a string (inline JSON or a file
+// path, relative to `base_dir`, the bot file's folder).
 std::string creation_params(nb::handle params, const std::string& base_dir, const std::string& where) {
   if (params.is_none()) return "";
   if (nb::isinstance<nb::str>(params)) return robotics::resolve_params(nb::cast<std::string>(params), base_dir, where);
+  return params_text(params, where);
+}
+
+// Params given to the context's create_*: a dict (written as JSON) or a string handed to the
+// factory verbatim (a Python component's own configuration channel; a C++ built-in reads inline
+// JSON or a file path relative to the working directory).
+std::string verbatim_params(nb::handle params, const std::string& where) {
+  if (params.is_none()) return "";
+  if (nb::isinstance<nb::str>(params)) return nb::cast<std::string>(params);
   return params_text(params, where);
 }
 
@@ -167,10 +145,20 @@ void def_kind(nb::module_& m, nb::class_<PyContext>& ctx_cls, nb::class_<PyBot>&
           throw Error("register_python_" + std::string(kind_title(K)) + ": the factory for '" + type_name + "' is not callable");
         c.ctx.register_type(K, type_name, python_factory(K, type_name, factory));
       }, "ctx"_a, "type_name"_a, "factory"_a, register_doc(K));
-  m.def(("get_python_" + k).c_str(), [](PyContext& c, nb::handle h) {
-        return python_object(c.ctx, K, handle_of<K>(h, ("get_python_" + std::string(kind_title(K))).c_str()));
-      }, "ctx"_a, "handle"_a, "The live Python object of a Python component, or None for a C++ one.");
-  ctx_cls.def(("destroy_" + k).c_str(), [](PyContext& c, nb::handle h) { c.ctx.destroy(K, handle_of<K>(h, "destroy")); }, "handle"_a)
+  m.def(("get_python_" + k).c_str(), [](PyContext& c, nb::handle h) -> nb::object {
+        const ComponentHandle handle = handle_of<K>(h, ("get_python_" + std::string(kind_title(K))).c_str());
+        // the invalid handle names no Python object (a stale one raises, naming it)
+        if (handle == 0) return nb::none();
+        return python_object(c.ctx, K, handle);
+      }, "ctx"_a, "handle"_a, "The live Python object of a Python component; None for a C++ one or the invalid handle.\n"
+      "Raises superdex.physics.Error for a destroyed component.");
+  ctx_cls.def(("get_" + k).c_str(), [](nb::handle self, nb::handle h) {
+             return component_view(nb::borrow(self), K, handle_of<K>(h, ("get_" + std::string(kind_title(K))).c_str()));
+           }, "handle"_a, "The live component's view (ComponentBase subclass), or None for an invalid or stale handle.")
+      .def(("is_valid_" + k).c_str(), [](const PyContext& c, nb::handle h) {
+             return c.ctx.has_component(K, handle_of<K>(h, ("is_valid_" + std::string(kind_title(K))).c_str()));
+           }, "handle"_a, "True while the handle names a live component of this kind.")
+      .def(("destroy_" + k).c_str(), [](PyContext& c, nb::handle h) { c.ctx.destroy(K, handle_of<K>(h, "destroy")); }, "handle"_a)
       .def(("configure_" + k).c_str(), [](PyContext& c, nb::handle h, nb::handle params) {
              configure_component(c.ctx, K, handle_of<K>(h, ("configure_" + std::string(kind_title(K))).c_str()), params);
            }, "handle"_a, "params"_a,
@@ -184,7 +172,38 @@ void def_kind(nb::module_& m, nb::class_<PyContext>& ctx_cls, nb::class_<PyBot>&
            return typed<K>(K == ComponentKind::Controller ? rec.controllers : K == ComponentKind::Sensor ? rec.sensors : rec.actuators);
          })
       .def(("find_" + k + "s_by_name").c_str(), [](const PyBot& b, const std::string& n) { return bot_find<K>(b, n, false); })
-      .def(("find_" + k + "s_by_type").c_str(), [](const PyBot& b, const std::string& t) { return bot_find<K>(b, t, true); });
+      .def(("find_" + k + "s_by_type").c_str(), [](const PyBot& b, const std::string& t) { return bot_find<K>(b, t, true); })
+      .def(("get_" + k).c_str(), [](const PyBot& b, nb::handle h) {
+             const std::string what = "Bot.get_" + std::string(kind_title(K));
+             const ComponentHandle handle = handle_of<K>(h, what.c_str());
+             const auto& rec = b.ctx().bot(b.handle);
+             const auto& list = K == ComponentKind::Controller ? rec.controllers : K == ComponentKind::Sensor ? rec.sensors : rec.actuators;
+             // only this bot's components: a handle of another bot is a mistake worth reporting
+             if (std::find(list.begin(), list.end(), handle) == list.end() && b.ctx().has_component(K, handle) &&
+                 b.ctx().component(K, handle).attached_bot != b.handle)
+               throw Error(what + ": " + kind_title(K) + " " + std::to_string(handle) + " does not belong to bot '" + rec.prefab.name() + "'");
+             return component_view(b.context, K, handle);
+           }, "handle"_a, "The view of one of this bot's components, or None for an invalid or stale handle.");
+}
+
+// The link actor of the bot's link named `link` (Error naming the bot's links otherwise).
+ActorHandle link_actor_by_name(const robotics::BotRecord& rec, const std::string& link, const std::string& where) {
+  const auto& links = rec.prefab.articulation.links;
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i].name == link) return rec.scene.nested_link_actors(rec.articulation)[i];
+  std::string names;
+  for (const auto& l : links) names += (names.empty() ? "" : ", ") + l.name;
+  throw Error(where + ": bot '" + rec.prefab.name() + "' has no link '" + link + "' (links: " + names + ")");
+}
+
+// The name of the bot link a component is attached to, or None (no actor, or not one of its links).
+nb::object link_name_of(const PyBot& b, ComponentKind kind, ComponentHandle h) {
+  const auto& rec = b.ctx().bot(b.handle);
+  const ActorHandle actor = b.ctx().component(kind, h).actor;
+  const auto links = rec.scene.nested_link_actors(rec.articulation);
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i] == actor) return nb::str(rec.prefab.articulation.links[i].name.c_str());
+  return nb::none();
 }
 
 // A component created through a bot: attached to `actor` (the bot's articulation for a
@@ -194,7 +213,9 @@ ComponentHandle bot_create(PyBot& b, ComponentKind kind, const std::string& type
   Context& ctx = b.ctx();
   auto& rec = ctx.bot(b.handle);
   const std::string what = std::string("create_") + kind_title(kind) + "('" + name + "')";
-  const ActorHandle target = kind == ComponentKind::Controller ? rec.articulation : actor_or_zero(actor, (what + ": actor").c_str());
+  const ActorHandle target = kind == ComponentKind::Controller ? rec.articulation
+                             : nb::isinstance<nb::str>(actor)    ? link_actor_by_name(rec, nb::cast<std::string>(actor), what + ": link")
+                                                                 : actor_or_zero(actor, (what + ": actor").c_str());
   ComponentArgs args{rec.scene, target, creation_params(params, rec.prefab.base_dir, what + ": params"), &rec.prefab};
   const ComponentHandle h = ctx.create(kind, type_name, args, name, b.handle);
   auto& bot = ctx.bot(b.handle);
@@ -208,12 +229,13 @@ void export_robotics(nb::module_& parent) {
   nb::module_ m = parent.def_submodule("robotics", "SuperDex robotics SDK");
   export_prefab(m);
   export_scene_batch(m);
-  bind_handle<ComponentKind::Controller>(m, "ControllerHandle");
-  bind_handle<ComponentKind::Sensor>(m, "SensorHandle");
-  bind_handle<ComponentKind::Actuator>(m, "ActuatorHandle");
-  m.attr("EFFORT_UNBOUNDED") = -1;
+  export_robotics_handles(m);
+  export_component_params(m);
+  export_component_views(m);
+  // BotJointPrefab.effort_limit below zero: no bound on the joint's effort
+  m.attr("EFFORT_UNBOUNDED") = -1.0;
 
-  nb::class_<PyContext> ctx_cls(m, "Context", "Registries of component types, and every bot and component.");
+  nb::class_<PyContext> ctx_cls(m, "RoboticsContext", "Registries of component types, and every bot and component.");
   ctx_cls
       .def("create_controller", [](PyContext& c, const std::string& type_name, nb::handle prefab, nb::handle actor, const std::string& name,
                                    nb::handle params) {
@@ -221,7 +243,7 @@ void export_robotics(nb::module_& parent) {
              args.actor = actor_or_zero(actor, "create_controller: actor");
              if (!actor.is_none()) args.scene = nb::cast<Actor&>(actor).scene;
              if (!prefab.is_none()) args.prefab = &nb::cast<BotPrefab&>(prefab);
-             args.params = creation_params(params, "", "create_controller('" + name + "'): params");
+             args.params = verbatim_params(params, "create_controller('" + name + "'): params");
              return ControllerHandle{c.ctx.create(ComponentKind::Controller, type_name, args, name)};
            }, "type_name"_a, "prefab"_a.none(), "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
            "Creates a controller; params (C++ built-ins): a dict, inline JSON or a JSON file path.")
@@ -229,17 +251,17 @@ void export_robotics(nb::module_& parent) {
              ComponentArgs args;
              args.actor = actor_or_zero(actor, "create_sensor: actor");
              if (!actor.is_none()) args.scene = nb::cast<Actor&>(actor).scene;
-             args.params = creation_params(params, "", "create_sensor('" + name + "'): params");
+             args.params = verbatim_params(params, "create_sensor('" + name + "'): params");
              return SensorHandle{c.ctx.create(ComponentKind::Sensor, type_name, args, name)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "param_args"_a.none() = "")
       .def("create_actuator", [](PyContext& c, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              if (actor.is_none()) throw Error("create_actuator('" + name + "'): an actuator needs an actor (a link)");
              ComponentArgs args;
              args.actor = actor_handle_of(actor, "create_actuator: actor");
              args.scene = nb::cast<Actor&>(actor).scene;
-             args.params = creation_params(params, "", "create_actuator('" + name + "'): params");
+             args.params = verbatim_params(params, "create_actuator('" + name + "'): params");
              return ActuatorHandle{c.ctx.create(ComponentKind::Actuator, type_name, args, name)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "param_args"_a.none() = "")
       .def("reset_components", [](PyContext& c) { c.ctx.reset_components(); },
            "Calls reset() on every component and restarts the pipelines' timing.")
       .def("get_sensor_signal", [](const PyContext& c, nb::handle h) {
@@ -250,7 +272,26 @@ void export_robotics(nb::module_& parent) {
       .def("set_pipeline_enabled", [](PyContext& c, const PyBot& b, nb::handle enabled) {
              c.ctx.set_pipeline_mode(b.handle, pipeline_mode(enabled));
            }, "bot"_a, "enabled"_a.none(), pipeline_doc)
-      .def("is_pipeline_active", [](const PyContext& c, const PyBot& b) { return c.ctx.is_pipeline_active(b.handle); }, "bot"_a);
+      .def("is_pipeline_active", [](const PyContext& c, const PyBot& b) { return c.ctx.is_pipeline_active(b.handle); }, "bot"_a)
+      .def("get_bot", [](nb::handle self, nb::handle h) -> nb::object {
+             const BotHandle b = bot_handle_of(h, "get_bot: handle");
+             if (!nb::cast<PyContext&>(self).ctx.has_bot(b)) return nb::none();
+             return nb::cast(PyBot{nb::borrow(self), b});
+           }, "handle"_a, "The bot, or None for an invalid handle or a destroyed bot.")
+      .def("is_valid_bot", [](const PyContext& c, nb::handle h) { return c.ctx.has_bot(bot_handle_of(h, "is_valid_bot: handle")); },
+           "handle"_a)
+      .def("get_bot_containing_actor", [](nb::handle self, nb::handle actor) -> nb::object {
+             if (actor.is_none()) return nb::none();
+             const Actor& a = object_of<Actor>(actor, "get_bot_containing_actor: actor", "a superdex.physics.Actor or None");
+             const BotHandle b = nb::cast<PyContext&>(self).ctx.bot_of_actor(a.scene, a.handle);
+             if (b == 0) return nb::none();
+             return nb::cast(PyBot{nb::borrow(self), b});
+           }, "actor"_a.none(), "The bot whose articulation is `actor` or owns the link `actor`; None otherwise.")
+      .def("find_bots_by_name", [](const PyContext& c, const std::string& name) {
+             nb::list out;
+             for (BotHandle b : c.ctx.find_bots_by_name(name)) out.append(nb::cast(BotHandleValue(b)));
+             return out;
+           }, "name"_a, "Handles of the live bots named `name`, in creation order.");
 
   nb::class_<PyBot> bot_cls(m, "Bot", "A robot built by create_bot: its articulation and components.");
   bot_cls
@@ -259,17 +300,30 @@ void export_robotics(nb::module_& parent) {
              return Actor{rec.scene, rec.articulation};
            })
       .def("get_name", [](const PyBot& b) { return b.ctx().bot(b.handle).prefab.name(); })
-      .def("get_handle", [](const PyBot& b) { return b.handle; })
+      .def("get_handle", [](const PyBot& b) { return BotHandleValue(b.handle); })
+      .def("get_scene", [](const PyBot& b) -> nb::object {
+             const Scene& scene = b.ctx().bot(b.handle).scene;
+             if (!physics::scene_exists(scene.handle())) return nb::none();
+             return nb::cast(scene);
+           }, "The scene the bot lives in, or None once it was destroyed.")
       .def("get_bot_prefab", [](const PyBot& b) { return b.ctx().bot(b.handle).prefab; }, "A copy of the prefab it was built from.")
       .def("create_controller", [](PyBot& b, const std::string& type_name, const std::string& name, nb::handle params) {
              return ControllerHandle{bot_create(b, ComponentKind::Controller, type_name, nb::none(), name, params)};
            }, "type_name"_a, "name"_a = "", "params"_a.none() = "")
       .def("create_sensor", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              return SensorHandle{bot_create(b, ComponentKind::Sensor, type_name, actor, name, params)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
+           "Creates a sensor on one of the bot's links: `actor` is the link actor or the link's name.")
       .def("create_actuator", [](PyBot& b, const std::string& type_name, nb::handle actor, const std::string& name, nb::handle params) {
              return ActuatorHandle{bot_create(b, ComponentKind::Actuator, type_name, actor, name, params)};
-           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "")
+           }, "type_name"_a, "actor"_a.none(), "name"_a = "", "params"_a.none() = "",
+           "Creates a actuator on one of the bot's links: `actor` is the link actor or the link's name.")
+      .def("get_sensor_link_name", [](const PyBot& b, nb::handle h) {
+             return link_name_of(b, ComponentKind::Sensor, handle_of<ComponentKind::Sensor>(h, "get_sensor_link_name"));
+           }, "handle"_a, "The name of the link the sensor is attached to, or None.")
+      .def("get_actuator_link_name", [](const PyBot& b, nb::handle h) {
+             return link_name_of(b, ComponentKind::Actuator, handle_of<ComponentKind::Actuator>(h, "get_actuator_link_name"));
+           }, "handle"_a, "The name of the link the actuator is attached to, or None.")
       .def("reset", [](PyBot& b) { b.ctx().reset_components(b.handle); },
            "Calls reset() on the bot's components and restarts its pipeline's timing.")
       .def("set_pipeline_enabled", [](PyBot& b, nb::handle enabled) { b.ctx().set_pipeline_mode(b.handle, pipeline_mode(enabled)); },

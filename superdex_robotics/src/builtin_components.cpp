@@ -3,6 +3,8 @@
 #include "superdex/robotics/builtin_components.h"
 
 #include "builtins.h"
+#include "superdex/robotics/controller_basic_jsc_pd.h"
+#include "superdex/robotics/sensor_camera.h"
 
 namespace superdex::robotics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -10,7 +12,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 void register_builtin_components(Context& ctx) {
   using K = ComponentKind;
   ctx.register_type(K::Controller, "JOINT_COMMAND", make_joint_command_controller);
-  ctx.register_type(K::Controller, "BASIC_JSC_PD", make_joint_pd_controller);
+  ctx.register_type(K::Controller, ControllerBasicJscPd::kTypeName, make_joint_pd_controller);
   ctx.register_type(K::Controller, "BASIC_OSC_PD", make_osc_pd_controller);
   ctx.register_type(K::Controller, "ARTICULATED_POSE", make_articulated_pose_controller);
   ctx.register_type(K::Controller, "HYBRID_FORCE_VELOCITY", make_hybrid_force_velocity_controller);
@@ -24,6 +26,7 @@ void register_builtin_components(Context& ctx) {
   ctx.register_type(K::Sensor, "JOINT_STATE", make_joint_state_sensor);
   ctx.register_type(K::Sensor, "FORCE_TORQUE", make_force_torque_sensor);
   ctx.register_type(K::Sensor, "IMU", make_imu_sensor);
+  ctx.register_type(K::Sensor, CameraSensor::kTypeName, make_camera_sensor);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -53,6 +53,11 @@ void Component::configure(const std::string&) {
   throw Error("this component has no run-time parameters (configure is not supported)");
 }
 
+void Component::configure_from_scene_entry(const std::string& params, const std::string& init_args) {
+  for (const std::string* args : {&params, &init_args})
+    if (args->find_first_not_of(" \t\r\n") != std::string::npos) configure(*args);
+}
+
 void Component::set_rate(double rate_hz) {
   if (!(rate_hz >= 0) || !std::isfinite(rate_hz))
     throw Error("rate must be a finite number of Hz >= 0 (0: every step), got " + std::to_string(rate_hz));

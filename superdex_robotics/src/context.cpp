@@ -129,8 +129,15 @@ ComponentHandle Context::create(ComponentKind kind, const std::string& type_name
   int dof = -1;
   if (kind == ComponentKind::Actuator && impl->takes_part_in_pipeline()) dof = single_dof_of_link(args.scene, args.actor, what);
   const ComponentHandle h = physics::next_handle();
+  // a component created on one of a bot's actors belongs to that bot: listed with its
+  // components and destroyed with it, however it was created
+  const BotHandle owner = bot != 0 ? bot : attached;
   components_[index(kind)].emplace(
-      h, ComponentRecord{kind, type_name, name, args.scene, args.actor, bot, std::move(impl), attached, dof});
+      h, ComponentRecord{kind, type_name, name, args.scene, args.actor, owner, std::move(impl), attached, dof, args.parent_from_sensor});
+  if (bot == 0 && attached != 0) {
+    BotRecord& b = bots_.at(attached);
+    (kind == ComponentKind::Controller ? b.controllers : kind == ComponentKind::Sensor ? b.sensors : b.actuators).push_back(h);
+  }
   if (attached != 0) sync_pipeline(attached);
   return h;
 }
@@ -160,6 +167,37 @@ const ComponentRecord& Context::component(ComponentKind kind, ComponentHandle ha
     throw Error(std::string(component_kind_name(kind)) + " " + std::to_string(handle) +
                 " does not exist (destroyed, or the handle is of another kind)");
   return it->second;
+}
+
+bool Context::has_component(ComponentKind kind, ComponentHandle handle) const {
+  return components_[index(kind)].count(handle) > 0;
+}
+
+void Context::set_parent_from_sensor(ComponentHandle sensor, const Transform& parent_from_sensor) {
+  component(ComponentKind::Sensor, sensor);  // throws for an unknown sensor
+  components_[index(ComponentKind::Sensor)].at(sensor).parent_from_sensor = parent_from_sensor;
+}
+
+Transform Context::sensor_world_transform(ComponentHandle sensor) const {
+  const ComponentRecord& rec = component(ComponentKind::Sensor, sensor);
+  // no actor: the scene root is the parent and stands at the world origin
+  if (rec.actor == 0) return rec.parent_from_sensor;
+  if (!physics::scene_exists(rec.scene.handle()) || !rec.scene.has_actor(rec.actor))
+    throw Error("sensor '" + rec.name + "': its actor " + std::to_string(rec.actor) + " no longer exists");
+  return rec.scene.root_transform(rec.actor) * rec.parent_from_sensor;
+}
+
+void Context::configure_from_scene_entry(ComponentKind kind, ComponentHandle handle, const std::string& params,
+                                         const std::string& init_args, const std::string& base_dir) {
+  const ComponentRecord& rec = component(kind, handle);
+  const std::string what = std::string("configure_from_scene_entry(") + component_kind_name(kind) + " '" + rec.name + "', type " + rec.type + ")";
+  const std::string p = resolve_params(params, base_dir, what + ": param_args");
+  const std::string i = resolve_params(init_args, base_dir, what + ": init_args");
+  try {
+    rec.impl->configure_from_scene_entry(p, i);
+  } catch (const Error& e) {
+    throw Error(what + ": " + e.what());
+  }
 }
 
 std::vector<ComponentHandle> Context::find_by_name(ComponentKind kind, const std::string& name) const {
@@ -301,6 +339,13 @@ BotRecord& Context::bot(BotHandle handle) {
 std::vector<BotHandle> Context::bots() const {
   std::vector<BotHandle> out;
   for (const auto& [h, b] : bots_) out.push_back(h);
+  return out;
+}
+
+std::vector<BotHandle> Context::find_bots_by_name(const std::string& name) const {
+  std::vector<BotHandle> out;
+  for (const auto& [h, b] : bots_)
+    if (b.prefab.name() == name) out.push_back(h);
   return out;
 }
 

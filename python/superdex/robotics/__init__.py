@@ -8,16 +8,34 @@ from superdex._native import module as _m
 
 _r = _m.robotics
 
-Context = _r.Context
+RoboticsContext = _r.RoboticsContext
+Context = RoboticsContext  # the name this package used first
 Bot = _r.Bot
 BotPrefab = _r.BotPrefab
 LinkDesc = _r.LinkDesc
 JointDesc = _r.JointDesc
+# the SuperDex API's names of the bot description's parts
+BotJointPrefab = JointDesc
+BotLinkPrefab = _r.BotLinkPrefab
+BotSensorPrefab = _r.BotSensorPrefab
+BotActuatorPrefab = _r.BotActuatorPrefab
 ComponentDecl = _r.ComponentDecl
+# handles: 0 (a default-constructed handle) is invalid
+RoboticsHandle = _r.RoboticsHandle
+BotHandle = _r.BotHandle
 ControllerHandle = _r.ControllerHandle
 SensorHandle = _r.SensorHandle
 ActuatorHandle = _r.ActuatorHandle
 EFFORT_UNBOUNDED = _r.EFFORT_UNBOUNDED
+# views of live components (RoboticsContext.get_controller / get_sensor / get_actuator)
+ComponentBase = _r.ComponentBase
+ControllerBase = _r.ControllerBase
+SensorBase = _r.SensorBase
+ActuatorBase = _r.ActuatorBase
+ControllerBasicJscPd = _r.ControllerBasicJscPd
+ControllerBasicJscPdParams = _r.ControllerBasicJscPdParams
+CameraSensor = _r.CameraSensor
+CameraSensorParams = _r.CameraSensorParams
 # batched stepping of scenes of one model (scene_batch.h; superdex.lab builds on it)
 SceneBatch = _r.SceneBatch
 SceneBatchSpec = _r.SceneBatchSpec
@@ -76,5 +94,8 @@ def load_bot_prefab_from_file(path):
 load_bot_prefab_from_urdf_file = _r.load_bot_prefab_from_urdf_file
 create_bot = _r.create_bot
 destroy_bot = _r.destroy_bot
+
+# bot scenes: a base scene, bots with controllers, scene-level sensors (bot_scene.py)
+from superdex.robotics.bot_scene import BotScene, load_bot_scene  # noqa: E402
 
 __all__ = [name for name in dir() if not name.startswith("_")]

@@ -23,6 +23,29 @@ struct ComponentDecl {
   Transform parent_from_sensor;  ///< sensors: pose in the link frame
 };
 
+/// A sensor declared on a link, as the SuperDex API names it (one entry of BotLinkPrefab::sensors).
+struct BotSensorPrefab {
+  std::string type;              ///< registered sensor type, e.g. "SENSOR_CAMERA"
+  std::string name;              ///< instance name
+  Transform parent_from_sensor;  ///< the sensor frame in the link frame
+  std::string params;            ///< inline JSON, a JSON file path relative to the bot file, or empty
+  bool operator==(const BotSensorPrefab&) const = default;
+};
+
+/// An actuator declared on a link (one entry of BotLinkPrefab::actuators).
+struct BotActuatorPrefab {
+  std::string type;    ///< registered actuator type
+  std::string name;    ///< instance name
+  std::string params;  ///< inline JSON, a JSON file path relative to the bot file, or empty
+  bool operator==(const BotActuatorPrefab&) const = default;
+};
+
+/// One link with the components declared on it: how a link is added to a BotPrefab in code.
+struct BotLinkPrefab : physics::LinkDesc {
+  std::vector<BotSensorPrefab> sensors;
+  std::vector<BotActuatorPrefab> actuators;
+};
+
 struct BotPrefab {
   ArticulationDesc articulation;
   /// Per link (same length as articulation.links).
@@ -32,6 +55,13 @@ struct BotPrefab {
 
   const std::string& name() const { return articulation.name; }
 };
+
+/// Link `index` of `prefab` with the components declared on it (throws for a bad index).
+BotLinkPrefab link_prefab(const BotPrefab& prefab, int index);
+/// Appends `link`, the joint attaching it to its parent, and the components declared on it.
+/// Throws superdex::Error (naming the field) for a parent index that is not an earlier link, a
+/// root that is not the first link, or a component without a type.
+void add_link(BotPrefab& prefab, const BotLinkPrefab& link, const physics::JointDesc& joint);
 
 /// Reads a `.superdex_bot` file. Mesh shapes named by links are loaded (relative to the file)
 /// with their shapeScale baked in. Throws superdex::Error naming the file, the JSON path and

@@ -26,6 +26,8 @@
 ///   IDEAL_PD, DC_MOTOR, VELOCITY_SERVO, DELAYED
 /// Sensors (actor: a link)
 ///   CONTACT_FORCE, JOINT_STATE, FORCE_TORQUE, IMU
+/// Sensors (actor: any actor, or none)
+///   SENSOR_CAMERA     intrinsics and mounting for renderers; no signal (sensor_camera.h)
 /// The parameters and conventions of each are documented in its source file
 /// (src/controller_*.cpp, src/actuator_*.cpp, src/sensor_*.cpp).
 

@@ -76,6 +76,10 @@ class Component {
   /// value. Throws superdex::Error for unknown keys or bad values, or if the component has no
   /// run-time parameters.
   virtual void configure(const std::string& json_params);
+  /// Configures the component from a scene file's entry: `params` and `init_args` are inline
+  /// JSON or absolute JSON file paths, each possibly empty ("use the defaults"). The default
+  /// applies each non-empty one through configure(); types with a params struct override it.
+  virtual void configure_from_scene_entry(const std::string& params, const std::string& init_args);
   /// True when the bot's pipeline runs this component (it implements a pipeline interface).
   virtual bool takes_part_in_pipeline() const { return false; }
   /// Rate (Hz) at which the pipeline runs it; 0 runs it every step.

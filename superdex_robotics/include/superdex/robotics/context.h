@@ -22,7 +22,8 @@
 /// While a pipeline with a controller or an actuator is active it OWNS its articulation's
 /// external generalized forces: it replaces them every step, and clears them when it stops.
 /// Components attached to the bot are those created by create_bot or through the bot, and
-/// those created on the context whose actor is the bot's articulation or one of its links.
+/// those created on the context whose actor is the bot's articulation or one of its links; all
+/// of them belong to the bot (listed among its components, destroyed with it).
 ///
 /// Lifetimes: the pipeline's scene callbacks are cancelled when the pipeline stops, when the
 /// bot is destroyed and when the context is destroyed (if the scene still exists); a scene
@@ -59,7 +60,8 @@ struct ComponentArgs {
   /// The actor the component is attached to: a link actor (sensors, actuators) or an
   /// articulation (controllers); 0 for an actor-less sensor.
   ActorHandle actor = 0;
-  /// Parameters: inline JSON, an absolute path to a JSON file, or empty.
+  /// Parameters: inline JSON, a path to a JSON file (bot files: made absolute against the bot
+  /// file's folder; a relative path is read from the working directory), or empty.
   std::string params;
   /// The prefab of the bot the component belongs to, when known (create_bot, the bot's
   /// create_* methods, or a context-level component whose actor belongs to a bot).
@@ -88,10 +90,13 @@ struct ComponentRecord {
   std::string type, name;
   Scene scene{0};
   ActorHandle actor = 0;
-  BotHandle bot = 0;           ///< the bot that owns it, or 0
+  BotHandle bot = 0;           ///< the bot that owns it (created through it or on its actors), or 0
   std::unique_ptr<Component> impl;
   BotHandle attached_bot = 0;  ///< the bot whose pipeline runs it (owner, or by actor), or 0
   int dof = -1;                ///< pipeline actuators: the DOF of its link's joint
+  /// Sensors: the sensor frame S in its parent frame (the actor's frame, or the world for an
+  /// actor-less sensor).
+  Transform parent_from_sensor;
 };
 
 struct BotRecord {
@@ -130,6 +135,18 @@ class Context {
                          const std::string& name, BotHandle bot = 0);
   void destroy(ComponentKind kind, ComponentHandle handle);
   const ComponentRecord& component(ComponentKind kind, ComponentHandle handle) const;
+  /// True while `handle` names a live component of `kind` (false for 0, stale or other kinds).
+  bool has_component(ComponentKind kind, ComponentHandle handle) const;
+  /// A sensor's pose in its parent frame (see ComponentRecord::parent_from_sensor).
+  void set_parent_from_sensor(ComponentHandle sensor, const Transform& parent_from_sensor);
+  /// World-from-sensor: the actor's world pose times parent_from_sensor, or parent_from_sensor
+  /// itself for an actor-less sensor (the scene root is the world). Throws superdex::Error when
+  /// the sensor's actor or scene no longer exists.
+  Transform sensor_world_transform(ComponentHandle sensor) const;
+  /// Applies a scene file's entry to a component (Component::configure_from_scene_entry);
+  /// `params` and `init_args` are resolved like ComponentArgs::params against `base_dir`.
+  void configure_from_scene_entry(ComponentKind kind, ComponentHandle handle, const std::string& params,
+                                  const std::string& init_args, const std::string& base_dir = "");
   std::vector<ComponentHandle> find_by_name(ComponentKind kind, const std::string& name) const;
   std::vector<ComponentHandle> find_by_type(ComponentKind kind, const std::string& type_name) const;
   /// Components of `kind` run by `bot`'s pipeline, in creation order.
@@ -152,6 +169,10 @@ class Context {
   BotRecord& bot(BotHandle bot);
   bool has_bot(BotHandle bot) const { return bots_.count(bot) > 0; }
   std::vector<BotHandle> bots() const;
+  /// Bots whose prefab name is `name`, in creation order.
+  std::vector<BotHandle> find_bots_by_name(const std::string& name) const;
+  /// The bot whose articulation is `actor` or owns the link `actor`, or 0 (also for actor 0).
+  BotHandle bot_of_actor(const Scene& scene, ActorHandle actor) const;
 
   /// Sets how the bot's pipeline is switched on (see PipelineMode) and applies it now.
   void set_pipeline_mode(BotHandle bot, PipelineMode mode);
@@ -164,8 +185,6 @@ class Context {
     ComponentFactory factory;
     ArmatureContribution armature;
   };
-  // the bot whose articulation is `actor` or owns the link `actor`, or 0
-  BotHandle bot_of_actor(const Scene& scene, ActorHandle actor) const;
   // starts or stops the bot's pipeline as its mode and components ask; refreshes its members
   void sync_pipeline(BotHandle bot);
   void stop_pipeline(BotRecord& bot, bool clear_forces);
