@@ -2,6 +2,8 @@
 // frame), material, recentering, deformation gradients, surface nodes, boundary conditions and
 // elastic energy.
 
+#include <variant>
+
 #include "bind_actor.h"
 #include "bind_container.h"
 
@@ -54,6 +56,17 @@ void add_soft_methods(ActorClass& c) {
       .def("get_surface_mesh_node_normals_local", [](const Actor& a) {
              return ConstReals::owning(a.scene.surface_node_normals_local(a.handle));
            }, "Area-weighted unit normals of the surface nodes (actor frame). Needs SURFACE_NODE_NORMALS.")
+      .def("query_nodes_in_volume_local", [](const Actor& a, nb::handle volume, bool boundary_only, nb::callable callback) {
+             std::variant<Aabb, Obb, Sphere> v;
+             if (Aabb* b = nullptr; nb::try_cast(volume, b, false) && b) v = *b;
+             else if (Obb* o = nullptr; nb::try_cast(volume, o, false) && o) v = *o;
+             else if (Sphere* s = nullptr; nb::try_cast(volume, s, false) && s) v = *s;
+             else throw Error("query_nodes_in_volume_local: volume: expected an Aabb, Obb or Sphere (actor frame)");
+             for (const auto& [index, p] : a.scene.nodes_in_volume_local(a.handle, v, boundary_only)) callback(index, p);
+           }, "volume"_a, "boundary_only"_a, "callback"_a,
+           "Calls callback(index, local position) for each node inside volume (Aabb, Obb or Sphere, actor frame). boundary_only\n"
+           "False: every node of a soft actor (needs NODE_POSITIONS); True: surface nodes of a soft actor (needs\n"
+           "SURFACE_NODE_POSITIONS) or of a rigid mesh shape, indexed as get_mesh().")
       .def("get_elastic_energy", [](const Actor& a) { return a.scene.elastic_energy(a.handle); },
            "Elastic energy relative to the rest shape (J). Needs ELASTIC_ENERGY.")
       .def("get_boundary_condition_dof_indices", [](const Actor& a) {

@@ -292,6 +292,16 @@ void export_values(nb::module_& m) {
       .def("__deepcopy__", [](const Aabb& a, nb::handle) { return Aabb(a); }, "memo"_a)
       .def("__getstate__", [](const Aabb& a) { return nb::make_tuple(a.min, a.max); })
       .def("__setstate__", [](Aabb& self, nb::tuple s) { new (&self) Aabb{nb::cast<Real3>(s[0]), nb::cast<Real3>(s[1])}; });
+  nb::class_<Obb>(m, "Obb", "An oriented box: transform places its centre and axes in the parent frame; half extents (m).")
+      .def(nb::init<>())
+      .def("__init__", [](Obb* self, const TransformRT& transform, const Real3& half_extents) { new (self) Obb{transform, half_extents}; },
+           "transform"_a, "half_extents"_a)
+      .def("get_center", &Obb::center)
+      .def("get_half_extents", [](const Obb& o) { return o.half_extents; })
+      .def("get_size", &Obb::size)
+      .def("contains", &Obb::contains, "point"_a)
+      .def("__repr__", [](const Obb& o) { return "Obb(center=" + vector_text(o.center()) + ", half_extents=" + vector_text(o.half_extents) + ")"; })
+      .def("__str__", [](const Obb& o) { return "Obb(center=" + vector_text(o.center()) + ", half_extents=" + vector_text(o.half_extents) + ")"; });
 }
 
 }  // namespace superdex::python

@@ -234,6 +234,39 @@ std::vector<real> Scene::surface_node_positions_local(ActorHandle h) const {
   return out;
 }
 
+std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, const std::variant<Aabb, Obb, Sphere>& volume,
+                                                                bool boundary_only) const {
+  const char* what = "query_nodes_in_volume_local";
+  SceneData& s = scene_data(handle_);
+  const auto inside = [&](const Real3& p) { return std::visit([&](const auto& v) { return v.contains(p); }, volume); };
+  std::vector<std::pair<int, Real3>> out;
+  ActorRef r = lookup(s, h, what);
+  if (!r.soft) {
+    // a rigid body's nodes are its mesh shape's surface nodes, fixed in its frame
+    const bool rigid = r.link >= 0 || r.articulation->is_rigid;
+    const auto& shape = rigid ? r.articulation->links[std::max(r.link, 0)].shape : nullptr;
+    if (!boundary_only || !shape || !shape->surface)
+      throw Error(std::string(what) + ": " + describe(h) +
+                  (boundary_only ? " has no mesh surface (primitive shapes and whole articulations have no nodes)"
+                                 : " is not a soft actor: boundary_only=False needs a soft actor's nodes"));
+    const std::vector<real>& c = shape->surface->coordinates;
+    for (size_t i = 0; 3 * i + 2 < c.size(); ++i)
+      if (const Real3 p(c[3 * i], c[3 * i + 1], c[3 * i + 2]); inside(p)) out.emplace_back(static_cast<int>(i), p);
+    return out;
+  }
+  const SoftBody& b = *r.soft;
+  require_query(s, h, boundary_only ? QueryType::SurfaceNodePositions : QueryType::NodePositions, what);
+  const Transform X_LW = b.X_WL.inverse();
+  auto visit = [&](int i) {
+    if (const Real3 p = X_LW * Vec3(b.state.x.segment<3>(3 * i)); inside(p)) out.emplace_back(i, p);
+  };
+  if (boundary_only)
+    for (int i : b.model.surface_nodes) visit(i);
+  else
+    for (int i = 0; 3 * i < b.state.x.size(); ++i) visit(i);
+  return out;
+}
+
 std::vector<real> Scene::surface_node_normals_local(ActorHandle h) const {
   const SceneData& s = scene_data(handle_);
   const SoftBody& b = soft_of(const_cast<SceneData&>(s), h, "get_surface_mesh_node_normals_local");

@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 #include <span>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "superdex/physics/shape_meshes.h"
@@ -330,6 +332,12 @@ class Scene {
   std::vector<real> elements_deformation_gradient(ActorHandle soft) const;
   /// Nodes of the compact surface mesh (Scene::surface_mesh order). Need SurfaceNodePositions/Normals.
   std::vector<real> surface_node_positions_local(ActorHandle soft) const;
+  /// The nodes inside a volume given in the actor's local frame (m), as (index, local position):
+  /// boundary_only false: every node of a soft actor (index in its mesh; needs NodePositions);
+  /// true: the surface nodes of a soft actor (mesh index; needs SurfaceNodePositions) or of a
+  /// rigid actor's mesh shape (index in its compact surface, Actor.get_mesh order).
+  std::vector<std::pair<int, Real3>> nodes_in_volume_local(ActorHandle actor, const std::variant<Aabb, Obb, Sphere>& volume,
+                                                           bool boundary_only) const;
   std::vector<real> surface_node_normals_local(ActorHandle soft) const;
   /// Boundary conditions by DOF (3 per node: its world position, all three together) or by node;
   /// `permanent` ones survive clear_boundary_conditions(). The latest entry of a DOF wins.

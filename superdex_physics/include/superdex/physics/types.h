@@ -40,6 +40,8 @@ struct Aabb {
 struct Obb {
   TransformRT transform;
   Real3 half_extents = Real3::Zero();
+  Real3 center() const { return transform.translation; }
+  Real3 size() const { return 2 * half_extents; }
   bool contains(const Real3& p) const {
     const Real3 p_B = transform.inverse() * p;
     return (p_B.array().abs() <= half_extents.array()).all();
