@@ -99,18 +99,16 @@ ShapeBake read_bake(nb::handle bake_scale, nb::handle bake_transform, const std:
   return bake;
 }
 
-// A MeshData or ModelData from the object itself or from its view.
-MeshData mesh_data_of(nb::handle h, const std::string& where) {
-  if (View<MeshData>* v = nullptr; nb::try_cast(h, v, false) && v) return *v->source;
-  MeshData* d = nullptr;
-  if (nb::try_cast(h, d, false) && d) return *d;
-  throw Error(where + ": expected a MeshData or MeshDataView");
-}
-ModelData model_data_of(nb::handle h, const std::string& where) {
-  if (View<ModelData>* v = nullptr; nb::try_cast(h, v, false) && v) return *v->source;
-  ModelData* d = nullptr;
-  if (nb::try_cast(h, d, false) && d) return *d;
-  throw Error(where + ": expected a ModelData or ModelDataView");
+// The argument `arg` (a T or its view), or T built from the keywords; not both. Errors name `where`.
+template <class T>
+T data_of(nb::handle arg, nb::kwargs kwargs, const char* arg_name, const std::string& type_name, const std::string& where) {
+  if (arg.is_none()) return nb::cast<T>(nb::type<T>()(**kwargs));
+  if (kwargs.size() > 0) throw Error(where + ": give either " + arg_name + " or its fields as keywords, not both");
+  try {
+    return *optional_of<T>(arg);
+  } catch (const nb::cast_error&) {
+    throw Error(where + ": " + arg_name + ": expected a " + type_name + " or " + type_name + "View");
+  }
 }
 
 }  // namespace
@@ -166,28 +164,14 @@ void export_meshes(nb::module_& m) {
         "A shape from the bytes of a file. format: MeshFileType (LEGACY, the default, tells HDF5 from JSON by its\n"
         "signature); bake_scale and bake_transform as load_shape_from_file.");
   m.def("create_mesh_shape", [](nb::handle mesh, nb::kwargs kwargs) {
-          std::optional<MeshData> data;
-          if (!mesh.is_none()) {
-            if (kwargs.size() > 0) throw Error("create_mesh_shape: give either mesh or its fields as keywords, not both");
-            data = mesh_data_of(mesh, "create_mesh_shape: mesh");
-          } else {
-            data = nb::cast<MeshData>(nb::module_::import_("superdex.physics").attr("MeshData")(**kwargs));
-          }
           ModelData model;
-          model.mesh = std::move(*data);
+          model.mesh = data_of<MeshData>(mesh, kwargs, "mesh", "MeshData", "create_mesh_shape");
           return create_model_shape(std::move(model), "create_mesh_shape");
         }, "mesh"_a.none() = nb::none(), "kwargs"_a,
         "A shape from a MeshData (or MeshDataView, or its fields as keywords): tetrahedra (4 nodes per element), triangles\n"
         "(3) or a polyline (2). The data is copied.");
   m.def("create_model_shape", [](nb::handle model, nb::kwargs kwargs) {
-          std::optional<ModelData> data;
-          if (!model.is_none()) {
-            if (kwargs.size() > 0) throw Error("create_model_shape: give either model or its fields as keywords, not both");
-            data = model_data_of(model, "create_model_shape: model");
-          } else {
-            data = nb::cast<ModelData>(nb::module_::import_("superdex.physics").attr("ModelData")(**kwargs));
-          }
-          return create_model_shape(std::move(*data), "create_model_shape");
+          return create_model_shape(data_of<ModelData>(model, kwargs, "model", "ModelData", "create_model_shape"), "create_model_shape");
         }, "model"_a.none() = nb::none(), "kwargs"_a,
         "The shape a ModelData (or ModelDataView, or its fields as keywords) describes: a mesh, a box, a plane or a\n"
         "sphere. The data is copied.");

@@ -44,15 +44,6 @@ std::vector<T> array_of(nb::handle h) {
   return nb::cast<std::vector<T>>(h);
 }
 
-// None, a View<T> or anything that converts to T.
-template <class T>
-std::optional<T> optional_of(nb::handle h) {
-  if (h.is_none()) return std::nullopt;
-  View<T>* v = nullptr;
-  if (nb::try_cast(h, v, false) && v) return *v->source;
-  return nb::cast<T>(h);
-}
-
 template <class T>
 std::optional<T> optional_value(nb::handle h) {
   if (h.is_none()) return std::nullopt;

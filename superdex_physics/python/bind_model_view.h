@@ -3,6 +3,7 @@
 // alive by what owns their source, and the helpers that make them.
 
 #include <memory>
+#include <optional>
 
 #include "bind_common.h"
 #include "superdex/physics/model.h"
@@ -46,6 +47,15 @@ struct View {
   }
   bool operator==(const View& o) const { return *source == *o.source; }
 };
+
+// None, a View<T> or anything that converts to T.
+template <class T>
+std::optional<T> optional_of(nb::handle h) {
+  if (h.is_none()) return std::nullopt;
+  View<T>* v = nullptr;
+  if (nb::try_cast(h, v, false) && v) return *v->source;
+  return nb::cast<T>(h);
+}
 
 // A view of data shared from C++ (null: a view of an empty Src); it keeps the data alive.
 template <class Src>

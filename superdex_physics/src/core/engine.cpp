@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cctype>
+#include <filesystem>
 #include <sstream>
 #include <mutex>
 #include <thread>
 
+#include "io/file_extension.h"
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/mesh_shape.h"
@@ -268,16 +269,9 @@ std::string cache_key(const std::string& path, const ShapeBake& bake) {
 // The model with the bake applied (scale, then rotation, then translation).
 ModelData baked(ModelData model, const ShapeBake& bake, const std::string& where) {
   if (bake.is_identity()) return model;
-  if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) throw Error(where + ": bake scale must be positive and finite");
-  if (!bake.translation.allFinite() || !bake.rotation.coeffs().allFinite() || bake.rotation.norm() < real(1e-6))
-    throw Error(where + ": bake transform must be finite with a non-zero rotation quaternion");
+  check_bake(bake, where);
   model::bake_transform(model, bake.scale, bake.rotation.normalized(), bake.translation);
   return model;
-}
-
-bool has_suffix(std::string path, const std::string& suffix) {
-  std::transform(path.begin(), path.end(), path.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -286,18 +280,18 @@ ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake)
   const std::string key = cache_key(path, bake);
   if (auto cached = cached_shape(key)) return register_shape(std::move(cached), "load_shape_from_file");
   std::shared_ptr<const ShapeData> data;
-  if (has_suffix(path, ".h5")) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".h5") {
     // tetrahedra make a tet-mesh shape (for soft actors); other .mochi.h5 files a rigid shape
     if (std::optional<TetMesh> tets = read_tet_mesh_file(path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
     else data = shape_from_geometry(load_shape_file(path, bake));
-  } else if (has_suffix(path, ".obj") || has_suffix(path, ".stl") || has_suffix(path, ".ply")) {
+  } else if (ext == ".obj" || ext == ".stl" || ext == ".ply") {
     data = shape_from_geometry(load_shape_file(path, bake));
-  } else if (has_suffix(path, ".json") || has_suffix(path, ".off")) {
+  } else if (ext == ".json" || ext == ".off") {
     data = shape_from_model(baked(model::load_from_file(path), bake, path), path);
   } else {
-    const size_t dot = path.find_last_of('.');
-    const std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos ? "" : path.substr(dot);
-    throw Error(path + ": unknown shape file extension '" + ext + "' (expected .mochi.json, .mochi.h5, .obj, .off, .stl or .ply)");
+    throw Error(path + ": unknown shape file extension '" + std::filesystem::path(path).extension().string() +
+                "' (expected .mochi.json, .mochi.h5, .obj, .off, .stl or .ply)");
   }
   cache_shape(key, data);
   return register_shape(std::move(data), "load_shape_from_file");
@@ -315,10 +309,7 @@ ShapeHandle load_shape_from_bytes(std::string_view bytes, MeshFileType type, con
 }
 
 ShapeMeshes shape_meshes(const ShapeHandle& shape, const std::string& where) {
-  const std::shared_ptr<const ShapeData> data = shape_data(shape, where);
-  // each pointer shares ownership of the whole shape data
-  auto part = [&](const std::optional<MeshData>& m) { return m ? std::shared_ptr<const MeshData>(data->model, &*m) : nullptr; };
-  return ShapeMeshes{part(data->model->mesh), data->surface, part(data->model->visual_mesh)};
+  return meshes_of(*shape_data(shape, where));
 }
 
 std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/file_extension.h"
 #include "io/mesh_io_detail.h"
 #include "superdex/physics/mesh_validation.h"
 
@@ -16,8 +17,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 using mesh_io::fail;
 
 TriangleMesh read_mesh_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".obj") return read_obj_file(path);
   if (ext == ".stl") return read_stl_file(path);
   if (ext == ".ply") return read_ply_file(path);

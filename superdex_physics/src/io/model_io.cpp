@@ -11,7 +11,9 @@
 
 #include <unistd.h>
 
+#include "io/file_extension.h"
 #include "io/mesh_io_detail.h"
+#include "shape/model_mesh.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_io.h"
 
@@ -71,30 +73,14 @@ std::optional<MaterialPsdStrategy> parse_psd_strategy(std::string_view text) {
 }
 
 ModelData from_triangle_mesh(const TriangleMesh& mesh) {
-  MeshData m;
-  m.nodes_per_element = 3;
-  m.coordinates.reserve(3 * mesh.vertices.size());
-  for (const Vec3& p : mesh.vertices) m.coordinates.insert(m.coordinates.end(), {p.x(), p.y(), p.z()});
-  m.connectivity.reserve(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles) m.connectivity.insert(m.connectivity.end(), t.begin(), t.end());
   ModelData data;
-  data.mesh = std::move(m);
+  data.mesh = mesh_data(mesh.vertices, mesh.triangles);
   return data;
 }
 
 }  // namespace model_io
 
 namespace {
-
-bool ends_with(const std::string& s, std::string_view suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 // The 8-byte HDF5 signature, at offset 0 (or at 512, 1024, ... after a user block).
 bool looks_like_hdf5(std::string_view data) {
@@ -136,7 +122,8 @@ ModelData read_h5_bytes(std::string_view data) {
 namespace model {
 
 ModelData load_from_file_unchecked(const std::string& path) {
-  if (ends_with(path, ".h5")) return model_io::read_h5(path);
+  // ".h5" as written (upper-case names are not HDF5 models)
+  if (path.ends_with(".h5")) return model_io::read_h5(path);
   const std::string ext = lower_extension(path);
   if (ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".off") return model_io::from_triangle_mesh(read_mesh_file(path));
   return model_io::read_json(mesh_io::read_bytes(path), path);

@@ -19,6 +19,14 @@ inline ActorRef lookup(SceneData& s, ActorHandle h, const char* what) {
   return it->second;
 }
 
+// The shape an actor was made from: a soft actor's, a rigid actor's or a link's; null for a whole
+// articulation or a link without one.
+inline std::shared_ptr<const ShapeData> actor_shape(const ActorRef& r) {
+  if (r.soft) return r.soft->shape;
+  if (r.link >= 0 || r.articulation->is_rigid) return r.articulation->links[std::max(r.link, 0)].shape;
+  return nullptr;
+}
+
 inline bool is_link_actor(const ActorRef& r) { return r.link >= 0 && !r.articulation->is_rigid; }
 
 inline void refuse_soft(const ActorRef& r, ActorHandle h, const char* what) {

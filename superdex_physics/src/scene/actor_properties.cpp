@@ -238,9 +238,7 @@ Aabb Scene::aabb_world(ActorHandle h) const {
 ShapeHandle Scene::reference_shape(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
   ActorRef r = lookup(s, h, "get_reference_shape");
-  std::shared_ptr<const ShapeData> data;
-  if (r.soft) data = r.soft->shape;
-  else if (r.link >= 0 || r.articulation->is_rigid) data = r.articulation->links[std::max(r.link, 0)].shape;
+  std::shared_ptr<const ShapeData> data = actor_shape(r);
   if (!data)
     throw Error("get_reference_shape: " + describe(h) +
                 (r.soft || r.link >= 0 || r.articulation->is_rigid ? " has no shape" : " is an articulated actor: its link actors have shapes"));
@@ -249,15 +247,13 @@ ShapeHandle Scene::reference_shape(ActorHandle h) const {
 
 ShapeMeshes Scene::meshes(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
-  ActorRef r = lookup(s, h, "get_mesh");
-  std::shared_ptr<const ShapeData> data;
-  if (r.soft) data = r.soft->shape;
-  else if (r.link >= 0 || r.articulation->is_rigid) data = r.articulation->links[std::max(r.link, 0)].shape;
+  const ActorRef r = lookup(s, h, "get_mesh");
+  const std::shared_ptr<const ShapeData> data = actor_shape(r);
   if (!data) return {};
-  auto visual = data->model->visual_mesh ? std::shared_ptr<const MeshData>(data->model, &*data->model->visual_mesh) : nullptr;
+  ShapeMeshes m = meshes_of(*data);
   // a soft body simulates the model's tetrahedra; a rigid body its surface
-  if (r.soft && data->model->mesh) return ShapeMeshes{std::shared_ptr<const MeshData>(data->model, &*data->model->mesh), data->surface, visual};
-  return ShapeMeshes{data->surface, data->surface, visual};
+  if (!r.soft || !m.mesh) m.mesh = m.surface;
+  return m;
 }
 
 std::vector<real> Scene::points_distance_to_surface(ActorHandle h, std::span<const Real3> points_W) const {

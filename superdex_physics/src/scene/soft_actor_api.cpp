@@ -243,8 +243,7 @@ std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, c
   ActorRef r = lookup(s, h, what);
   if (!r.soft) {
     // a rigid body's nodes are its mesh shape's surface nodes, fixed in its frame
-    const bool rigid = r.link >= 0 || r.articulation->is_rigid;
-    const auto& shape = rigid ? r.articulation->links[std::max(r.link, 0)].shape : nullptr;
+    const std::shared_ptr<const ShapeData> shape = actor_shape(r);
     if (!boundary_only || !shape || !shape->surface)
       throw Error(std::string(what) + ": " + describe(h) +
                   (boundary_only ? " has no mesh surface (primitive shapes and whole articulations have no nodes)"

@@ -2,10 +2,10 @@
 
 #include "superdex/physics/mesh_shape.h"
 
-#include <algorithm>
-#include <cctype>
+#include <filesystem>
 #include <sstream>
 
+#include "io/file_extension.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_validation.h"
@@ -34,7 +34,7 @@ MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const Sd
   return shape;
 }
 
-void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where) {
+void check_bake(const ShapeBake& bake, const std::string& where) {
   if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) {
     std::ostringstream os;
     os << where << ": bake scale must be positive and finite, got (" << bake.scale.x() << ", " << bake.scale.y() << ", " << bake.scale.z() << ")";
@@ -42,22 +42,20 @@ void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& whe
   }
   if (!bake.translation.allFinite() || !bake.rotation.coeffs().allFinite() || bake.rotation.norm() < real(1e-6))
     throw Error(where + ": bake transform must be finite with a non-zero rotation quaternion");
+}
+
+void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where) {
+  check_bake(bake, where);
   const Quat q = bake.rotation.normalized();
   for (Vec3& v : mesh.vertices) v = q * bake.scale.cwiseProduct(v) + bake.translation;
 }
 
 ShapeGeometry load_shape_file(const std::string& path, const ShapeBake& bake) {
-  std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  auto ends_with = [&](const std::string& suffix) {
-    return lower.size() >= suffix.size() && lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
-  };
-  if (ends_with(".h5")) return shape_from_mochi_h5(path, bake);
-  if (!ends_with(".obj") && !ends_with(".stl") && !ends_with(".ply")) {
-    const size_t dot = path.find_last_of('.');
-    const std::string ext = dot == std::string::npos || path.find('/', dot) != std::string::npos ? "" : path.substr(dot);
-    throw Error(path + ": unknown shape file extension '" + ext + "' (expected .mochi.h5, .obj, .stl or .ply)");
-  }
+  const std::string ext = lower_extension(path);
+  if (ext == ".h5") return shape_from_mochi_h5(path, bake);
+  if (ext != ".obj" && ext != ".stl" && ext != ".ply")
+    throw Error(path + ": unknown shape file extension '" + std::filesystem::path(path).extension().string() +
+                "' (expected .mochi.h5, .obj, .stl or .ply)");
   TriangleMesh mesh = read_mesh_file(path);
   if (!bake.is_identity()) bake_mesh(mesh, bake, path);
   return make_mesh_shape(std::move(mesh), path);

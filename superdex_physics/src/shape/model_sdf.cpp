@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "shape/model_mesh.h"
 #include "shape/sdf_internal.h"
 #include "shape/tet_mesh_surface.h"
 #include "superdex/physics/error.h"
@@ -23,21 +24,10 @@ TriangleMesh model_surface(const ModelData& d) {
     throw Error("bake_sdf: mesh.nodes_per_element: a signed-distance grid needs triangles (3) or tetrahedra (4), got " + std::to_string(k));
   if (m.coordinates.size() % 3 != 0 || m.connectivity.size() % static_cast<size_t>(k) != 0)
     throw Error("bake_sdf: the mesh's coordinates or connectivity are incomplete (see model.validate)");
-  std::vector<Vec3> nodes(static_cast<size_t>(m.num_nodes()));
-  for (size_t i = 0; i < nodes.size(); ++i) nodes[i] = Vec3(m.coordinates[3 * i], m.coordinates[3 * i + 1], m.coordinates[3 * i + 2]);
   for (int node : m.connectivity)
     if (node < 0 || node >= m.num_nodes()) throw Error("bake_sdf: mesh.connectivity: node " + std::to_string(node) + " out of range");
-  if (k == 3) {
-    TriangleMesh t;
-    t.vertices = std::move(nodes);
-    for (size_t e = 0; e < m.connectivity.size(); e += 3) t.triangles.push_back({m.connectivity[e], m.connectivity[e + 1], m.connectivity[e + 2]});
-    return t;
-  }
-  TetMesh tets;
-  tets.nodes = std::move(nodes);
-  for (size_t e = 0; e < m.connectivity.size(); e += 4)
-    tets.tets.push_back({m.connectivity[e], m.connectivity[e + 1], m.connectivity[e + 2], m.connectivity[e + 3]});
-  return tet_boundary_mesh(tets);
+  if (k == 3) return TriangleMesh{mesh_nodes(m), mesh_elements<3>(m)};
+  return tet_boundary_mesh(TetMesh{mesh_nodes(m), mesh_elements<4>(m), {}, {}});
 }
 
 // The reference length of the resolution mode (1 for Explicit: resolution_delta is in metres).

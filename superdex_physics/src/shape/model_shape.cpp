@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "shape/model_mesh.h"
 #include "shape/shape_data.h"
 #include "shape/tet_mesh_surface.h"
 #include "superdex/physics/error.h"
@@ -12,31 +13,6 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
-
-std::vector<Vec3> nodes_of(const MeshData& mesh) {
-  std::vector<Vec3> nodes(mesh.num_nodes());
-  for (size_t i = 0; i < nodes.size(); ++i) nodes[i] = Vec3(mesh.coordinates[3 * i], mesh.coordinates[3 * i + 1], mesh.coordinates[3 * i + 2]);
-  return nodes;
-}
-
-template <size_t K>
-std::vector<std::array<int, K>> elements_of(const MeshData& mesh) {
-  std::vector<std::array<int, K>> out(mesh.num_elements());
-  for (size_t e = 0; e < out.size(); ++e)
-    for (size_t k = 0; k < K; ++k) out[e][k] = mesh.connectivity[K * e + k];
-  return out;
-}
-
-template <size_t K>
-MeshData mesh_data_of(const std::vector<Vec3>& nodes, const std::vector<std::array<int, K>>& elements) {
-  MeshData m;
-  m.nodes_per_element = static_cast<int>(K);
-  m.coordinates.reserve(3 * nodes.size());
-  for (const Vec3& p : nodes) m.coordinates.insert(m.coordinates.end(), {p.x(), p.y(), p.z()});
-  m.connectivity.reserve(K * elements.size());
-  for (const auto& e : elements) m.connectivity.insert(m.connectivity.end(), e.begin(), e.end());
-  return m;
-}
 
 // The triangles over only the nodes they use, those kept in increasing order of their index.
 std::shared_ptr<const MeshData> compact_surface(const std::vector<Vec3>& nodes, const std::vector<std::array<int, 3>>& triangles) {
@@ -52,7 +28,7 @@ std::shared_ptr<const MeshData> compact_surface(const std::vector<Vec3>& nodes, 
   std::vector<std::array<int, 3>> tris = triangles;
   for (auto& t : tris)
     for (int& i : t) i = remap[i];
-  return std::make_shared<const MeshData>(mesh_data_of(used, tris));
+  return std::make_shared<const MeshData>(mesh_data(used, tris));
 }
 
 // The 8 corners and 12 outward triangles of an oriented box.
@@ -69,6 +45,11 @@ TriangleMesh box_mesh(const Box& box) {
 }
 
 }  // namespace
+
+ShapeMeshes meshes_of(const ShapeData& data) {
+  auto part = [&](const std::optional<MeshData>& m) { return m ? std::shared_ptr<const MeshData>(data.model, &*m) : nullptr; };
+  return ShapeMeshes{part(data.model->mesh), data.surface, part(data.model->visual_mesh)};
+}
 
 std::shared_ptr<ShapeData> shape_from_tet_mesh(TetMesh mesh, const std::string& where) {
   const int n = static_cast<int>(mesh.nodes.size());
@@ -90,7 +71,7 @@ std::shared_ptr<ShapeData> shape_from_tet_mesh(TetMesh mesh, const std::string& 
   }
   auto data = std::make_shared<ShapeData>();
   ModelData model;
-  model.mesh = mesh_data_of(mesh.nodes, mesh.tets);
+  model.mesh = mesh_data(mesh.nodes, mesh.tets);
   data->model = std::make_shared<const ModelData>(std::move(model));
   data->surface = compact_surface(mesh.nodes, tet_boundary_faces(mesh.tets));
   data->tet_mesh = std::make_shared<const TetMesh>(std::move(mesh));
@@ -109,7 +90,7 @@ std::shared_ptr<ShapeData> shape_from_geometry(const ShapeGeometry& geometry) {
   } else if (const auto* b = std::get_if<BoxShape>(&geometry)) {
     model.box = Box{Real3::Zero(), b->half_extents, Quaternion::Identity()};
   } else if (const auto* m = std::get_if<MeshShape>(&geometry)) {
-    model.mesh = mesh_data_of(m->mesh->vertices, m->mesh->triangles);
+    model.mesh = mesh_data(m->mesh->vertices, m->mesh->triangles);
     data->surface = compact_surface(m->mesh->vertices, m->mesh->triangles);
   }
   // capsules have no model counterpart: their model is empty
@@ -125,9 +106,9 @@ std::shared_ptr<ShapeData> shape_from_model(ModelData model, const std::string& 
   }
   std::shared_ptr<ShapeData> data;
   if (model.mesh && !model.mesh->is_empty() && model.mesh->nodes_per_element == 4) {
-    data = shape_from_tet_mesh(TetMesh{nodes_of(*model.mesh), elements_of<4>(*model.mesh), {}, {}}, where + ": mesh");
+    data = shape_from_tet_mesh(TetMesh{mesh_nodes(*model.mesh), mesh_elements<4>(*model.mesh), {}, {}}, where + ": mesh");
   } else if (model.mesh && !model.mesh->is_empty() && model.mesh->nodes_per_element == 3) {
-    const ShapeGeometry g = make_mesh_shape(TriangleMesh{nodes_of(*model.mesh), elements_of<3>(*model.mesh)}, where + ": mesh");
+    const ShapeGeometry g = make_mesh_shape(TriangleMesh{mesh_nodes(*model.mesh), mesh_elements<3>(*model.mesh)}, where + ": mesh");
     data = shape_from_geometry(g);
   } else if (model.box) {
     const Box& b = *model.box;

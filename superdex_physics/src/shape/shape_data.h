@@ -8,6 +8,7 @@
 
 #include "superdex/physics/model.h"
 #include "superdex/physics/shape.h"
+#include "superdex/physics/shape_meshes.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -30,6 +31,9 @@ struct ShapeEntry {
   std::shared_ptr<const ShapeData> data;
   int references = 1;  // the ShapeHandles that name it
 };
+
+// The shape's model mesh, compact surface and visual mesh, each sharing ownership of the data.
+ShapeMeshes meshes_of(const ShapeData& data);
 
 // A shape from model data (validated first: errors are "<where>: <field>: ...").
 std::shared_ptr<ShapeData> shape_from_model(ModelData model, const std::string& where);

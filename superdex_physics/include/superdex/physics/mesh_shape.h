@@ -20,8 +20,11 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options = {},
                           std::shared_ptr<const SdfGrid> sdf = nullptr);
 
-/// Applies `bake` to every vertex: v' = rotation * (scale .* v) + translation. Throws
-/// superdex::Error "<where>: ..." for a non-positive or non-finite scale.
+/// Throws superdex::Error "<where>: ..." for a non-positive or non-finite scale, or a non-finite
+/// transform or zero rotation quaternion.
+void check_bake(const ShapeBake& bake, const std::string& where);
+
+/// Applies `bake` to every vertex: v' = rotation * (scale .* v) + translation, after check_bake.
 void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where);
 
 /// When `path` is a `.mochi.h5` file whose mesh/ holds tetrahedra, its tet mesh with `bake`
