@@ -228,7 +228,7 @@ Transform read_transform(nb::handle obj, const std::string& arg) {
   if (!t.translation.allFinite()) throw Error(arg + ".translation: must be finite");
   const Quat q = t.rotation;
   if (!q.coeffs().allFinite() || q.norm() < real(1e-6)) throw Error(arg + ".rotation: must be a finite, non-zero quaternion");
-  return Transform{q.normalized(), t.translation};
+  return Transform{unit_quaternion(q), t.translation};
 }
 
 }  // namespace superdex::python

@@ -112,6 +112,9 @@ void export_containers(nb::module_& m);
 void export_handles(nb::module_& m);
 void export_enums(nb::module_& m);
 void export_solver_params(nb::module_& m);
+// bind_recording.cpp: RecordingParams, and the Scene's recording methods (added by export_scene)
+void export_recording_params(nb::module_& m);
+void add_recording_methods(nb::class_<Scene>& scene);
 void export_material_params(nb::module_& m);
 void export_actor_params(nb::module_& m);
 void export_context(nb::module_& m);

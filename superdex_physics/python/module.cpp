@@ -13,6 +13,7 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_handles(m);
   export_enums(m);
   export_solver_params(m);
+  export_recording_params(m);
   export_material_params(m);
   export_actor_params(m);
   export_constants(m);

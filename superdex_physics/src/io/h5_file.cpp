@@ -264,6 +264,14 @@ void Writer::dataset(const std::string& path, const std::vector<hsize_t>& dims, 
   write_dataset(file_.get(), path, dims, values, H5T_STD_I32LE, H5T_NATIVE_INT, [&](const std::string& what) { fail(path, what); });
 }
 
+void Writer::dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<std::int64_t>& values) {
+  write_dataset(file_.get(), path, dims, values, H5T_STD_I64LE, H5T_NATIVE_INT64, [&](const std::string& what) { fail(path, what); });
+}
+
+void Writer::flush() {
+  if (file_.valid() && H5Fflush(file_.get(), H5F_SCOPE_LOCAL) < 0) fail("/", "cannot write the file (disk full?)");
+}
+
 namespace {
 template <class T>
 void write_attribute(hid_t file, const std::string& object, const std::string& name, const std::vector<T>& values, hid_t file_type,

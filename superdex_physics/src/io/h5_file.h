@@ -102,16 +102,19 @@ class Writer {
 
   // A group; with `track_order` its links are listed in creation order (Reader::members).
   void group(const std::string& name, bool track_order = false);
-  // Datasets of float64, float32 or int32 values; non-empty ones are stored as one chunk,
+  // Datasets of float64, float32, int32 or int64 values; non-empty ones are stored as one chunk,
   // shuffled and deflated.
   void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<double>& values);
   void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<float>& values);
   void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<int>& values);
+  void dataset(const std::string& path, const std::vector<hsize_t>& dims, const std::vector<std::int64_t>& values);
   // A scalar attribute when `values` has one entry, else a 1-D array, attached to the group or
   // dataset `group`, of float64 values (attribute_f32: float32).
   void attribute(const std::string& group, const std::string& name, const std::vector<double>& values);
   void attribute_f32(const std::string& group, const std::string& name, const std::vector<float>& values);
   void string_attribute(const std::string& group, const std::string& name, const std::string& value);
+  // Writes what is buffered to the file (which stays open); throws when it cannot.
+  void flush();
   // Flushes and closes; throws when the data could not be written.
   void close();
 

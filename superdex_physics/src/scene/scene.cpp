@@ -6,6 +6,7 @@
 
 #include "output/debug_link.h"
 #include "output/recording_internal.h"
+#include "output/scene_recording.h"
 #include "soft/soft_body.h"
 #include "scene/step_stages.h"
 #include "multibody/kinematics.h"
@@ -289,6 +290,7 @@ void Scene::step(double dt) {
   run_callbacks(*this, scene_data(handle_), true, dt);
   const Ticks after_post = ticks_now();
   record_step(scene_data(handle_));
+  if (const auto recording = scene_data(handle_).recording) recording->record_frame(*this, dt);
   debug_after_step(*this, scene_data(handle_));
   double tick_seconds = 0;
   PerformanceStats& perf = scene_data(handle_).performance;

@@ -28,6 +28,15 @@ void check_finite(const char* what, const char* arg, const VecX& x) {
     if (!std::isfinite(x[i])) throw Error(std::string(what) + ": " + arg + "[" + std::to_string(i) + "] is not finite (NaN or infinity)");
 }
 
+// True when a free root's joint position is the actor's root pose itself: the base and the joint
+// placement are the identity. The pose is then read and written as the joint's quaternion and
+// translation, so that a pose set is the pose read back, bit for bit.
+bool root_pose_is_joint_position(const Articulation& a) {
+  const JointModel& root = a.model.joints[0];
+  const SpatialTransform X_WJ = a.state.X_W_base * root.X_PJ;
+  return root.type == JointType::Free && X_WJ.R == Mat3::Identity() && X_WJ.p.isZero(0) && root.p_JL.isZero(0);
+}
+
 }  // namespace
 
 ActorType Scene::actor_type(ActorHandle h) const {
@@ -55,6 +64,10 @@ Transform Scene::root_transform(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
   if (ActorRef r = lookup(s, h, "get_root_transform"); r.soft) return r.soft->X_WL;
   auto [a, link] = link_of(s, h, "get_root_transform");
+  if (link == 0 && root_pose_is_joint_position(*a)) {
+    const int o = a->model.joints[0].q_offset;
+    return {Quat(a->state.q.segment<4>(o + 3)), a->state.q.segment<3>(o)};
+  }
   return to_transform(a->kin.X_WL[link]);
 }
 
@@ -62,8 +75,7 @@ void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
   SceneData& s = scene_data(handle_);
   if (!X_WL_in.translation.allFinite() || !X_WL_in.rotation.coeffs().allFinite() || X_WL_in.rotation.norm() < real(1e-6))
     throw Error("set_root_transform: the transform must be finite with a non-zero quaternion");
-  Transform X_WL = X_WL_in;
-  X_WL.rotation.normalize();
+  const Transform X_WL{unit_quaternion(X_WL_in.rotation), X_WL_in.translation};
   if (ActorRef r = lookup(s, h, "set_root_transform"); r.soft) {
     // the whole body moves rigidly with its frame; its velocities are unchanged
     SoftBody& b = *r.soft;
@@ -77,7 +89,10 @@ void Scene::set_root_transform(ActorHandle h, const Transform& X_WL_in) {
   Articulation& a = whole(s, h, "set_root_transform");
   const JointModel& root = a.model.joints[0];
   const SpatialTransform X = SpatialTransform::from(X_WL);
-  if (root.type == JointType::Free) {
+  if (root_pose_is_joint_position(a)) {
+    a.state.q.segment<3>(root.q_offset) = X_WL.translation;
+    a.state.q.segment<4>(root.q_offset + 3) = X_WL.rotation.coeffs();
+  } else if (root.type == JointType::Free) {
     // X_WL = X_W_base * X_PJ * X_J(q): solve for the free joint's position
     const SpatialTransform X_J = (a.state.X_W_base * root.X_PJ).inverse() * X * SpatialTransform{Mat3::Identity(), -root.p_JL};
     const Quat q(X_J.R);

@@ -28,6 +28,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 class SparseNewtonSystem;  // sparse_newton_system.h
 struct IslandWorkspace;    // island_solver.h
 struct StepWorkspace;      // step_workspace.h
+class SceneRecording;       // output/scene_recording.h
 
 struct Articulation {
   ActorHandle handle = 0;
@@ -134,6 +135,8 @@ struct SceneData {
   bool force_single_island = false;
   // the step's working storage (created by the first step)
   std::shared_ptr<StepWorkspace> step_workspace;
+  // the running HDF5 recording of this scene (Scene::start_recording), null when none
+  std::shared_ptr<SceneRecording> recording;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;

@@ -1,6 +1,8 @@
 // Captured states by handle, as bytes and as a JSON snapshot; the single-island switch; the list of
 // every actor.
 
+#include <algorithm>
+
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -97,6 +99,8 @@ std::vector<ActorHandle> Scene::all_actors() const {
       for (ActorHandle l : a->link_handles) out.push_back(l);
   }
   for (const auto& b : s.soft_bodies) out.push_back(b->handle);
+  // handles come from one increasing counter, and an articulation's links right after it
+  std::sort(out.begin(), out.end());
   return out;
 }
 

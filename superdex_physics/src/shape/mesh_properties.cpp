@@ -1,4 +1,4 @@
-// Mesh shape volume and inertia (signed tetrahedra from a reference vertex; exact for
+// Mesh shape volume and inertia (signed tetrahedra from the bounding-box centre; exact for
 // polyhedra) and validation.
 
 #include "shape/mesh_properties.h"
@@ -46,16 +46,24 @@ Moments moments(const TriangleMesh& m, const Eigen::Vector3d& origin) {
   return s;
 }
 
+// The centre of the vertices' bounding box: moments about it cancel least, and a shape symmetric
+// about its centre gets that centre back exactly.
+Eigen::Vector3d box_centre(const TriangleMesh& m) {
+  Eigen::Vector3d lo = m.vertices[0].cast<double>(), hi = lo;
+  for (const auto& v : m.vertices) lo = lo.cwiseMin(v.cast<double>()), hi = hi.cwiseMax(v.cast<double>());
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace
 
 real mesh_volume(const MeshShape& mesh) {
   const TriangleMesh& m = closed_mesh(mesh, "computing a volume");
-  return static_cast<real>(moments(m, m.vertices[0].cast<double>()).volume);
+  return static_cast<real>(moments(m, box_centre(m)).volume);
 }
 
 MassProperties mesh_mass_properties(const MeshShape& mesh, real density) {
   const TriangleMesh& m = closed_mesh(mesh, "computing mass properties");
-  const Eigen::Vector3d origin = m.vertices[0].cast<double>();
+  const Eigen::Vector3d origin = box_centre(m);
   const Moments s = moments(m, origin);
   if (!(s.volume > 0)) throw Error(name_of(mesh) + ": the closed mesh encloses no volume");
   const Eigen::Vector3d com = s.first / s.volume;

@@ -17,6 +17,7 @@
 #include "superdex/physics/articulation_desc.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/params/actor_params.h"
+#include "superdex/physics/params/recording_params.h"
 #include "superdex/physics/params/solver_params.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/shape.h"
@@ -416,6 +417,16 @@ class Scene {
   void restore_state_from_bytes(std::span<const std::uint8_t> bytes);
   /// A JSON snapshot of the state for inspection.
   void capture_state_to_file(const std::string& path) const;
+
+  /// Records this scene to an HDF5 file (created or replaced; layout: docs/recording_format.md,
+  /// "Scene recordings"): its actors when first seen, then a frame after every step with what
+  /// `params` selects. Stops a recording already running. Throws superdex::Error naming the
+  /// file when it cannot be created. A later failure to write a frame logs a warning and the
+  /// recording goes on.
+  void start_recording(const std::string& file_path, const RecordingParams& params);
+  /// Closes the file; no effect when no recording runs.
+  void stop_recording();
+  bool is_recording() const;
 
   /// Solve every dynamic body in one island (a debugging aid; slower).
   void set_force_single_island(bool force);

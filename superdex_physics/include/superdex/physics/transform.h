@@ -3,10 +3,19 @@
 /// Rigid transforms. `Transform X_AB` maps coordinates in frame B to frame A:
 /// p_A = X_AB * p_B = R_AB p_B + p_AB.
 
+#include <cmath>
+#include <limits>
+
 #include "superdex/physics/real.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+
+/// `q` scaled to unit length, or `q` itself when it is of unit length within round-off already
+/// (so that a normalized quaternion given to the engine reads back bit for bit).
+inline Quat unit_quaternion(const Quat& q) {
+  return std::abs(q.squaredNorm() - 1) > 8 * std::numeric_limits<real>::epsilon() ? q.normalized() : q;
+}
 
 /// A rotation (unit quaternion, stored x, y, z, w) and a translation in metres.
 struct Transform {
