@@ -15,6 +15,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "multibody/articulation_model.h"
+#include "output/debug_draw_features.h"
 #include "scene/actor_records.h"
 #include "shape/shape_data.h"
 #include "soft/soft_body.h"
@@ -134,6 +135,8 @@ struct SceneData {
   bool force_single_island = false;
   // the step's working storage (created by the first step)
   std::shared_ptr<StepWorkspace> step_workspace;
+  // debug drawing: what to draw and the buffers last drawn into (DebugDraw, debug_draw_api.cpp)
+  DebugDrawState debug_draw;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;
