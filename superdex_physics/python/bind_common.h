@@ -120,6 +120,7 @@ void export_actor_params(nb::module_& m);
 void export_context(nb::module_& m);
 void export_constants(nb::module_& m);
 void export_debug_server(nb::module_& m);
+void export_debug_draw(nb::module_& m);  // before export_scene: Scene.get_debug_draw returns a DebugDraw
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
 void export_experimental(nb::module_& m);

@@ -3,7 +3,7 @@
 // span views Span<T> / SpanConst<T> over contiguous elements. Elements of class type are handed
 // out by reference from DynamicArray and mutable spans (so `arr[0].translation = ...` changes the
 // array), by value from const spans; numbers are always values. Numeric arrays convert to numpy
-// (np.array(a)); an array of Real3 becomes an (n, 3) array.
+// (np.array(a)); an array of Real3 becomes an (n, 3) array, an array of Color an (n, 4) uint8 one.
 
 #include <nanobind/nanobind.h>
 #include <nanobind/make_iterator.h>
@@ -53,6 +53,14 @@ struct NumpyShape<Eigen::Matrix<S, N, 1>> {
   static constexpr bool numeric = true;
   static constexpr size_t cols = N;
   using Scalar = S;
+};
+
+// colours as (n, 4) arrays of uint8 (r, g, b, a)
+template <>
+struct NumpyShape<Color> {
+  static constexpr bool numeric = true;
+  static constexpr size_t cols = 4;
+  using Scalar = std::uint8_t;
 };
 
 template <class T>

@@ -27,6 +27,7 @@ void export_containers(nb::module_& m) {
   bind_dynamic_array<Real2>(m, "DynamicArrayReal2");
   bind_dynamic_array<Real3>(m, "DynamicArrayReal3");
   bind_dynamic_array<TransformRT>(m, "DynamicArrayTransformRT");
+  bind_dynamic_array<Color>(m, "DynamicArrayColor");
 
   bind_span<real>(m, "SpanReal");
   bind_span<Real2>(m, "SpanReal2");
@@ -37,6 +38,7 @@ void export_containers(nb::module_& m) {
   bind_span<const std::uint8_t>(m, "SpanConstUint8");
   bind_span<const std::string>(m, "SpanConstString");
   bind_span<const TransformRT>(m, "SpanConstTransformRT");
+  bind_span<const Color>(m, "SpanConstColor");
 }
 
 }  // namespace superdex::python

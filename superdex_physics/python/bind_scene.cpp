@@ -226,6 +226,7 @@ void export_scene(nb::module_& m) {
                                                   priority);
            }, "debug_name"_a, "callback"_a.none(), "priority"_a = Scene::kDefaultCallbackPriority, "Calls callback(info) at the end of every step.")
       .def("cancel_callback", &Scene::cancel_callback, "handle"_a, "No effect for an invalid or cancelled handle.")
+      .def("get_debug_draw", &Scene::debug_draw, "The scene's debug drawing (DebugDraw): off until DebugDraw.enable(True).")
       .def("__eq__", [](const Scene& a, const Scene& b) { return a.handle() == b.handle(); }, nb::is_operator())
       .def("__ne__", [](const Scene& a, const Scene& b) { return a.handle() != b.handle(); }, nb::is_operator())
       .def("__hash__", [](const Scene& a) { return std::hash<std::int64_t>()(a.handle().value); })

@@ -1,5 +1,5 @@
-// Value types: Real2, Real3, Real4, Real6, Int2, Int3, Quaternion, TransformRT and the volumes
-// (Aabb, Obb, Sphere, Box, Plane, Color). Each converts implicitly from a sequence or numpy array
+// Value types: Real2, Real3, Real4, Real6, Int2, Int3, Quaternion, TransformRT, Color and the
+// volumes (Aabb, Obb; Sphere, Box and Plane are bound with the model types). Each converts implicitly from a sequence or numpy array
 // of the right length, reads and writes by index, converts to numpy (np.array(v)) and lists,
 // compares exactly, pickles and copies.
 
@@ -139,6 +139,18 @@ void warn_if_not_unit(const Quaternion& q, const char* where) {
                          number_text(n) + ")");
 }
 
+// One channel of a Color, or superdex.physics.Error naming it.
+std::uint8_t color_channel(long value, const char* name) {
+  if (value < 0 || value > 255) throw Error(std::string("Color: ") + name + " must be in [0, 255], got " + std::to_string(value));
+  return static_cast<std::uint8_t>(value);
+}
+
+nb::list color_list(const Color& c) {
+  nb::list l;
+  for (int v : {c.r, c.g, c.b, c.a}) l.append(v);
+  return l;
+}
+
 std::string transform_text(const TransformRT& t) {
   nlohmann::json j;
   j["rotation"] = vector_json(t.rotation.coeffs());
@@ -269,6 +281,34 @@ void export_values(nb::module_& m) {
       .def("__getstate__", [](const TransformRT& t) { return nb::make_tuple(t.rotation, t.translation); })
       .def("__setstate__", [](TransformRT& self, nb::tuple s) {
              new (&self) TransformRT{nb::cast<Quaternion>(s[0]), nb::cast<Real3>(s[1])};
+           });
+
+  nb::class_<Color>(m, "Color", "An RGBA colour, 8 bits a channel (0 to 255); default: opaque white. Indexed r, g, b, a.")
+      .def("__init__", [](Color* self, long r, long g, long b, long a) {
+             new (self) Color{color_channel(r, "r"), color_channel(g, "g"), color_channel(b, "b"), color_channel(a, "a")};
+           }, "r"_a = 255, "g"_a = 255, "b"_a = 255, "a"_a = 255)
+      .def_prop_rw("r", [](const Color& c) { return int(c.r); }, [](Color& c, long v) { c.r = color_channel(v, "r"); })
+      .def_prop_rw("g", [](const Color& c) { return int(c.g); }, [](Color& c, long v) { c.g = color_channel(v, "g"); })
+      .def_prop_rw("b", [](const Color& c) { return int(c.b); }, [](Color& c, long v) { c.b = color_channel(v, "b"); })
+      .def_prop_rw("a", [](const Color& c) { return int(c.a); }, [](Color& c, long v) { c.a = color_channel(v, "a"); })
+      .def("__len__", [](const Color&) { return 4; })
+      .def("__getitem__", [](const Color& c, long i) { return int((&c.r)[checked_index(i, 4)]); })
+      .def("__iter__", [](const Color& c) { return nb::iter(color_list(c)); })
+      .def("tolist", &color_list)
+      .def("__array__", [](const Color& c, nb::handle dtype, nb::handle) { return numpy_of(&c.r, 4, dtype); },
+           "dtype"_a.none() = nb::none(), "copy"_a.none() = nb::none())
+      .def("__eq__", [](const Color& a, const Color& b) { return a == b; }, nb::is_operator())
+      .def("__ne__", [](const Color& a, const Color& b) { return !(a == b); }, nb::is_operator())
+      .def("__hash__", [](const Color& c) { return nb::hash(nb::tuple(color_list(c))); })
+      .def("__repr__", [](const Color& c) {
+             return "Color(" + std::to_string(c.r) + ", " + std::to_string(c.g) + ", " + std::to_string(c.b) + ", " + std::to_string(c.a) + ")";
+           })
+      .def("__copy__", [](const Color& c) { return Color(c); })
+      .def("__deepcopy__", [](const Color& c, nb::handle) { return Color(c); }, "memo"_a)
+      .def("__getstate__", [](const Color& c) { return nb::tuple(color_list(c)); })
+      .def("__setstate__", [](Color& self, nb::tuple s) {
+             new (&self) Color{color_channel(nb::cast<long>(s[0]), "r"), color_channel(nb::cast<long>(s[1]), "g"),
+                               color_channel(nb::cast<long>(s[2]), "b"), color_channel(nb::cast<long>(s[3]), "a")};
            });
 
   nb::class_<Aabb>(m, "Aabb", "An axis-aligned box [min, max] (m), in the frame the API names.")

@@ -2,8 +2,9 @@
 // Binds a plain C++ struct as a Python class in SuperDex's style: every field readable and
 // writable by name, a constructor taking any fields by keyword with the rest at their C++
 // defaults, `src=` copy construction (also positional), exact equality, copy.copy and
-// copy.deepcopy, pickling, and a repr listing the fields. Nested structs and arrays are returned
-// by reference, so `params.contact.penalty_coefficient = x` changes `params`.
+// copy.deepcopy, pickling (copies refused for structs of views), and a repr listing the fields.
+// Nested structs and arrays are returned by reference, so `params.contact.penalty_coefficient = x`
+// changes `params`.
 
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/optional.h>
@@ -103,28 +104,38 @@ class StructBinder {
 
   nb::class_<T>& cls() { return cls_; }
 
-  /// Adds the constructor, equality (when `comparable`), copies, pickling and repr.
-  nb::class_<T>& done(bool comparable = true) {
+  /// Adds the constructor, equality (when `comparable`), copies and pickling (when `copyable`;
+  /// otherwise copy.copy, copy.deepcopy and pickling raise TypeError: a struct of views) and repr.
+  nb::class_<T>& done(bool comparable = true, bool copyable = true) {
     std::shared_ptr<Fields> f = fields_;
-    cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"))
-        .def("__init__", [f](T* self, nb::kwargs kwargs) {
+    // `src=` first: the keyword form would take `src` for an unknown field
+    if (copyable) cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"));
+    cls_.def("__init__", [f](T* self, nb::kwargs kwargs) {
           // built aside, so that a rejected keyword leaves no half-made instance behind
           T t;
           f->apply(t, kwargs);
           new (self) T(std::move(t));
         })
-        .def("__copy__", [](const T& t) { return T(t); })
-        .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
-        .def("__getstate__", [f](nb::handle self) {
-          nb::dict state;
-          for (const std::string& n : f->names) state[n.c_str()] = self.attr(n.c_str());
-          return state;
-        })
-        .def("__setstate__", [f](T& self, nb::dict state) {
-          new (&self) T();
-          for (auto [key, value] : state) f->setters[f->index(nb::cast<std::string>(key))](self, value);
-        })
         .def("__repr__", [f](nb::handle self) { return f->repr(self); });
+    if (copyable) {
+      cls_.def("__copy__", [](const T& t) { return T(t); })
+          .def("__deepcopy__", [](const T& t, nb::handle) { return T(t); }, nb::arg("memo"))
+          .def("__getstate__", [f](nb::handle self) {
+            nb::dict state;
+            for (const std::string& n : f->names) state[n.c_str()] = self.attr(n.c_str());
+            return state;
+          })
+          .def("__setstate__", [f](T& self, nb::dict state) {
+            new (&self) T();
+            for (auto [key, value] : state) f->setters[f->index(nb::cast<std::string>(key))](self, value);
+          });
+    } else {
+      const std::string name = f->type_name;
+      const auto refuse = [name] { throw nb::type_error((name + " holds views of buffers and cannot be copied").c_str()); };
+      cls_.def("__copy__", [refuse](const T&) { refuse(); })
+          .def("__deepcopy__", [refuse](const T&, nb::handle) { refuse(); }, nb::arg("memo"))
+          .def("__reduce__", [refuse](const T&) { refuse(); });
+    }
     if (comparable) {
       cls_.def("__eq__", [](const T& a, const T& b) { return a == b; }, nb::is_operator())
           .def("__ne__", [](const T& a, const T& b) { return !(a == b); }, nb::is_operator());

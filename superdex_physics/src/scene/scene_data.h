@@ -15,6 +15,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "multibody/articulation_model.h"
+#include "output/debug_draw_features.h"
 #include "scene/actor_records.h"
 #include "shape/shape_data.h"
 #include "soft/soft_body.h"
@@ -28,7 +29,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 class SparseNewtonSystem;  // sparse_newton_system.h
 struct IslandWorkspace;    // island_solver.h
 struct StepWorkspace;      // step_workspace.h
-class SceneRecording;       // output/scene_recording.h
+class SceneRecording;      // output/scene_recording.h
 
 struct Articulation {
   ActorHandle handle = 0;
@@ -137,6 +138,8 @@ struct SceneData {
   std::shared_ptr<StepWorkspace> step_workspace;
   // the running HDF5 recording of this scene (Scene::start_recording), null when none
   std::shared_ptr<SceneRecording> recording;
+  // debug drawing: what to draw and the buffers last drawn into (DebugDraw, debug_draw_api.cpp)
+  DebugDrawState debug_draw;
 
   static std::array<std::uint64_t, 64> filled_layer_masks() {
     std::array<std::uint64_t, 64> m;

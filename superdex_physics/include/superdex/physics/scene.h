@@ -15,6 +15,7 @@
 
 #include "superdex/physics/shape_meshes.h"
 #include "superdex/physics/articulation_desc.h"
+#include "superdex/physics/debug_draw.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/params/actor_params.h"
 #include "superdex/physics/params/recording_params.h"
@@ -433,6 +434,10 @@ class Scene {
   bool force_single_island() const;
   /// Every actor, links and nested actors included, in creation order.
   std::vector<ActorHandle> all_actors() const;
+
+  /// The scene's debug drawing (debug_draw.h): contacts, bounds, frames and bodies as line
+  /// segments and spheres for the client to render. Off until DebugDraw::enable(true).
+  DebugDraw debug_draw() const { return DebugDraw(handle_); }
 
  private:
   // the physics of one step (between the callbacks)
