@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Generate the model-data assets (assets/cube/, assets/duck/) with the project's own model API.
+"""Generate the model-data assets (assets/cube/, assets/duck/, assets/sphere/, assets/table/) with
+the project's own model API.
 
 - assets/cube/cube_mesh.mochi.json and cube_mesh.mochi.h5: the same tetrahedral unit cube in both
   formats: the cube [-0.5, 0.5]^3 m cut into 2 x 2 x 2 cells of six tetrahedra each (27 nodes,
@@ -9,6 +10,12 @@
   (assets/prefabs/duck_lamp/duck_lamp_body.mochi.h5) with the lamp's surface as its visual mesh,
   embedded in the cage: every visual node follows the four nodes of the cage tetrahedron that holds
   it, with its barycentric coordinates as weights (four weights per node, summing to 1).
+- assets/sphere/icosphere_3subdiv.1.mochi.json: the unit sphere as a triangle mesh, an icosahedron
+  whose faces are split in four three times with the new vertices pushed out onto the sphere (642
+  vertices, 1280 triangles, counter-clockwise seen from outside).
+- assets/table/table.mochi.h5: a table as one closed triangle mesh, Z up, standing on z = 0: a
+  1.2 x 0.8 x 0.04 m top whose upper face is at z = 0.75 m and four 0.05 m square legs under its
+  corners (five disjoint boxes); table.mochi_scene places it as the static actor "Table".
 
 The cage is made of the grid cells (CAGE_CELL metres on a side) that hold a surface node of the
 duck or whose centre lies inside it, each cut into six tetrahedra as in the cube. Cells are then
@@ -103,6 +110,69 @@ def make_cube() -> sdp.ModelData:
     assert len(tets) == 48 and len(nodes) == 27
     assert np.all(volumes > 0) and np.isclose(volumes.sum(), 1.0)
     return sdp.ModelData(mesh=tet_mesh(nodes, tets))
+
+
+# ------------------------------------------------------------------------------------ sphere, table
+
+
+def tri_mesh(nodes: np.ndarray, triangles: np.ndarray) -> sdp.MeshData:
+    return sdp.MeshData(nodes_per_element=3, coordinates=nodes.astype(np.float64).ravel().tolist(),
+                        connectivity=triangles.astype(np.int64).ravel().tolist())
+
+
+def make_icosphere(subdivisions: int) -> sdp.ModelData:
+    t = (1 + 5 ** 0.5) / 2
+    nodes = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t],
+             [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]]
+    nodes = [list(np.array(n, dtype=np.float64) / np.linalg.norm(n)) for n in nodes]
+    faces = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6],
+             [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10],
+             [8, 6, 7], [9, 8, 1]]
+    for _ in range(subdivisions):
+        midpoint = {}
+
+        def mid(a: int, b: int) -> int:
+            key = (min(a, b), max(a, b))
+            if key not in midpoint:
+                m = (np.array(nodes[a]) + np.array(nodes[b])) / 2
+                nodes.append(list(m / np.linalg.norm(m)))
+                midpoint[key] = len(nodes) - 1
+            return midpoint[key]
+
+        split = []
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            split += [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]
+        faces = split
+    nodes, faces = np.array(nodes), np.array(faces)
+    # counter-clockwise seen from outside: every face's normal points away from the centre
+    normals = np.cross(nodes[faces[:, 1]] - nodes[faces[:, 0]], nodes[faces[:, 2]] - nodes[faces[:, 0]])
+    assert np.all(np.einsum("ij,ij->i", normals, nodes[faces].mean(axis=1)) > 0)
+    return sdp.ModelData(mesh=tri_mesh(nodes, faces))
+
+
+def box_surface(lo, hi) -> tuple[np.ndarray, np.ndarray]:
+    """The 8 corners (x fastest) and 12 outward triangles of the box [lo, hi]."""
+    corners = np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]] for k in (0, 1) for j in (0, 1) for i in (0, 1)],
+                       dtype=np.float64)
+    triangles = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7],
+                          [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
+    return corners, triangles
+
+
+def make_table() -> sdp.ModelData:
+    top_lo, top_hi = np.array([-0.6, -0.4, 0.71]), np.array([0.6, 0.4, 0.75])
+    boxes = [(top_lo, top_hi)]
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            c = np.array([sx * 0.55, sy * 0.35])
+            boxes.append((np.array([c[0] - 0.025, c[1] - 0.025, 0.0]), np.array([c[0] + 0.025, c[1] + 0.025, 0.71])))
+    nodes, triangles = [], []
+    for lo, hi in boxes:
+        corners, tris = box_surface(lo, hi)
+        triangles.append(tris + 8 * len(nodes))
+        nodes.append(corners)
+    return sdp.ModelData(mesh=tri_mesh(np.concatenate(nodes), np.concatenate(triangles)))
 
 
 # ------------------------------------------------------------------------------------------- duck
@@ -213,6 +283,16 @@ def main() -> None:
     for name in ("cube_mesh.mochi.json", "cube_mesh.mochi.h5"):
         assert sdp.model.load_from_file(str(CUBE_DIR / name)) == cube, name
     print("cube: 27 nodes, 48 tetrahedra")
+
+    sphere = make_icosphere(3)
+    sdp.model.validate(sphere)
+    (REPO / "assets" / "sphere").mkdir(parents=True, exist_ok=True)
+    sdp.model.save_to_file(sphere, str(REPO / "assets" / "sphere" / "icosphere_3subdiv.1.mochi.json"), sdp.FileFormat.JSON)
+    print(f"sphere: {sphere.mesh.get_num_nodes()} vertices")
+    table = make_table()
+    sdp.model.validate(table)
+    (REPO / "assets" / "table").mkdir(parents=True, exist_ok=True)
+    sdp.model.save_to_file(table, str(REPO / "assets" / "table" / "table.mochi.h5"), sdp.FileFormat.H5)
 
     duck = make_duck()
     sdp.model.validate(duck)
