@@ -10,6 +10,8 @@ the project's own model API.
   (assets/prefabs/duck_lamp/duck_lamp_body.mochi.h5) with the lamp's surface as its visual mesh,
   embedded in the cage: every visual node follows the four nodes of the cage tetrahedron that holds
   it, with its barycentric coordinates as weights (four weights per node, summing to 1).
+- assets/duck/duck_1899.mochi.h5: the same kind of cage with cells of FINE_CAGE_CELL (1842 nodes,
+  8166 tetrahedra), under the name scripts use for a finer soft duck.
 - assets/sphere/icosphere_3subdiv.1.mochi.json: the unit sphere as a triangle mesh, an icosahedron
   whose faces are split in four three times with the new vertices pushed out onto the sphere (642
   vertices, 1280 triangles, counter-clockwise seen from outside).
@@ -44,6 +46,7 @@ CUBE_DIR = REPO / "assets" / "cube"
 DUCK_DIR = REPO / "assets" / "duck"
 DUCK_LAMP = REPO / "assets" / "prefabs" / "duck_lamp" / "duck_lamp_body.mochi.h5"
 CAGE_CELL = 0.02  # m: the duck's cage cell side (the duck is 0.157 x 0.084 x 0.066 m)
+FINE_CAGE_CELL = 0.008  # m: the finer cage of duck_1899.mochi.h5
 
 
 def kuhn_tets(cells: np.ndarray, dims: tuple[int, int, int]) -> np.ndarray:
@@ -233,7 +236,7 @@ def well_composed(occupied: np.ndarray) -> np.ndarray:
     return grid[1:-1, 1:-1, 1:-1]
 
 
-def make_duck() -> sdp.ModelData:
+def make_duck(cell: float = CAGE_CELL) -> sdp.ModelData:
     lamp = sdp.model.load_from_file(str(DUCK_LAMP))
     fine_nodes = np.array(lamp.mesh.coordinates, dtype=np.float64).reshape(-1, 3)
     fine_tets = np.array(lamp.mesh.connectivity, dtype=np.int64).reshape(-1, 4)
@@ -242,18 +245,18 @@ def make_duck() -> sdp.ModelData:
 
     # the cage grid: the duck's box grown to whole cells, centred on it
     low, high = surface.min(axis=0), surface.max(axis=0)
-    dims = tuple(int(n) for n in np.ceil((high - low) / CAGE_CELL + 1e-9))
-    origin = (low + high) / 2 - CAGE_CELL * np.array(dims) / 2
+    dims = tuple(int(n) for n in np.ceil((high - low) / cell + 1e-9))
+    origin = (low + high) / 2 - cell * np.array(dims) / 2
     occupied = np.zeros(dims, dtype=bool)
-    holding = np.clip(np.floor((surface - origin) / CAGE_CELL).astype(int), 0, np.array(dims) - 1)
+    holding = np.clip(np.floor((surface - origin) / cell).astype(int), 0, np.array(dims) - 1)
     occupied[tuple(holding.T)] = True
     centres = np.array(list(itertools.product(*(range(n) for n in dims))))
-    inside, _ = inside_tets(origin + CAGE_CELL * (centres + 0.5), fine_nodes, fine_tets, 0.0)
+    inside, _ = inside_tets(origin + cell * (centres + 0.5), fine_nodes, fine_tets, 0.0)
     occupied[tuple(centres[inside >= 0].T)] = True
     occupied = well_composed(occupied)
 
     cells = np.argwhere(occupied.transpose(2, 1, 0))[:, ::-1]  # x fastest, like the nodes
-    nodes, tets = compact(grid_nodes(origin, CAGE_CELL, dims), kuhn_tets(cells, dims))
+    nodes, tets = compact(grid_nodes(origin, cell, dims), kuhn_tets(cells, dims))
     assert np.all(signed_volumes(nodes, tets) > 0)
 
     # the embedding: each surface node in its cage tetrahedron
@@ -269,7 +272,7 @@ def make_duck() -> sdp.ModelData:
     # the embedded surface is where the cage's nodes put it
     placed = np.einsum("pk,pkj->pj", weights, nodes[tets[holder]])
     assert np.abs(placed - surface).max() < 1e-9
-    print(f"duck cage: {dims} cells of {CAGE_CELL} m, {occupied.sum()} used, {len(nodes)} nodes, {len(tets)} tetrahedra; "
+    print(f"duck cage: {dims} cells of {cell} m, {occupied.sum()} used, {len(nodes)} nodes, {len(tets)} tetrahedra; "
           f"visual mesh {len(surface)} nodes, {len(triangles) // 3} triangles")
     return duck
 
@@ -293,6 +296,10 @@ def main() -> None:
     sdp.model.validate(table)
     (REPO / "assets" / "table").mkdir(parents=True, exist_ok=True)
     sdp.model.save_to_file(table, str(REPO / "assets" / "table" / "table.mochi.h5"), sdp.FileFormat.H5)
+
+    fine = make_duck(FINE_CAGE_CELL)
+    sdp.model.validate(fine)
+    sdp.model.save_to_file(fine, str(DUCK_DIR / "duck_1899.mochi.h5"), sdp.FileFormat.H5)
 
     duck = make_duck()
     sdp.model.validate(duck)
