@@ -34,6 +34,9 @@ void refuse_reduced(const SoftBody& b, const char* what) {
 
 Vec3 rest_node(const SoftBody& b, int i) { return b.model.mesh->nodes[i]; }
 
+// Node i's current position in the actor frame (X_LW: the inverse of the actor's root transform).
+Vec3 node_local(const SoftBody& b, const Transform& X_LW, int i) { return X_LW * Vec3(b.state.x.segment<3>(3 * i)); }
+
 // Re-applies the boundary conditions: the nodes pinned at creation, then the permanent entries,
 // then the clearable ones (a later entry of a node wins).
 void apply_boundary_conditions(SoftBody& b) {
@@ -61,7 +64,7 @@ std::vector<real> Scene::displacements(ActorHandle h) const {
   std::vector<real> out(3 * n);
   for (int i = 0; i < n; ++i) {
     Eigen::Map<Vec3> d(out.data() + 3 * i);
-    d = X_LW * Vec3(b.state.x.segment<3>(3 * i)) - rest_node(b, i);
+    d = node_local(b, X_LW, i) - rest_node(b, i);
   }
   return out;
 }
@@ -84,7 +87,7 @@ std::vector<real> Scene::node_positions_local(ActorHandle h) const {
   std::vector<real> out(b.state.x.size());
   for (size_t i = 0; 3 * i < out.size(); ++i) {
     Eigen::Map<Vec3> p(out.data() + 3 * i);
-    p = X_LW * Vec3(b.state.x.segment<3>(3 * i));
+    p = node_local(b, X_LW, static_cast<int>(i));
   }
   return out;
 }
@@ -208,9 +211,9 @@ std::vector<real> Scene::elements_deformation_gradient(ActorHandle h) const {
   for (const auto& tet : b.model.tets) {
     // F = Ds Dm^-1 with both edge matrices in the actor frame
     Mat3 Ds, Dm;
-    const Vec3 x0 = X_LW * Vec3(b.state.x.segment<3>(3 * tet[0]));
+    const Vec3 x0 = node_local(b, X_LW, tet[0]);
     for (int k = 0; k < 3; ++k) {
-      Ds.col(k) = X_LW * Vec3(b.state.x.segment<3>(3 * tet[k + 1])) - x0;
+      Ds.col(k) = node_local(b, X_LW, tet[k + 1]) - x0;
       Dm.col(k) = rest_node(b, tet[k + 1]) - rest_node(b, tet[0]);
     }
     const Mat3 F = Ds * Dm.inverse();
@@ -228,7 +231,7 @@ std::vector<real> Scene::surface_node_positions_local(ActorHandle h) const {
   std::vector<real> out;
   out.reserve(3 * b.model.surface_nodes.size());
   for (int i : b.model.surface_nodes) {
-    const Vec3 p = X_LW * Vec3(b.state.x.segment<3>(3 * i));
+    const Vec3 p = node_local(b, X_LW, i);
     out.insert(out.end(), {p.x(), p.y(), p.z()});
   }
   return out;
@@ -257,7 +260,7 @@ std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, c
   require_query(s, h, boundary_only ? QueryType::SurfaceNodePositions : QueryType::NodePositions, what);
   const Transform X_LW = b.X_WL.inverse();
   auto visit = [&](int i) {
-    if (const Real3 p = X_LW * Vec3(b.state.x.segment<3>(3 * i)); inside(p)) out.emplace_back(i, p);
+    if (const Real3 p = node_local(b, X_LW, i); inside(p)) out.emplace_back(i, p);
   };
   if (boundary_only)
     for (int i : b.model.surface_nodes) visit(i);
