@@ -18,7 +18,12 @@
 //    <mimic> is ignored with a warning (the joint is an independent DOF, as in Pinocchio's
 //    default URDF parser).
 //  * Inertials: mass, centre of mass = inertial origin xyz, rotational inertia about the COM
-//    rotated into the link frame, I_L = R I R^T (R from the inertial origin rpy).
+//    rotated into the link frame, I_L = R I R^T (R from the inertial origin rpy). An inertia
+//    that no mass distribution has (not positive definite, or principal moments breaking the
+//    triangle inequality: round-off in exported files, point masses, typing errors) is
+//    replaced, with a warning naming the link, by the nearest physical one
+//    (superdex/physics/inertia.h: moments raised to 1e-6 of the largest, the largest lowered to
+//    the sum of the other two), as the params API does.
 //
 // Massless links. URDF allows links without an <inertial> (or with mass 0): frames such as
 // "tool0", "panda_hand_tcp" or flanges. The engine needs mass > 0 and a positive-definite
@@ -28,9 +33,10 @@
 // controller), so the BotPrefab keeps one link per URDF link. A massless link instead gets a
 // negligible mass, kMasslessLinkMass = 1e-9 kg at its origin with an inertia of
 // kMasslessLinkInertia = 1e-12 kg m^2 about each axis. A massless link may move on a joint
-// only when the links welded to it (through fixed joints) have mass, so that the moving body
-// is not massless; otherwise the import fails naming the link and the joint. The Pinocchio
-// comparison test gives Pinocchio the same negligible inertias, so it stays exact.
+// only when some link it carries has mass (the intermediate frames of a hip or wrist built
+// from single-axis joints), so that the joint does not move a massless body; otherwise the
+// import fails naming the link and the joint. The Pinocchio comparison test gives Pinocchio
+// the same negligible inertias, so it stays exact.
 //
 // Geometry. The first <collision> becomes the link's shape with its <origin> as
 // link_from_shape (further <collision> elements are ignored with a warning): <box size>,
@@ -61,6 +67,7 @@
 
 #include "superdex/physics/error.h"
 #include "superdex/physics/file_path.h"
+#include "superdex/physics/inertia.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/robotics/bot_prefab.h"
 
@@ -71,6 +78,7 @@ namespace fs = std::filesystem;
 using physics::JointDesc;
 using physics::JointType;
 using physics::LinkDesc;
+using physics::Mat3;
 using physics::real;
 using physics::ShapeGeometry;
 using physics::Vec3;
@@ -268,10 +276,16 @@ class UrdfImporter {
     L.has_mass = true;
     L.com = X_LC.translation();
     L.inertia = X_LC.linear() * I * X_LC.linear().transpose();
-    const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
-    if (moments.minCoeff() <= 0)
-      fail(ie, "a link with mass " + format_number(L.mass) + " kg needs a positive-definite inertia (principal moments " +
-                   format_number(moments[0]) + ", " + format_number(moments[1]) + ", " + format_number(moments[2]) + ")");
+    // an inertia no mass distribution has (not positive definite, principal moments breaking
+    // the triangle inequality: round-off, point masses, typing errors) becomes the nearest
+    // physical one, with a warning
+    const Mat3 I_L = L.inertia.cast<real>();
+    if (const std::optional<std::string> defect = physics::inertia_defect(I_L)) {
+      L.inertia = physics::nearest_physical_inertia(I_L).cast<double>();
+      const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(L.inertia).eigenvalues();
+      warn(ie, "link " + in_quotes(L.name) + ": the inertia " + *defect + "; using the nearest physical inertia (principal moments " +
+                   format_number(m[0]) + ", " + format_number(m[1]) + ", " + format_number(m[2]) + " kg m^2)");
+    }
   }
 
   int link_of(const XMLElement* joint, const char* tag) const {
@@ -570,10 +584,11 @@ class UrdfImporter {
 
   // Whether the rigid body a link belongs to (the link and the links welded to it by fixed
   // joints, all the way down) has mass.
-  bool welded_body_has_mass(int l) const {
+  // Whether the link or a link below it has mass: the bodies a joint moves.
+  bool subtree_has_mass(int l) const {
     if (links_[l].has_mass) return true;
     for (int j : links_[l].child_joints)
-      if (joints_[j].type == "fixed" && welded_body_has_mass(joints_[j].child)) return true;
+      if (subtree_has_mass(joints_[j].child)) return true;
     return false;
   }
 
@@ -645,11 +660,11 @@ class UrdfImporter {
         L.moment_of_inertia = std::array<real, 6>{real(I(0, 0)), real(I(0, 1)), real(I(0, 2)),
                                                   real(I(1, 1)), real(I(1, 2)), real(I(2, 2))};
       } else {
-        if (J.type != JointType::Hard && !welded_body_has_mass(order[k])) {
+        if (J.type != JointType::Hard && !subtree_has_mass(order[k])) {
           // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's)
           const XMLElement* where = joints_[k == 0 ? root_joint : U.parent_joint].element;
           fail(where, "link " + in_quotes(U.name) + " has no inertial but moves on joint " + in_quotes(J.name) +
-                          " (give it an <inertial> with a positive mass, or make the joint fixed)");
+                          ", and no link it carries has mass (give it an <inertial> with a positive mass, or make the joint fixed)");
         }
         const real I0 = real(kMasslessLinkInertia);
         L.mass = real(kMasslessLinkMass);

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "multibody/articulation_model.h"
-#include "multibody/inertia_validity.h"
+#include "superdex/physics/inertia.h"
 #include "multibody/dynamics.h"
 #include "superdex/physics/error.h"
 

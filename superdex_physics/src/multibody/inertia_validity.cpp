@@ -1,6 +1,6 @@
 // Physical validity of rotational inertias.
 
-#include "multibody/inertia_validity.h"
+#include "superdex/physics/inertia.h"
 
 #include <Eigen/Eigenvalues>
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "collision/collision_geometry.h"
-#include "multibody/inertia_validity.h"
+#include "superdex/physics/inertia.h"
 #include "scene/actor_records.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/error.h"

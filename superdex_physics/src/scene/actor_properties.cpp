@@ -7,7 +7,7 @@
 #include "collision/collision_detection.h"
 #include "collision/collision_geometry.h"
 #include "multibody/dynamics.h"
-#include "multibody/inertia_validity.h"
+#include "superdex/physics/inertia.h"
 #include "multibody/kinematics.h"
 #include "scene/actor_lookup.h"
 #include "superdex/physics/log.h"

@@ -1,11 +1,13 @@
 #pragma once
-// Whether a rotational inertia describes a physical mass distribution, and the nearest one that
-// does: what the params API simulates when given an invalid inertia (with a warning).
+/// @file inertia.h
+/// Whether a rotational inertia describes a physical mass distribution, and the nearest one that
+/// does: what the params API simulates when given an invalid inertia and what the URDF importer
+/// gives a link whose <inertia> is not physical (each with a warning).
 
 #include <optional>
 #include <string>
 
-#include "core/spatial.h"
+#include "superdex/physics/real.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
