@@ -43,7 +43,8 @@
 // <sphere radius>, <cylinder radius length> as a closed 48-sided prism mesh (the exact
 // cylinder up to 0.2% of its radius; a capsule would change the shape: a short wheel would
 // turn into a ball), <capsule radius length> (an SDFormat extension; length is the
-// cylindrical part) and <mesh filename scale> loaded with the scale baked in (OBJ, STL, PLY,
+// cylindrical part) and <mesh filename scale> loaded with the scale baked in (a negative scale
+// mirrors the mesh, its winding reversed to keep it facing outward; OBJ, STL, PLY,
 // .mochi.h5; other formats such as COLLADA .dae leave the link without a collider, with a
 // warning). The link's mass never comes from its shape. The first <visual> <mesh> is
 // recorded as the render model (path and scale; its <origin> is ignored with a warning).
@@ -243,7 +244,11 @@ class UrdfImporter {
     if (!robot_ || std::string(robot_->Name()) != "robot")
       fail_file(std::string("not a URDF file: the root element is <") + (robot_ ? robot_->Name() : "") +
                 ">, expected <robot>");
-    robot_name_ = required_attribute(robot_, "name");
+    // a <robot> without a name (the URDF schema requires one; some files omit it) is named
+    // after its file
+    const char* name = robot_->Attribute("name");
+    robot_name_ = name && *name ? name : fs::path(path_).stem().string();
+    if (!name || !*name) warn(robot_, "the robot has no name; naming it " + in_quotes(robot_name_) + " after its file");
   }
 
   void read_links() {
@@ -428,8 +433,24 @@ class UrdfImporter {
       fail(mesh, "attribute 'scale': expected 3 numbers (or 1 for a uniform scale), got \"" +
                      std::string(mesh->Attribute("scale")) + "\"");
     const Eigen::Vector3d v = s.size() == 1 ? Eigen::Vector3d::Constant(s[0]) : Eigen::Vector3d(s[0], s[1], s[2]);
-    if ((v.array() <= 0).any()) fail(mesh, "attribute 'scale' must be positive (mirrored meshes are not supported)");
+    if ((v.array() == 0).any() || !v.allFinite()) fail(mesh, "attribute 'scale' must be finite and non-zero (negative mirrors)");
     return v;
+  }
+
+  // `shape` mirrored across the planes of the axes where `sign` is -1: a mesh's vertices, with
+  // its winding reversed when an odd number of axes flip so that it still faces outward; a
+  // sphere's centre. Boxes (centred) and capsules (symmetric) stay as they are.
+  static ShapeGeometry mirrored(ShapeGeometry shape, const Eigen::Vector3d& sign, const std::string& source) {
+    const Vec3 s = sign.cast<real>();
+    if (auto* sphere = std::get_if<physics::SphereShape>(&shape)) sphere->center = sphere->center.cwiseProduct(s);
+    if (auto* mesh = std::get_if<physics::MeshShape>(&shape)) {
+      physics::TriangleMesh m = *mesh->mesh;
+      for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
+      if (s.prod() < 0)
+        for (auto& t : m.triangles) std::swap(t[1], t[2]);
+      return physics::make_mesh_shape(std::move(m), source);
+    }
+    return shape;
   }
 
   // ------------------------------------------------------------------ geometry
@@ -481,12 +502,14 @@ class UrdfImporter {
       std::string tried;
       const auto file = resolve_mesh(filename, &tried);
       if (!file) fail(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(filename) + " not found (" + tried + ")");
+      // a negative scale mirrors: the mesh is loaded at the scale's magnitude, then mirrored
       physics::ShapeBake bake;
-      bake.scale = scale.cast<real>();
+      bake.scale = scale.cwiseAbs().cast<real>();
       std::string ext = file->extension().string();
       for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       try {
         ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
+        if ((scale.array() < 0).any()) shape = mirrored(std::move(shape), scale.cwiseSign(), file->string() + " (mirrored)");
         *shape_file = file->string();
         return shape;
       } catch (const Error& e) {

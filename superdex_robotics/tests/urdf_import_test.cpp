@@ -517,6 +517,29 @@ std::string mesh_link(const std::string& name, const std::string& filename, cons
                         "/></geometry></collision>");
 }
 
+TEST_F(UrdfImport, MirroredMeshesAreMirroredAndFaceOutward) {
+  // a box [0, 1] x [0, 2] x [0, 3] (off-centre, so that mirroring moves it), scaled by -1 in y
+  const std::string box =
+      "v 0 0 0\nv 1 0 0\nv 0 2 0\nv 1 2 0\nv 0 0 3\nv 1 0 3\nv 0 2 3\nv 1 2 3\n"
+      "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+  write("meshes/box.obj", box);
+  const BotPrefab p = load(robot(mesh_link("base", "meshes/box.obj", "1 -1 1")));
+  const auto* mesh = std::get_if<physics::MeshShape>(&*p.articulation.links[0].shape);
+  ASSERT_NE(mesh, nullptr);
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+  double volume = 0;
+  for (const auto& v : mesh->mesh->vertices) lo = lo.cwiseMin(v.cast<double>()), hi = hi.cwiseMax(v.cast<double>());
+  for (const auto& t : mesh->mesh->triangles) {
+    const Eigen::Vector3d a = mesh->mesh->vertices[t[0]].cast<double>(), b = mesh->mesh->vertices[t[1]].cast<double>(),
+                          c = mesh->mesh->vertices[t[2]].cast<double>();
+    volume += a.dot(b.cross(c)) / 6;
+  }
+  EXPECT_TRUE(lo.isApprox(Eigen::Vector3d(0, -2, 0))) << lo.transpose();
+  EXPECT_TRUE(hi.isApprox(Eigen::Vector3d(1, 0, 3))) << hi.transpose();
+  EXPECT_NEAR(volume, 6.0, 1e-9);  // outward: a positive enclosed volume
+  EXPECT_THAT(error_of(robot(mesh_link("base", "meshes/box.obj", "1 0 1"))), HasSubstr("attribute 'scale' must be finite and non-zero"));
+}
+
 Eigen::AlignedBox3d bounds(const physics::LinkDesc& L) {
   Eigen::AlignedBox3d box;
   for (const Vec3& v : std::get<physics::MeshShape>(*L.shape).mesh->vertices) box.extend(v.cast<double>());
@@ -620,8 +643,13 @@ TEST_F(UrdfImport, FileErrors) {
   EXPECT_THAT(error_of("<robot name='x'><link name='a'></robot>"), HasSubstr("not a valid XML file"));
   EXPECT_THAT(error_of("this is not xml"), HasSubstr("robot.urdf: not a valid XML file"));
   EXPECT_THAT(error_of("<?xml version=\"1.0\"?><sdf version='1.6'/>"), HasSubstr("root element is <sdf>, expected <robot>"));
-  EXPECT_THAT(error_of("<robot></robot>"), HasSubstr("<robot>: missing required attribute 'name'"));
   EXPECT_THAT(error_of("<robot name='x'></robot>"), HasSubstr("the robot has no <link>"));
+}
+
+TEST_F(UrdfImport, ARobotWithoutANameIsNamedAfterItsFile) {
+  const BotPrefab p = load("<robot>" + link("base") + "</robot>", "my_arm.urdf");
+  EXPECT_EQ(p.name(), "my_arm");
+  EXPECT_THAT(all_warnings(), HasSubstr("<robot>: the robot has no name; naming it 'my_arm' after its file"));
 }
 
 TEST_F(UrdfImport, MissingRequiredAttributes) {
