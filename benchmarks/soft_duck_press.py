@@ -48,7 +48,7 @@ def run(threads, steps, reduced_modes=0, dt=0.004):
     scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     with tempfile.TemporaryDirectory() as folder:
         start = time.perf_counter()
-        duck = scene.get_actor(sdp.prefab.add_to_scene(str(duck_prefab(reduced_modes, folder)), "/duck", scene).actors[0])
+        duck = sdp.prefab.add_to_scene(str(duck_prefab(reduced_modes, folder)), "/duck", scene).actors[0]
         print(f"    load: {1e3 * (time.perf_counter() - start):7.1f} ms")
     duck.register_query(sdp.QueryType.NODE_POSITIONS)
 

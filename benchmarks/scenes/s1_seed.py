@@ -57,10 +57,10 @@ def build(seed, ctx, prefab, duck_asset=None):
         warnings.simplefilter("ignore")  # physics only: the declared component types are not registered
         bot = robotics.create_bot(scene, prefab, ctx)
     scene.create_rigid_actor(name="ground", shape=physics.create_plane_shape(normal=[0, 0, 1], distance=0), is_static=True)
-    duck = physics.prefab.add_to_scene(
+    added = physics.prefab.add_to_scene(
         prefab_path=str(physics.paths.resolve_asset(duck_asset or seed.DUCK_LAMP_ASSET)), root_path=str(physics.paths.get_assets_root()),
         scene=scene, params=physics.prefab.PrefabParams(name="duck_lamp"))
-    duck = scene.get_actor(duck.actors[0])
+    duck = added.actors[0]
     duck.register_query(physics.QueryType.NODE_POSITIONS)  # for the final check on its top
     return scene, bot, duck
 

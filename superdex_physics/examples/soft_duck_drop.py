@@ -56,7 +56,7 @@ def add_duck(scene: sdp.Scene, height: float) -> sdp.Actor:
             scene=scene,
             params=sdp.prefab.PrefabParams(name="duck_lamp", translation=[-PREFAB_OFFSET_X, 0.0, height]),
         )
-    duck = scene.get_actor(instance.actors[0])
+    duck = instance.actors[0]
     duck.register_query(sdp.QueryType.NODE_POSITIONS)
     return duck
 

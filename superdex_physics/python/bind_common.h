@@ -58,10 +58,11 @@ void write_out(nb::handle out, std::span<const real> values, std::string_view ar
 void write_out(nb::handle out, std::span<const TransformRT> values, std::string_view arg);
 void write_out(nb::handle out, std::span<const Real2> values, std::string_view arg);
 
-// An actor as seen from Python: its scene and handle.
+// An actor as seen from Python: its scene and handle. Default: no actor (an element of a new
+// DynamicArrayActor).
 struct Actor {
-  Scene scene;
-  ActorHandle handle;
+  Scene scene{SceneHandle()};
+  ActorHandle handle = 0;
 };
 
 // A Python object made of dicts, lists, strings, numbers, booleans and None as JSON (numpy
@@ -125,7 +126,7 @@ void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
 void export_experimental(nb::module_& m);
 void export_robotics(nb::module_& m);
-void export_prefab_loader(nb::module_& m);  // superdex_robotics/python
+void export_physics_prefab(nb::module_& m);  // bind_scene_prefab.cpp: superdex.physics.prefab (after export_actor)
 void export_scene_batch(nb::module_& m);    // superdex_robotics/python: into superdex.robotics
 void export_meshes(nb::module_& m);
 void export_model(nb::module_& m);  // ModelData and the superdex.physics.model submodule

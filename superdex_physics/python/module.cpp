@@ -26,5 +26,5 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_robotics(m);
   export_meshes(m);
   export_model(m);
-  export_prefab_loader(m);
+  export_physics_prefab(m);
 }

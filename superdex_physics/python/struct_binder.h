@@ -4,7 +4,8 @@
 // defaults, `src=` copy construction (also positional), exact equality, copy.copy and
 // copy.deepcopy, pickling (copies refused for structs of views), and a repr listing the fields.
 // Nested structs and arrays are returned by reference, so `params.contact.penalty_coefficient = x`
-// changes `params`.
+// changes `params`. A struct deriving from a bound struct (StructBinder<Derived, Base>) is a Python
+// subclass of it whose constructor takes the base's keywords first, then its own.
 
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/optional.h>
@@ -12,6 +13,8 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -58,14 +61,34 @@ struct BinderFields {
   }
 };
 
+/// The fields of each struct bound with StructBinder, kept so that a derived struct's binder
+/// can take them over (one registry per type and build).
 template <class T>
+std::shared_ptr<BinderFields<T>>& bound_fields() {
+  static std::shared_ptr<BinderFields<T>> fields;
+  return fields;
+}
+
+/// `Base = void`: a plain struct; otherwise T derives from the bound struct Base.
+template <class T, class Base = void>
 class StructBinder {
  public:
   using Setter = std::function<void(T&, nb::handle)>;
+  using Class = std::conditional_t<std::is_void_v<Base>, nb::class_<T>, nb::class_<T, std::conditional_t<std::is_void_v<Base>, T, Base>>>;
 
   StructBinder(nb::handle scope, const char* name, const char* doc)
       : cls_(scope, name, doc), fields_(std::make_shared<Fields>()) {
     fields_->type_name = name;
+    bound_fields<T>() = fields_;
+    if constexpr (!std::is_void_v<Base>) {
+      // the base's fields, set on the base part of T
+      const std::shared_ptr<BinderFields<Base>> base = bound_fields<Base>();
+      if (!base) throw std::logic_error(std::string(name) + ": its base struct must be bound first");
+      for (size_t i = 0; i < base->names.size(); ++i) {
+        fields_->names.push_back(base->names[i]);
+        fields_->setters.push_back([set = base->setters[i]](T& t, nb::handle v) { set(static_cast<Base&>(t), v); });
+      }
+    }
   }
 
   /// A read-write field. Python values convert as for a function argument (implicitly from
@@ -102,11 +125,11 @@ class StructBinder {
     return *this;
   }
 
-  nb::class_<T>& cls() { return cls_; }
+  Class& cls() { return cls_; }
 
-  /// Adds the constructor, equality (when `comparable`), copies and pickling (when `copyable`;
+  /// Adds the constructor, equality (when `comparable`: T has ==; otherwise a base's is inherited), copies and pickling (when `copyable`;
   /// otherwise copy.copy, copy.deepcopy and pickling raise TypeError: a struct of views) and repr.
-  nb::class_<T>& done(bool comparable = true, bool copyable = true) {
+  Class& done(bool comparable = true, bool copyable = true) {
     std::shared_ptr<Fields> f = fields_;
     // `src=` first: the keyword form would take `src` for an unknown field
     if (copyable) cls_.def("__init__", [](T* self, const T& src) { new (self) T(src); }, nb::arg("src"));
@@ -136,9 +159,11 @@ class StructBinder {
           .def("__deepcopy__", [refuse](const T&, nb::handle) { refuse(); }, nb::arg("memo"))
           .def("__reduce__", [refuse](const T&) { refuse(); });
     }
-    if (comparable) {
-      cls_.def("__eq__", [](const T& a, const T& b) { return a == b; }, nb::is_operator())
-          .def("__ne__", [](const T& a, const T& b) { return !(a == b); }, nb::is_operator());
+    if constexpr (requires(const T& a, const T& b) { a == b; }) {
+      if (comparable) {
+        cls_.def("__eq__", [](const T& a, const T& b) { return a == b; }, nb::is_operator())
+            .def("__ne__", [](const T& a, const T& b) { return !(a == b); }, nb::is_operator());
+      }
     }
     return cls_;
   }
@@ -152,7 +177,7 @@ class StructBinder {
   };
 
   using Fields = BinderFields<T>;
-  nb::class_<T> cls_;
+  Class cls_;
   std::shared_ptr<Fields> fields_;
 };
 

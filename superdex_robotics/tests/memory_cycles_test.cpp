@@ -102,9 +102,9 @@ TEST(MemoryCyclesTest, TenThousandEpisodesKeepMemoryFlat) {
                       [](const ComponentArgs&) { return std::make_unique<ConstantServo>(); });
     std::vector<std::string> warnings;
     const BotHandle bot = ctx.create_bot(scene, load_bot_prefab(bot_file, &warnings), &warnings);
-    physics::PrefabParams params;
+    physics::prefab::PrefabParams params;
     params.name = "table";
-    physics::add_prefab_to_scene(prefab.string(), dir.string(), scene, params, &warnings);
+    physics::prefab::add_to_scene(prefab.string(), dir.string(), scene, params, &warnings);
     ASSERT_TRUE(warnings.empty()) << warnings.front();
     for (int i = 0; i < kSteps; ++i) scene.step(real(0.01));
     ASSERT_NEAR(scene.total_simulation_time(), kSteps * 0.01, 1e-6);

@@ -14,9 +14,9 @@ del _name
 # the native submodules import as superdex.physics.<name> too
 import sys as _sys  # noqa: E402
 
-for _sub in ("experimental",):
+for _sub in ("experimental", "prefab"):
     _sys.modules[f"{__name__}.{_sub}"] = getattr(_m, _sub)
 
-from superdex.physics import debugger, model, paths, prefab  # noqa: E402  (submodules, after the native names)
+from superdex.physics import debugger, model, paths  # noqa: E402  (submodules, after the native names)
 
 __all__ = [name for name in dir() if not name.startswith("_")]

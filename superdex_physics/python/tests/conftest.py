@@ -1,4 +1,5 @@
-"""Shared fixtures: an initialized engine per test, and small builders of actor params structs."""
+"""Shared fixtures: an initialized engine per test, and small builders of actor params structs and
+of files (a cube OBJ)."""
 
 import numpy as np
 import pytest
@@ -143,3 +144,15 @@ def node_contact_forces_world(soft, num_nodes):
     for f in soft.get_node_contact_forces_world():
         forces[f.index] += np.asarray(f.force, dtype=np.float64)
     return forces
+
+
+def cube_obj(path, h=0.1):
+    """Writes a closed cube of half extent h (m), centred at the origin, as an OBJ file."""
+    v = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    lines = [f"v {a} {b} {c}" for a, b, c in v]
+    for a, b, c, d in quads:
+        lines += [f"f {a + 1} {b + 1} {c + 1}", f"f {a + 1} {c + 1} {d + 1}"]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n")
+    return path

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import superdex.physics as sdp
-from conftest import node_positions_world
+from conftest import cube_obj, node_positions_world
 from superdex.physics.paths import get_assets_root
 from superdex.physics.prefab import PrefabParams, add_to_scene
 
@@ -25,18 +25,8 @@ def box_entry(name, translation, **extra):
             "worldFromLocal": {"rotation": [0, 0, 0, 1], "translation": translation}, "mass": 1.0, **extra}
 
 
-def cube_obj(path: Path, h=0.1):
-    v = [(x, y, z) for z in (-h, h) for y in (-h, h) for x in (-h, h)]
-    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    lines = [f"v {a} {b} {c}" for a, b, c in v]
-    for a, b, c, d in quads:
-        lines += [f"f {a + 1} {b + 1} {c + 1}", f"f {a + 1} {c + 1} {d + 1}"]
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text("\n".join(lines) + "\n")
-
-
-def position(scene, handle):
-    return np.array(scene.get_actor(handle).get_root_transform().translation, dtype=float)
+def position(actor):
+    return np.array(actor.get_root_transform().translation, dtype=float)
 
 
 def test_rigid_actors_names_and_transforms(scene, tmp_path, monkeypatch):
@@ -52,14 +42,14 @@ def test_rigid_actors_names_and_transforms(scene, tmp_path, monkeypatch):
     })
     rot = sdp.Quaternion.from_axis_angle([0, 0, 1], math.pi / 2)
     inst = add_to_scene(prefab, tmp_path / "root", scene, PrefabParams(name="table", rotation=rot, translation=[0, 0, 2]))
-    assert len(inst.actors) == 3 and inst.constraints == []
-    names = [scene.get_actor(h).get_name() for h in inst.actors]
+    assert len(inst.actors) == 3
+    names = [a.get_name() for a in inst.actors]
     assert names == ["table/box", "table/mesh_from_root", "table/mesh_from_prefab"]
     # the prefab's frame is turned 90 deg about z and raised 2 m: local (1, 0, 0.1) -> (0, 1, 2.1)
-    np.testing.assert_allclose(position(scene, inst.actors[0]), [0, 1, 2.1], atol=1e-6)
-    np.testing.assert_allclose(position(scene, inst.actors[1]), [-1, 0, 2.1], atol=1e-6)
-    assert scene.get_actor(inst.actors[1]).get_mass() == pytest.approx(500 * 0.2**3, rel=1e-4)
-    assert scene.get_actor(inst.actors[2]).get_num_dofs() == 0
+    np.testing.assert_allclose(position(inst.actors[0]), [0, 1, 2.1], atol=1e-6)
+    np.testing.assert_allclose(position(inst.actors[1]), [-1, 0, 2.1], atol=1e-6)
+    assert inst.actors[1].get_mass() == pytest.approx(500 * 0.2**3, rel=1e-4)
+    assert inst.actors[2].get_num_dofs() == 0
 
 
 def test_nested_prefabs_scale_and_bot(scene, tmp_path):
@@ -70,14 +60,14 @@ def test_nested_prefabs_scale_and_bot(scene, tmp_path):
         "prefabs": [{"name": "pile", "path": "./inner.mochi_prefab", "scale": 2.0, "translation": [0, 0, 1]}],
     })
     inst = add_to_scene(outer, get_assets_root(), scene, PrefabParams(name="world", scale=1.0))
-    names = [scene.get_actor(h).get_name() for h in inst.actors]
-    assert names == ["world/arm", "world/pile/crate"]
-    arm = scene.get_actor(inst.actors[0])
+    # a nested prefab's actors come before its parent's own
+    names = [a.get_name() for a in inst.actors]
+    assert names == ["world/pile/crate", "world/arm"]
+    crate, arm = inst.actors
     assert arm.get_num_dofs() == 2
     np.testing.assert_allclose(np.array(arm.get_root_transform().translation), [0, 2, 0], atol=1e-6)
     # nested scale 2: the crate's offset doubles and its box is 0.4 m wide (mass kept: 1 kg)
-    np.testing.assert_allclose(position(scene, inst.actors[1]), [1.0, 0, 1.0], atol=1e-6)
-    crate = scene.get_actor(inst.actors[1])
+    np.testing.assert_allclose(position(crate), [1.0, 0, 1.0], atol=1e-6)
     crate.register_query(sdp.QueryType.CONTACT_POINTS)
     assert crate.get_mass() == pytest.approx(1.0)
 
@@ -86,7 +76,7 @@ def test_mass_takes_precedence_over_density(scene, tmp_path):
     """An entry with both a mass and a density gets the mass (SuperDex's RigidActorParams rule)."""
     prefab = write(tmp_path / "p.mochi_prefab", {"actors": {"rigid": [box_entry("both", [0, 0, 0], density=500.0)]}})
     inst = add_to_scene(prefab, tmp_path, scene)
-    assert scene.get_actor(inst.actors[0]).get_mass() == pytest.approx(1.0)
+    assert inst.actors[0].get_mass() == pytest.approx(1.0)
 
 
 def test_scene_settings_and_contact_filter(scene, tmp_path):
@@ -101,7 +91,7 @@ def test_scene_settings_and_contact_filter(scene, tmp_path):
     np.testing.assert_allclose(scene.get_gravity(), [0, 0, -1.62], rtol=1e-6)
     # the overlapping pair is filtered: no contact between them
     scene.set_gravity([0, 0, 0])
-    a = scene.get_actor(inst.actors[0])
+    a = inst.actors[0]
     a.register_query(sdp.QueryType.TOTAL_CONTACT_FORCE)
     scene.step(0.01)
     np.testing.assert_allclose(a.get_contact_force_from_actor_world(inst.actors[1]), 0, atol=1e-9)
@@ -157,7 +147,7 @@ def test_duck_lamp_prefab_loads_as_a_pinned_soft_actor(scene):
     inst = add_to_scene(resolve_asset("prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab"), get_assets_root(), scene,
                         PrefabParams(name="duck_lamp"))
     assert len(inst.actors) == 1
-    duck = scene.get_actor(inst.actors[0])
+    duck = inst.actors[0]
     assert duck.get_type() == sdp.ActorType.SOFT and duck.get_name() == "duck_lamp/duck_lamp"
     import h5py
 

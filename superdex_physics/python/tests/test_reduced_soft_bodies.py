@@ -92,7 +92,7 @@ def soft_prefab(folder, name, nodes, tets, material, fixed_nodes=None):
 def reduced_actor(scene, folder, name, nodes, tets, material, fixed_nodes=None):
     """The soft actor of soft_prefab(...), added to the scene, its node positions readable."""
     path = soft_prefab(folder, name, nodes, tets, material, fixed_nodes)
-    actor = scene.get_actor(add_to_scene(path, folder, scene).actors[0])
+    actor = add_to_scene(path, folder, scene).actors[0]
     actor.register_query_and_compute(sdp.QueryType.NODE_POSITIONS)
     return actor
 
@@ -222,7 +222,7 @@ def pressed_duck(prefab):
         scene = sdp.create_scene("duck")
         scene.set_gravity([0, 0, -9.81])
         scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-        duck = scene.get_actor(sdp.prefab.add_to_scene(str(DUCKS / prefab), "/duck", scene).actors[0])
+        duck = sdp.prefab.add_to_scene(str(DUCKS / prefab), "/duck", scene).actors[0]
         duck.register_query_and_compute(sdp.QueryType.NODE_POSITIONS)
         start = node_positions_world(duck)
         for _ in range(50):

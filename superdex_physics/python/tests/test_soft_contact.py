@@ -60,7 +60,7 @@ def test_rigid_sphere_rests_on_a_soft_block(scene):
 
 def test_duck_reacts_to_a_pressing_sphere_and_dents(scene):
     scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    duck = scene.get_actor(sdp.prefab.add_to_scene(str(DUCK), "/duck", scene).actors[0])
+    duck = sdp.prefab.add_to_scene(str(DUCK), "/duck", scene).actors[0]
     duck.register_query(sdp.QueryType.NODE_POSITIONS)
     for _ in range(100):  # it settles under its own weight first
         scene.step(0.004)

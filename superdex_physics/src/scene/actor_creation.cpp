@@ -5,10 +5,12 @@
 #include <cmath>
 
 #include "collision/collision_geometry.h"
-#include "superdex/physics/inertia.h"
+#include "multibody/joint_from_params.h"
 #include "scene/actor_records.h"
 #include "scene/scene_data.h"
+#include "soft/material_from_params.h"
 #include "superdex/physics/error.h"
+#include "superdex/physics/inertia.h"
 #include "superdex/physics/log.h"
 
 namespace superdex::physics {
@@ -166,22 +168,6 @@ void warn_unused_contact_fields(const ContactParams& p, const std::string& where
   check(p.colliding_penalty_length_scale != d.colliding_penalty_length_scale, "colliding_penalty_length_scale");
 }
 
-JointDesc joint_desc(const ArticulatedJointParams& j, int index) {
-  JointDesc out;
-  out.name = j.name.empty() ? "joint_" + std::to_string(index) : j.name;
-  out.type = j.type;
-  out.axis = j.axis.norm() > 0 ? Vec3(j.axis) : Vec3::UnitZ();
-  out.parent_link_from_joint = j.parent_link_from_joint;
-  out.min_limit = j.min_limit;
-  out.max_limit = j.max_limit;
-  out.coulomb_friction = j.friction.coulomb;
-  out.viscous_friction = j.friction.viscous;
-  out.armature = j.inertia.value_or(0);
-  out.limit_stiffness = j.limit_stiffness;
-  out.limit_damping = j.limit_damping;
-  return out;
-}
-
 }  // namespace
 
 ActorHandle Scene::create_rigid_actor(const RigidActorParams& p) {
@@ -260,7 +246,7 @@ ActorHandle Scene::create_articulated_actor(const ArticulatedActorParams& p) {
     LinkDesc link = link_desc(in, lw, density, declared);
     link.parent_link = l.parent_link;
     desc.links.push_back(std::move(link));
-    desc.joints.push_back(joint_desc(p.joints[i], static_cast<int>(i)));
+    desc.joints.push_back(joint_desc_from_params(p.joints[i], static_cast<int>(i)));
     a->links.push_back(LinkRecord{in.shape, l.contact, l.layer, density, l.collider_type, declared});
     a->joint_friction.push_back(p.joints[i].friction);
   }
@@ -287,23 +273,7 @@ ActorHandle Scene::create_soft_actor(const SoftActorParams& p) {
   auto shape = shape_data(p.shape, where + ".shape");
   if (!shape->tet_mesh) throw Error(where + ".shape: must be a tetrahedral mesh (create_tet_mesh_shape, or a model file with tetrahedra)");
   warn_unused_contact_fields(p.contact, where);
-  const SoftMaterialParams& mp = p.material;
-  SoftMaterial material;
-  material.density = mp.density;
-  material.damping_alpha = mp.mass_damping_coefficient;
-  material.damping_beta = mp.stiffness_damping_coefficient;
-  real E = 0, nu = 0;
-  switch (mp.type) {
-    case SoftMaterialType::NeoHookean: material.type = "NeoHookean", E = mp.neo_hookean.youngs_modulus, nu = mp.neo_hookean.poisson_ratio; break;
-    case SoftMaterialType::StVenantKirchhoff:
-      material.type = "StVK", E = mp.st_venant_kirchhoff.youngs_modulus, nu = mp.st_venant_kirchhoff.poisson_ratio;
-      break;
-    case SoftMaterialType::LinearElastic: material.type = "Linear", E = mp.linear_elastic.youngs_modulus, nu = mp.linear_elastic.poisson_ratio; break;
-    default: break;  // rejected by validate()
-  }
-  // the shape's per-element values, when it has them, take precedence
-  if (shape->tet_mesh->youngs_modulus.empty()) material.youngs_modulus = E;
-  if (shape->tet_mesh->poisson_ratio.empty()) material.poisson_ratio = nu;
+  const SoftMaterial material = soft_material_from_params(p.material, *shape->tet_mesh);
   Transform X = p.world_from_local;
   X.rotation.normalize();
   auto body = build_soft_body(p.name, shape->tet_mesh, material, X, {}, where);

@@ -1,41 +1,82 @@
 #pragma once
 /// @file prefab.h
-/// Loading `.mochi_prefab` / `.mochi_scene` files (FORMATS.md) into a scene: rigid and
-/// articulated actors (inline link/joint fields or a `bot` file), nested prefabs with their
-/// transforms, a uniform scale, contact filters and optional scene settings.
+/// Prefabs (`.mochi_prefab` / `.mochi_scene` JSON, FORMATS.md) as objects (prefab/scene_prefab.h):
+/// reading and writing them, loading what they reference (nested prefab files, shape files), and
+/// adding them to a scene.
 ///
-/// Paths that start with `./` are relative to the prefab file; other relative paths are relative
-/// to the root path; absolute paths and paths containing `..` are rejected.
+/// Paths: "./x" is relative to the folder of the prefab file that names it (to the root path for a
+/// prefab read from a string), other relative paths to the root path, absolute paths as they are.
+/// Files may not name absolute paths or paths containing "..". Errors are superdex::Error naming
+/// the file (when there is one), the field's path (`actors.rigid[2].mass`) and the defect.
 
 #include <string>
 #include <vector>
 
+#include "superdex/physics/prefab/scene_prefab.h"
 #include "superdex/physics/scene.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+namespace prefab {
 
+/// How a prefab is placed in a scene: world-from-prefab X_WP = (rotation, translation), a uniform
+/// scale of positions and shapes, and a name prefixed to its actors' ("name/actor").
 struct PrefabParams {
-  /// Instance name: prefixes the names of the created actors ("name/actor") when not empty.
   std::string name;
-  /// Uniform scale of positions and shapes (> 0). Explicit masses are kept; densities give
-  /// masses of the scaled shapes.
+  /// > 0. Scales shapes and positions; explicit masses are kept (densities give the masses of the
+  /// scaled shapes). The ScenePrefab form of add_to_scene takes only 1 (its shapes are loaded).
   real scale = 1;
-  /// Pose of the prefab's frame in the world.
-  Transform world_from_prefab;
-  /// Apply the file's `scene` settings (gravity, solver) to the scene.
+  Quaternion rotation = Quaternion::Identity();   ///< R_WP, non-zero
+  Real3 translation = Real3::Zero();              ///< p_WoPo_W (m)
+  /// Apply the top-level prefab's SceneParams (gravity, solver); nested ones are always ignored.
   bool apply_scene_settings = false;
 };
 
-struct PrefabResult {
-  std::vector<ActorHandle> actors;        ///< created actors, in file order (nested prefabs in place)
-  std::vector<std::int64_t> constraints;  ///< created constraints (none are defined yet)
+/// What add_to_scene created: the top-level actors (a nested prefab's before its parent's own,
+/// each prefab's rigid, then soft, then articulated actors in list order).
+struct AddToSceneResult {
+  std::vector<ActorHandle> actors;
+  /// The created actors of one type, in the order above.
+  std::vector<ActorHandle> filter(const Scene& scene, ActorType type) const;
 };
 
-/// Adds a prefab's actors to `scene`. All or nothing: on an error, the actors created so far
-/// are destroyed and superdex::Error names the file, the JSON path and the defect.
-PrefabResult add_prefab_to_scene(const std::string& prefab_path, const std::string& root_path, Scene scene,
-                                 const PrefabParams& params, std::vector<std::string>* warnings);
+/// Reads a prefab without the files it references: nested prefabs and shapes stay unloaded.
+ScenePrefab shallow_load_from_file(const std::string& path, std::vector<std::string>* warnings = nullptr);
+ScenePrefab shallow_load_from_json_string(const std::string& json, std::vector<std::string>* warnings = nullptr);
+/// Reads a prefab with its nested prefabs and shapes.
+ScenePrefab load_from_file(const std::string& prefab_path, const std::string& root_path, std::vector<std::string>* warnings = nullptr);
+ScenePrefab load_from_json_string(const std::string& json, const std::string& root_path, std::vector<std::string>* warnings = nullptr);
+/// (Re)loads the nested prefabs, recursively (at most 16 deep).
+void load_nested_prefabs(ScenePrefab& prefab, const std::string& root_path, std::vector<std::string>* warnings = nullptr);
+/// (Re)loads the shapes of the prefab and of its loaded nested prefabs, each with the scale of
+/// its nesting baked in. The handles replace the params' `shape` and stay registered until
+/// released (release_shape).
+void load_shapes(ScenePrefab& prefab, const std::string& root_path);
+/// Loads the nested prefabs and shapes not loaded yet.
+void ensure_fully_loaded(ScenePrefab& prefab, const std::string& root_path, std::vector<std::string>* warnings = nullptr);
+
+/// The prefab as JSON (its nested prefabs by reference only). Shapes given only as handles
+/// (no file, no primitive) cannot be written: superdex::Error names them.
+std::string save_to_json_string(const ScenePrefab& prefab);
+/// Writes save_to_json_string's text to `path`, creating its folders.
+void save_to_json_file(const ScenePrefab& prefab, const std::string& path);
+
+/// Adds a fully loaded prefab's actors to `scene` (params.scale must be 1), then its contact rules
+/// and, with apply_scene_settings, its scene settings. All or nothing: on an error the actors
+/// created so far are destroyed.
+AddToSceneResult add_to_scene(const ScenePrefab& prefab, Scene scene, const PrefabParams& params = {});
+/// Loads a prefab file with the scale of `params` baked into its shapes, adds it, and releases
+/// the shapes it loaded.
+AddToSceneResult add_to_scene(const std::string& prefab_path, const std::string& root_path, Scene scene,
+                              const PrefabParams& params = {}, std::vector<std::string>* warnings = nullptr);
+
+/// A path named in a prefab as a file path: `input_path` if absolute, relative to the folder of
+/// `prefab_file_path` if it starts with "./" (to the root when `prefab_file_path` is empty), else
+/// relative to `root_for_relative_path`.
+std::string get_prefab_full_path(const std::string& input_path, const std::string& root_for_relative_path,
+                                 const std::string& prefab_file_path);
+
+}  // namespace prefab
 
 /// Loads the mesh or `.mochi.h5` shape files that links name (`LinkDesc::shape_file`),
 /// relative to `base_dir`, with each link's shapeScale times `scale` baked in. Errors name

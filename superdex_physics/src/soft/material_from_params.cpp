@@ -1,0 +1,29 @@
+// SoftMaterialParams -> SoftMaterial (material_from_params.h).
+
+#include "soft/material_from_params.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+SoftMaterial soft_material_from_params(const SoftMaterialParams& mp, const TetMesh& mesh) {
+  SoftMaterial material;
+  material.density = mp.density;
+  material.damping_alpha = mp.mass_damping_coefficient;
+  material.damping_beta = mp.stiffness_damping_coefficient;
+  real E = 0, nu = 0;
+  switch (mp.type) {
+    case SoftMaterialType::NeoHookean: material.type = "NeoHookean", E = mp.neo_hookean.youngs_modulus, nu = mp.neo_hookean.poisson_ratio; break;
+    case SoftMaterialType::StVenantKirchhoff:
+      material.type = "StVK", E = mp.st_venant_kirchhoff.youngs_modulus, nu = mp.st_venant_kirchhoff.poisson_ratio;
+      break;
+    case SoftMaterialType::LinearElastic: material.type = "Linear", E = mp.linear_elastic.youngs_modulus, nu = mp.linear_elastic.poisson_ratio; break;
+    default: break;
+  }
+  // the shape's per-element values, when it has them, take precedence
+  if (mesh.youngs_modulus.empty()) material.youngs_modulus = E;
+  if (mesh.poisson_ratio.empty()) material.poisson_ratio = nu;
+  return material;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
