@@ -6,6 +6,8 @@
   one radius above, along any normal and offset;
 - resolve_asset takes relative and absolute paths, resolve_asset_root gives the folder a prefab's
   relative paths are written against; missing paths raise Error naming them;
+- create_scene_from_prefab from a path under the assets folder or from an edited ScenePrefab
+  (its shapes loaded first); a failure leaves no scene behind;
 - the unit icosphere asset (642 vertices on the unit sphere, outward, closed) and the table prefab:
   a ball of radius 0.2 m and a cube of edge 0.4 m dropped on the table, turned Y-up as a prefab,
   come to rest on its top (0.75 m above the floor) at their half sizes above it.
@@ -19,7 +21,7 @@ import pytest
 
 import superdex.physics as sdp
 from superdex.physics.paths import get_assets_root, resolve_asset, resolve_asset_root
-from superdex.physics.utils.scene_helpers import create_ground_plane, find_actor
+from superdex.physics.utils.scene_helpers import create_ground_plane, create_scene_from_prefab, find_actor
 
 TABLE_TOP = 0.75  # m above the floor, tools/make_model_assets.py
 
@@ -145,3 +147,31 @@ def test_fine_duck_falls_as_a_soft_body(scene):
     t = n * dt
     drop = z0 - duck.get_aabb_world().get_center()[2]
     assert drop == pytest.approx(9.81 * t * t / 2, abs=9.81 * t * dt)
+
+
+def test_create_scene_from_prefab(engine):
+    scene = create_scene_from_prefab("table/table.mochi_scene", scene_name="from file")
+    assert scene.get_name() == "from file"
+    assert find_actor(scene, "Table").is_static()
+    # an edited, shallow-loaded prefab: its shapes are loaded before it is added
+    prefab = sdp.prefab.shallow_load_from_file(str(resolve_asset("table/table.mochi_scene")))
+    prefab.actors.rigid[0].name = "Desk"
+    other = create_scene_from_prefab(prefab, root_dir=get_assets_root() / "table",
+                                     params=sdp.prefab.PrefabParams(name="office", translation=[0, 0, 2]))
+    desk = find_actor(other, "office/Desk")
+    assert desk.get_aabb_world().get_center()[2] == pytest.approx(2 + 0.75 / 2, abs=1e-3)
+    with pytest.raises(TypeError, match="ScenePrefab"):
+        create_scene_from_prefab(42)
+    with pytest.raises(sdp.Error, match="no_such.mochi_scene"):
+        create_scene_from_prefab("no_such.mochi_scene")
+
+
+def test_create_scene_from_prefab_leaves_no_scene_on_failure(engine, monkeypatch):
+    created = []
+    create = sdp.create_scene
+    monkeypatch.setattr(sdp, "create_scene", lambda name="": created.append(create(name)) or created[-1])
+    prefab = sdp.prefab.shallow_load_from_file(str(resolve_asset("table/table.mochi_scene")))
+    prefab.actors.rigid[0].mass = -1.0
+    with pytest.raises(sdp.Error, match="mass"):
+        create_scene_from_prefab(prefab, root_dir=get_assets_root() / "table")
+    assert len(created) == 1 and not sdp.is_valid_scene(created[0])

@@ -1,11 +1,14 @@
 """Helpers for building and searching scenes: find an actor by a name pattern, add a ground
-plane."""
+plane, make a scene from a prefab."""
 
 from __future__ import annotations
 
 import fnmatch
+import os
+from pathlib import Path
 
 import superdex.physics as sdp
+from superdex.physics.paths import get_assets_root
 
 
 def find_actor(scene: sdp.Scene, pattern: str) -> sdp.Actor:
@@ -32,3 +35,28 @@ def create_ground_plane(scene: sdp.Scene, normal=None, offset: float = 0.0,
     return scene.create_rigid_actor(name="StaticPlane", layer="Environment", shape=shape, is_static=True,
                                     collider_type=sdp.ColliderType.PLANE,
                                     contact=contact_params if contact_params is not None else sdp.ContactParams())
+
+
+def create_scene_from_prefab(prefab, root_dir=None, params=None, scene_name: str = "") -> sdp.Scene:
+    """A new scene holding `prefab`: a prefab file path (relative paths are taken under
+    `root_dir`) or a ScenePrefab (its nested prefabs and shapes are loaded first where missing).
+    `root_dir` resolves the prefab's own relative paths; None or "" is the assets folder (a Path
+    is taken as it is, Path("") being the current folder). `params`: PrefabParams (default
+    ones when None). The scene is destroyed again if adding the prefab fails."""
+    params = params if params is not None else sdp.prefab.PrefabParams()
+    root = get_assets_root() if root_dir is None or (isinstance(root_dir, str) and root_dir == "") else Path(root_dir)
+    if isinstance(prefab, (str, os.PathLike)):
+        path = Path(prefab)
+        loaded = sdp.prefab.load_from_file(str(path if path.is_absolute() else root / path), str(root))
+    elif isinstance(prefab, sdp.prefab.ScenePrefab):
+        sdp.prefab.ensure_fully_loaded(prefab=prefab, root_path=str(root))
+        loaded = prefab
+    else:
+        raise TypeError(f"create_scene_from_prefab: prefab must be a file path or a prefab.ScenePrefab, got {type(prefab).__name__}")
+    scene = sdp.create_scene(scene_name)
+    try:
+        sdp.prefab.add_to_scene(prefab=loaded, scene=scene, params=params)
+    except BaseException:
+        sdp.destroy_scene(scene)
+        raise
+    return scene
