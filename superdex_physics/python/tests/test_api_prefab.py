@@ -290,3 +290,18 @@ def test_get_prefab_full_path():
     assert prefab.get_prefab_full_path("a/b.obj", "/root", "/data/scenes/s.mochi_scene") == "/root/a/b.obj"
     assert prefab.get_prefab_full_path("/abs/b.obj", "/root", "/data/scenes/s.mochi_scene") == "/abs/b.obj"
     assert prefab.get_prefab_full_path("./b.obj", "/root", "") == "/root/b.obj"
+
+
+def test_contact_entries_enable_by_default(scene):
+    """An entry without `enable` (object or JSON) enables contact, as SuperDex's do: only
+    `enable: false` disables it."""
+    assert prefab.ActorContactEntry().enable and prefab.LayerContactEntry().enable
+    assert prefab.ActorContactEntry().include_nested_actors
+    p = prefab.load_from_json_string(
+        '{"actors": {"rigid": []}, "contactFilter": {"layerContactSymmetric": [{"layers": ["a", "b"]}], '
+        '"layerContactAsymmetric": [{"enable": false, "layers": ["c", "d"]}]}}', ".")
+    assert p.contact_filter.layer_contact_symmetric[0].enable
+    assert not p.contact_filter.layer_contact_asymmetric[0].enable
+    prefab.add_to_scene(p, scene)
+    assert scene.is_layer_contact_enabled("a", "b") and scene.is_layer_contact_enabled("b", "a")
+    assert not scene.is_layer_contact_enabled("c", "d") and scene.is_layer_contact_enabled("d", "c")

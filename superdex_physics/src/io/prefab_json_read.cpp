@@ -322,7 +322,7 @@ std::vector<E> read_entries(const Entry& f, const char* key, const char* names_k
     const Entry r{list[i], f.file, f.path + "." + indexed(key, i)};
     if (!r.e.is_object()) r.fail("", "expected an object {enable, " + std::string(names_key) + "}");
     E entry;
-    entry.enable = r.boolean("enable", false);
+    entry.enable = r.boolean("enable", true);
     const json& names = r.has(names_key) ? r.e.at(names_key) : json();
     if (!names.is_array() || names.size() != 2 || !names[0].is_string() || !names[1].is_string())
       r.fail(names_key, "expected two names, got " + names.dump());

@@ -15,7 +15,7 @@ namespace prefab {
 /// Contact between two actors of the prefab, named as in it ("box", or "nested/box" for an actor
 /// of a nested prefab); the same name twice is self-contact.
 struct ActorContactEntry {
-  bool enable = false;
+  bool enable = true;  ///< false: the entry disables contact
   std::vector<std::string> actors;    ///< exactly 2
   bool include_nested_actors = true;  ///< an articulation's name covers its links
   bool operator==(const ActorContactEntry&) const = default;
@@ -23,7 +23,7 @@ struct ActorContactEntry {
 
 /// Contact between two contact layers (by name).
 struct LayerContactEntry {
-  bool enable = false;
+  bool enable = true;  ///< false: the entry disables contact
   std::vector<std::string> layers;  ///< exactly 2
   bool operator==(const LayerContactEntry&) const = default;
 };
