@@ -123,6 +123,14 @@ def _require(entry, key: str, kind, where: str):
     return value
 
 
+def _optional_name(entry: dict, where: str) -> str:
+    """The entry's "name" ("" when absent); Error when it is not a string."""
+    name = entry.get("name", "")
+    if not isinstance(name, str):
+        raise _error(f"{where}.name", "expected a string")
+    return name
+
+
 def _list(doc: dict, key: str, where: str) -> list:
     value = doc.get(key, [])
     if not isinstance(value, list):
@@ -266,9 +274,7 @@ def _build(result: BotScene, doc: dict, scene_dir: Path, where: str) -> None:
         for k, c in enumerate(_list(entry, "controllers", at)):
             cat = f"{at}.controllers[{k}]"
             type_name = _require(c, "type", str, cat)
-            controller_name = c.get("name", "")
-            if not isinstance(controller_name, str):
-                raise _error(f"{cat}.name", "expected a string")
+            controller_name = _optional_name(c, cat)
             if not ctx.is_controller_type_registered(type_name):
                 warnings.warn(f"{cat}: controller type {type_name!r} is not registered; skipped", stacklevel=3)
                 continue
@@ -284,9 +290,7 @@ def _build(result: BotScene, doc: dict, scene_dir: Path, where: str) -> None:
     for i, entry in enumerate(_list(doc, "sensors", where)):
         at = f"{where}: sensors[{i}]"
         type_name = _require(entry, "type", str, at)
-        sensor_name = entry.get("name", "")
-        if not isinstance(sensor_name, str):
-            raise _error(f"{at}.name", "expected a string")
+        sensor_name = _optional_name(entry, at)
         if not ctx.is_sensor_type_registered(type_name):
             warnings.warn(f"{at}: sensor type {type_name!r} is not registered; skipped", stacklevel=3)
             continue

@@ -3,6 +3,7 @@
 #include "output/scene_recording.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <map>
 #include <type_traits>
@@ -85,13 +86,11 @@ void write_collider(h5::Writer& f, const std::string& group, const LinkCollider&
       c.shape);
 }
 
-const char* type_name(ActorType t) {
-  switch (t) {
-    case ActorType::Rigid: return "rigid";
-    case ActorType::Articulated: return "articulated";
-    case ActorType::Soft: return "soft";
-    default: return "other";
-  }
+// "rigid", "articulated", "soft": actor_type_name in lower case.
+std::string type_name(ActorType t) {
+  std::string name = actor_type_name(t);
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
 }
 
 // The first DOF of each top-level actor in the scene's DOF vector: every top-level actor's DOFs
