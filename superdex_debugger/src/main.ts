@@ -281,6 +281,7 @@ class App {
       replayTotal: () => this.store.end?.frames ?? null,
       scenes: () => [...this.store.scenes.keys()],
       renderModelCount: () => this.view.renderModelCount(),
+      drawCount: () => this.view.drawCount(),
     });
   }
 }

@@ -44,6 +44,8 @@ export class SceneView {
   /** Earliest time of the next render, ms (performance.now clock). */
   private nextRender = 0;
   private lastRender = 0;
+  /** Number of times the view has been drawn (for tests and diagnostics). */
+  private draws = 0;
   /** Software WebGL: false while drawing at reduced resolution. */
   private fullQuality = true;
   private fitted = false;
@@ -82,6 +84,8 @@ export class SceneView {
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
     const loop = (now: number) => {
+      // The next frame is requested first, so that a failing render cannot stop the loop.
+      requestAnimationFrame(loop);
       this.controls.update();
       if (this.dirty && now >= this.nextRender) {
         this.dirty = false;
@@ -90,15 +94,14 @@ export class SceneView {
           this.setQuality(false);
           this.nextRender = now + SOFTWARE_RENDER_INTERVAL;
         }
-        this.renderer.render(this.scene, this.camera);
+        this.draw();
         this.lastRender = now;
       } else if (this.software && !this.fullQuality && !this.dirty && now - this.lastRender > SOFTWARE_SETTLE) {
         // Once it has settled, one render at full size.
         this.setQuality(true);
-        this.renderer.render(this.scene, this.camera);
+        this.draw();
         this.lastRender = now;
       }
-      requestAnimationFrame(loop);
     };
     requestAnimationFrame(loop);
   }
@@ -239,6 +242,17 @@ export class SceneView {
   }
 
   /** Links of the shown actors whose render model has loaded and is in the scene. */
+  /** Draws the scene now. */
+  private draw(): void {
+    this.renderer.render(this.scene, this.camera);
+    this.draws++;
+  }
+
+  /** Number of times the view has been drawn since the page loaded. */
+  drawCount(): number {
+    return this.draws;
+  }
+
   renderModelCount(): number {
     let n = 0;
     for (const v of this.visuals.values()) n += v.renderModelCount();
@@ -327,7 +341,7 @@ export class SceneView {
     this.camera.updateProjectionMatrix();
     // Resizing clears the drawing buffer: draw again at once rather than leave the view blank
     // until the next scheduled render.
-    this.renderer.render(this.scene, this.camera);
+    this.draw();
     this.requestRender();
   }
 

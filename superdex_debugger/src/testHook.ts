@@ -35,6 +35,8 @@ export interface SuperdexHook {
   scenes(): number[];
   /** Links of the shown scene whose glTF render model has loaded and is in the 3D view. */
   renderModelCount(): number;
+  /** Times the 3D view has been drawn since the page loaded. */
+  drawCount(): number;
 }
 
 declare global {

@@ -47,7 +47,8 @@ try {
 
   // The 3D view draws something.
   await page.waitForTimeout(500);
-  out.canvas = await settledCanvasStats(page);
+  out.canvas = await settledCanvasStats(page, timeoutMs);
+  out.drawCount = await page.evaluate(() => window.superdex.drawCount());
   out.canvasNonBlank = isNonBlank(out.canvas);
 
   // Every requested link is a row of the tree.

@@ -103,7 +103,8 @@ try {
   const modelCount = () => (typeof window.superdex.renderModelCount === 'function' ? window.superdex.renderModelCount() : null);
   if (out.renderModelsDeclared > 0) await waitFor(page, (n) => window.superdex.renderModelCount?.() >= n, out.renderModelsDeclared, timeoutMs);
   out.renderModelCount = await page.evaluate(modelCount);
-  out.canvas = await settledCanvasStats(page);
+  out.canvas = await settledCanvasStats(page, timeoutMs);
+  out.drawCount = await page.evaluate(() => window.superdex.drawCount());
   out.canvasNonBlank = isNonBlank(out.canvas);
   if (opt.screenshot) {
     await page.waitForTimeout(300);
