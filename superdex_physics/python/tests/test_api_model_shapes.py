@@ -184,3 +184,23 @@ def test_load_json_model_file_and_the_file_cache(engine, tmp_path):
         sdp.enable_file_cache(was)
     with pytest.raises(sdp.Error, match="missing.mochi.json"):
         sdp.load_shape_from_file(tmp_path / "missing.mochi.json")
+
+
+@pytest.mark.parametrize("suffix,fmt", [(".h5", "H5"), (".json", "JSON"), (".mochi.h5", "H5")])
+def test_a_saved_tet_model_loads_back_as_a_soft_body_shape_whatever_its_file_name(engine, tmp_path, suffix, fmt):
+    # temporary files rarely end in ".mochi.h5": the format follows the extension alone
+    path = tmp_path / f"tmp_cube{suffix}"
+    sdm.save_to_file(sdp.ModelData(mesh=mesh(4, CUBE_NODES, CUBE_TETS)), str(path), getattr(sdp.FileFormat, fmt))
+    shape = sdp.load_shape_from_file(file_path=path)
+    assert shape.is_valid()
+    m = sdp.get_shape_mesh(shape)
+    assert (m.nodes_per_element, m.get_num_elements()) == (4, 5)
+    scene = sdp.create_scene("tets")
+    try:
+        soft = scene.create_soft_actor(name="cube", shape=shape, material=sdp.SoftMaterialParams(density=500.0))
+        # the soft body is the file's unit cube: eight nodes of three DOFs each, mass density x 1 m^3
+        assert soft.get_num_dofs() == 24
+        assert soft.get_mass() == pytest.approx(500.0, rel=1e-5)
+    finally:
+        sdp.destroy_scene(scene)
+        sdp.release_shape(shape)

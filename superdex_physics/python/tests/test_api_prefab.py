@@ -305,3 +305,21 @@ def test_contact_entries_enable_by_default(scene):
     prefab.add_to_scene(p, scene)
     assert scene.is_layer_contact_enabled("a", "b") and scene.is_layer_contact_enabled("b", "a")
     assert not scene.is_layer_contact_enabled("c", "d") and scene.is_layer_contact_enabled("d", "c")
+
+
+def test_shapes_load_from_every_format_load_shape_from_file_reads(scene):
+    # model files (.mochi.json) for a rigid surface and a soft tetrahedral body, from the assets
+    doc = {"actors": {"rigid": [{"name": "ball", "shape": "sphere/icosphere_3subdiv.1.mochi.json", "density": 1000.0,
+                                 "scale": [0.1, 0.1, 0.1], "translation": [0, 0, 1]}],
+                      "soft": [{"name": "block", "shape": "cube/cube_mesh.mochi.json", "translation": [1, 0, 1]}]}}
+    p = prefab.load_from_json_string(json.dumps(doc), get_assets_root())
+    r = prefab.add_to_scene(prefab=p, scene=scene)
+    (ball,) = r.filter(sdp.ActorType.RIGID)
+    (block,) = r.filter(sdp.ActorType.SOFT)
+    # an icosphere of radius 0.1 m: a little under the sphere's volume, 4/3 pi r^3
+    assert ball.get_mass() == pytest.approx(1000 * 4 / 3 * np.pi * 0.1**3, rel=0.02)
+    assert block.get_mesh().nodes_per_element == 4 and block.get_num_dofs() == 81
+    # a surface mesh cannot be a soft body: the error names the field and the file
+    bad = {"actors": {"soft": [{"name": "s", "shape": "sphere/icosphere_3subdiv.1.mochi.json"}]}}
+    with pytest.raises(sdp.Error, match=r"actors\.soft\[0\]\.shape: .*icosphere_3subdiv\.1\.mochi\.json' has no tetrahedral mesh"):
+        prefab.add_to_scene(prefab=prefab.load_from_json_string(json.dumps(bad), get_assets_root()), scene=scene)

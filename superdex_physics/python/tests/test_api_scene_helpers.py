@@ -42,6 +42,9 @@ def test_find_actor(scene):
         find_actor(scene, "cube_*")
     with pytest.raises(sdp.Error, match='no actor .* matches "Cube_1"'):
         find_actor(scene, "Cube_1")  # case-sensitive
+    # code written against SuperDex catches a ValueError
+    with pytest.raises(ValueError, match="no actor"):
+        find_actor(scene, "nothing")
 
 
 @pytest.mark.parametrize("normal, offset", [([0, 1, 0], 0.0), ([0, 0, 1], -0.5), ([1, 1, 0], 0.25)])

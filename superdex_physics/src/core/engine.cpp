@@ -283,8 +283,9 @@ ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake)
   const std::string ext = lower_extension(path);
   if (ext == ".h5") {
     // tetrahedra make a tet-mesh shape (for soft actors); other .mochi.h5 files a rigid shape
-    if (std::optional<TetMesh> tets = read_tet_mesh_file(path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
-    else data = shape_from_geometry(load_shape_file(path, bake));
+    const MochiH5 file = read_mochi_h5(path);
+    if (std::optional<TetMesh> tets = tet_mesh_from_mochi_h5(file, path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
+    else data = shape_from_geometry(shape_from_mochi_h5(file, path, bake));
   } else if (ext == ".obj" || ext == ".stl" || ext == ".ply") {
     data = shape_from_geometry(load_shape_file(path, bake));
   } else if (ext == ".json" || ext == ".off") {
@@ -317,6 +318,8 @@ std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape) {
   if (!data->tet_mesh) throw Error("shape " + std::to_string(shape.value()) + " is not a tet mesh (create it with create_tet_mesh_shape)");
   return data->tet_mesh;
 }
+
+bool is_tet_mesh_shape(const ShapeHandle& shape) { return shape_data(shape, "is_tet_mesh_shape")->tet_mesh != nullptr; }
 
 void refresh_kinematics(Articulation& a) { update_kinematics(a.model, a.state, a.kin); }
 

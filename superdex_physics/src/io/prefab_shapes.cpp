@@ -55,23 +55,25 @@ struct ShapeLoader {
     return h;
   }
 
+  // The shape file `src` names, loaded as load_shape_from_file does (any format it reads), with
+  // the bake; errors name the prefab field.
+  ShapeHandle file_shape(const ShapeSource& src, const ScenePrefab& p, real s, const std::string& where, bool mirroring_allowed) {
+    const ShapeBake b = bake(src, s, where, mirroring_allowed);
+    const std::string path = existing_file(src, p, where);
+    try {
+      return keep(load_shape_from_file(path, b));
+    } catch (const Error& e) {
+      throw Error(where + ".shape: " + e.what());
+    }
+  }
+
   // a rigid body's or a link's shape; a link's primitive keeps its pose (applied at creation)
   ShapeHandle rigid_shape(const ShapeSource& src, const ScenePrefab& p, real s, const std::string& where, bool pose_kept) {
-    ShapeGeometry g;
-    if (!src.file.empty()) {
-      const ShapeBake b = bake(src, s, where, true);
-      const std::string path = existing_file(src, p, where);
-      try {
-        g = load_shape_file(path, b);
-      } catch (const Error& e) {
-        throw Error(where + ".shape: " + e.what());
-      }
-    } else {
-      if (src.scale != Real3::Ones()) throw Error(where + ".scale: inline primitives take only the prefab's uniform scale");
-      if (!pose_kept && (src.rotation.coeffs() != Quaternion::Identity().coeffs() || !src.translation.isZero()))
-        throw Error(where + ".shape_rotation: an inline primitive of a rigid actor is centred and unrotated (use a model file)");
-      g = scaled_primitive(*src.primitive, s);
-    }
+    if (!src.file.empty()) return file_shape(src, p, s, where, true);
+    if (src.scale != Real3::Ones()) throw Error(where + ".scale: inline primitives take only the prefab's uniform scale");
+    if (!pose_kept && (src.rotation.coeffs() != Quaternion::Identity().coeffs() || !src.translation.isZero()))
+      throw Error(where + ".shape_rotation: an inline primitive of a rigid actor is centred and unrotated (use a model file)");
+    const ShapeGeometry g = scaled_primitive(*src.primitive, s);
     validate_shape(g, where + ".shape");
     return keep(create_shape(g));
   }
@@ -90,16 +92,9 @@ struct ShapeLoader {
       if (!wanted(a.shape, a.shape_source)) continue;
       const std::string where = at + "actors.soft[" + std::to_string(i) + "]";
       if (a.shape_source.file.empty()) throw Error(where + ".shape: soft actors need a tetrahedral mesh file");
-      const ShapeBake b = bake(a.shape_source, s, where, false);
-      const std::string path = existing_file(a.shape_source, p, where);
-      std::optional<TetMesh> mesh;
-      try {
-        mesh = read_tet_mesh_file(path, b);
-      } catch (const Error& e) {
-        throw Error(where + ".shape: " + e.what());
-      }
-      if (!mesh) throw Error(where + ".shape: '" + path + "' has no tetrahedral mesh/ (connectivity M x 4)");
-      a.shape = keep(create_tet_mesh_shape(std::move(*mesh), where + ".shape"));
+      a.shape = file_shape(a.shape_source, p, s, where, false);
+      if (!is_tet_mesh_shape(a.shape))
+        throw Error(where + ".shape: '" + existing_file(a.shape_source, p, where) + "' has no tetrahedral mesh (soft actors need one)");
     }
     for (size_t i = 0; i < p.actors.articulated.size(); ++i) {
       ArticulatedActorPrefab& a = p.actors.articulated[i];

@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "io/file_extension.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/mesh_validation.h"
@@ -50,8 +51,9 @@ std::shared_ptr<const SdfGrid> placed_grid(const MochiSdf& s, const ShapeBake& b
 
 }  // namespace
 
-ShapeGeometry shape_from_mochi_h5(const std::string& path, const ShapeBake& bake) {
-  const MochiH5 h = read_mochi_h5(path);
+ShapeGeometry shape_from_mochi_h5(const std::string& path, const ShapeBake& bake) { return shape_from_mochi_h5(read_mochi_h5(path), path, bake); }
+
+ShapeGeometry shape_from_mochi_h5(const MochiH5& h, const std::string& path, const ShapeBake& bake) {
   const int primitives = int(h.box.has_value()) + int(h.sphere.has_value()) + int(h.plane.has_value());
   if (primitives > 1) throw Error(path + ": several primitive groups (box/, sphere/, plane/): a shape file holds one shape");
   // bake checks without a mesh: the same rule as bake_mesh
@@ -103,9 +105,11 @@ ShapeGeometry shape_from_mochi_h5(const std::string& path, const ShapeBake& bake
 }
 
 std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake) {
-  const bool h5 = path.size() >= 9 && path.compare(path.size() - 9, 9, ".mochi.h5") == 0;
-  if (!h5) return std::nullopt;
-  const MochiH5 h = read_mochi_h5(path);
+  if (lower_extension(path) != ".h5") return std::nullopt;
+  return tet_mesh_from_mochi_h5(read_mochi_h5(path), path, bake);
+}
+
+std::optional<TetMesh> tet_mesh_from_mochi_h5(const MochiH5& h, const std::string& path, const ShapeBake& bake) {
   if (!h.mesh || h.mesh->nodes_per_element != 4) return std::nullopt;
   if (!bake.scale.allFinite() || (bake.scale.array() <= 0).any()) throw Error(path + ": the bake scale must be positive");
   TetMesh mesh;

@@ -11,19 +11,25 @@ import superdex.physics as sdp
 from superdex.physics.paths import get_assets_root
 
 
+class ActorLookupError(sdp.Error, ValueError):
+    """find_actor found no actor or several: a superdex.physics.Error that is also a ValueError
+    (as SuperDex raises for a bad pattern)."""
+
+
 def find_actor(scene: sdp.Scene, pattern: str) -> sdp.Actor:
     """The one actor whose name matches `pattern`, a case-sensitive shell-style pattern (`*`,
     `?`, `[...]`): "tablePrefab/Table", "cube_*". Links of articulations are actors too (named
-    "<articulation>/<link>"). Raises Error when no actor or more than one matches."""
+    "<articulation>/<link>"). Raises ActorLookupError (an Error and a ValueError) when no actor or
+    more than one matches."""
     if scene is None:
         raise sdp.Error("find_actor: scene is None")
     matches = []
     scene.for_each_actor(lambda actor: matches.append(actor) if fnmatch.fnmatchcase(actor.get_name(), pattern) else None)
     if not matches:
-        raise sdp.Error(f'find_actor: no actor of scene "{scene.get_name()}" matches "{pattern}"')
+        raise ActorLookupError(f'find_actor: no actor of scene "{scene.get_name()}" matches "{pattern}"')
     if len(matches) > 1:
         names = ", ".join(sorted(a.get_name() for a in matches))
-        raise sdp.Error(f'find_actor: {len(matches)} actors match "{pattern}": {names}')
+        raise ActorLookupError(f'find_actor: {len(matches)} actors match "{pattern}": {names}')
     return matches[0]
 
 

@@ -91,6 +91,8 @@ ShapeGeometry shape_geometry(const ShapeHandle& shape);
 ShapeHandle create_tet_mesh_shape(TetMesh mesh, const std::string& where);
 /// The tet mesh of a live tet-mesh shape; throws if `shape` is not one.
 std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape);
+/// Whether a live shape holds a tet mesh (throws if `shape` is not live).
+bool is_tet_mesh_shape(const ShapeHandle& shape);
 
 /// Registers the shape a model describes (model::validate first; errors name `where` and the
 /// field): a tetrahedral mesh (soft actors; rigid ones take its boundary), a triangle mesh, a

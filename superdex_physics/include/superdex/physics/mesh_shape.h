@@ -27,7 +27,7 @@ void check_bake(const ShapeBake& bake, const std::string& where);
 /// Applies `bake` to every vertex: v' = rotation * (scale .* v) + translation, after check_bake.
 void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where);
 
-/// When `path` is a `.mochi.h5` file whose mesh/ holds tetrahedra, its tet mesh with `bake`
+/// When `path` is a `.h5` (mochi) file whose mesh/ holds tetrahedra, its tet mesh with `bake`
 /// applied to the nodes; otherwise nothing. Throws superdex::Error naming the file for a bad file.
 std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake = {});
 

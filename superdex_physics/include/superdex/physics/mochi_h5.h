@@ -73,6 +73,12 @@ struct ShapeBake {
 /// soft bodies, not rigid shapes). `bake` is applied to the geometry (a box that is rotated or
 /// moved becomes a mesh).
 ShapeGeometry shape_from_mochi_h5(const std::string& path, const ShapeBake& bake = {});
+/// The same for a file already read (`path` names it in errors).
+ShapeGeometry shape_from_mochi_h5(const MochiH5& file, const std::string& path, const ShapeBake& bake = {});
+
+/// The tet mesh of a file already read when its mesh/ holds tetrahedra (`bake` applied to the
+/// nodes, which needs a positive scale); otherwise nothing.
+std::optional<TetMesh> tet_mesh_from_mochi_h5(const MochiH5& file, const std::string& path, const ShapeBake& bake = {});
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics
