@@ -345,12 +345,14 @@ void export_robotics(nb::module_& parent) {
         emit(warnings);
         return p;
       }, "path"_a, "Reads a .superdex_bot file.");
-  m.def("load_bot_prefab_from_urdf_file", [](const std::string& path) {
+  m.def("load_bot_prefab_from_urdf_file", [](const std::string& path, bool fixed_base) {
         std::vector<std::string> warnings;
-        BotPrefab p = robotics::load_bot_prefab_from_urdf(path, &warnings);
+        BotPrefab p = robotics::load_bot_prefab_from_urdf(path, &warnings, robotics::UrdfImportOptions{fixed_base});
         emit(warnings);
         return p;
-      }, "path"_a, "Imports a URDF file.");
+      }, "path"_a, nb::kw_only(), "fixed_base"_a = false,
+      "Imports a URDF file. The root link hangs on a free joint named 'world_joint' (a floating base), or on a "
+      "fixed one with fixed_base=True; a root attached to a 'world' link keeps that joint.");
   m.def("create_bot", [](nb::handle scene_arg, nb::handle prefab_arg, nb::object ctx) {
         const Scene& scene = object_of<Scene>(scene_arg, "create_bot: scene", "a superdex.physics.Scene");
         const BotPrefab& prefab = object_of<BotPrefab>(prefab_arg, "create_bot: prefab", "a BotPrefab (load_bot_prefab_from_file)");

@@ -6,7 +6,9 @@
 //    children in document order, so every parent comes before its children. Each URDF joint
 //    becomes the joint of its child link: revolute -> Revolute (limited), continuous ->
 //    Revolute (unlimited), prismatic -> Prismatic, fixed -> Hard, floating -> Free (root only),
-//    planar -> error. The root link gets a Hard joint named "<root>_root".
+//    planar -> error. The root link gets a joint named "world_joint" (made unique): Free by
+//    default (a floating base, as humanoids and quadrupeds need), Hard with
+//    UrdfImportOptions::fixed_base, and for a root link named "world" (the world's frame).
 //  * A root link named "world" that carries nothing (no mass, no collision) and has a single
 //    fixed or floating joint is the world itself: it is dropped, and that joint becomes the
 //    root joint of its child (Hard or Free, its <origin> as parentLinkFromJoint). Any other
@@ -121,8 +123,8 @@ struct UrdfJoint {
 
 class UrdfImporter {
  public:
-  UrdfImporter(const std::string& path, std::vector<std::string>* warnings)
-      : path_(path), dir_(fs::absolute(fs::path(path)).parent_path()), warnings_(warnings) {}
+  UrdfImporter(const std::string& path, std::vector<std::string>* warnings, const UrdfImportOptions& options)
+      : path_(path), dir_(fs::absolute(fs::path(path)).parent_path()), warnings_(warnings), options_(options) {}
 
   BotPrefab run() {
     load_document();
@@ -667,9 +669,11 @@ class UrdfImporter {
         if (root_joint >= 0) {
           J = joint_desc(joints_[root_joint]);
         } else {
-          J.type = JointType::Hard;
-          J.name = U.name + "_root";
-          for (int n = 1; joint_names.count(J.name); ++n) J.name = U.name + "_root_" + std::to_string(n);
+          // the joint to the world: floating unless the caller fixes the base; a root link
+          // named "world" is the world's own frame, welded
+          J.type = options_.fixed_base || U.name == "world" ? JointType::Hard : JointType::Free;
+          J.name = "world_joint";
+          for (int n = 1; joint_names.count(J.name); ++n) J.name = "world_joint_" + std::to_string(n);
         }
       } else {
         const UrdfJoint& uj = joints_[U.parent_joint];
@@ -684,8 +688,10 @@ class UrdfImporter {
                                                   real(I(1, 1)), real(I(1, 2)), real(I(2, 2))};
       } else {
         if (J.type != JointType::Hard && !subtree_has_mass(order[k])) {
-          // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's)
-          const XMLElement* where = joints_[k == 0 ? root_joint : U.parent_joint].element;
+          // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's,
+          // or the floating base's, which has no element: the link is named instead)
+          const int joint = k == 0 ? root_joint : U.parent_joint;
+          const XMLElement* where = joint >= 0 ? joints_[joint].element : U.element;
           fail(where, "link " + in_quotes(U.name) + " has no inertial but moves on joint " + in_quotes(J.name) +
                           ", and no link it carries has mass (give it an <inertial> with a positive mass, or make the joint fixed)");
         }
@@ -706,6 +712,7 @@ class UrdfImporter {
   std::string path_;
   fs::path dir_;
   std::vector<std::string>* warnings_;
+  UrdfImportOptions options_;
   tinyxml2::XMLDocument doc_;
   const XMLElement* robot_ = nullptr;
   std::string robot_name_;
@@ -716,8 +723,8 @@ class UrdfImporter {
 
 }  // namespace
 
-BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings) {
-  return UrdfImporter(path, warnings).run();
+BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings, const UrdfImportOptions& options) {
+  return UrdfImporter(path, warnings, options).run();
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -147,6 +147,12 @@ class UrdfImport : public ::testing::Test {
     return load_bot_prefab_from_urdf(write(relative, urdf), &warnings_);
   }
 
+  /// The same with the root welded to the world.
+  BotPrefab load_fixed(const std::string& urdf) {
+    warnings_.clear();
+    return load_bot_prefab_from_urdf(write("robot.urdf", urdf), &warnings_, UrdfImportOptions{.fixed_base = true});
+  }
+
   /// The message of the superdex::Error that importing `urdf` throws ("" if none).
   std::string error_of(const std::string& urdf, const std::string& relative = "robot.urdf") {
     const std::string path = write(relative, urdf);
@@ -201,11 +207,11 @@ TEST_F(UrdfImport, JointTypesLimitsDynamicsAndPrefabFields) {
   EXPECT_EQ(p.actuators.size(), 5u);
   for (size_t i = 0; i < 5; ++i) EXPECT_TRUE(p.sensors[i].empty() && p.actuators[i].empty());
 
-  // the root: a Hard joint named after it
+  // the root: a floating base, on a Free joint named "world_joint"
   EXPECT_EQ(art.links[0].name, "base");
   EXPECT_EQ(art.links[0].parent_link, -1);
-  EXPECT_EQ(art.joints[0].type, JointType::Hard);
-  EXPECT_EQ(art.joints[0].name, "base_root");
+  EXPECT_EQ(art.joints[0].type, JointType::Free);
+  EXPECT_EQ(art.joints[0].name, "world_joint");
 
   // revolute: normalised axis, limits as vectors along it, effort, damping -> viscous, friction -> Coulomb
   const auto& rev = joint_of(p, "a");
@@ -243,9 +249,9 @@ TEST_F(UrdfImport, JointTypesLimitsDynamicsAndPrefabFields) {
   EXPECT_TRUE(fix.parent_link_from_joint.translation.isApprox(Vec3(0, 0, 0.1)));
   EXPECT_TRUE(warnings_.empty()) << all_warnings();
 
-  // the engine accepts the description: 3 DOFs
+  // the engine accepts the description: 3 joint DOFs behind the floating base's 6
   const auto art_handle = build(p);
-  EXPECT_EQ(scene_->num_dofs(art_handle), 3);
+  EXPECT_EQ(scene_->num_dofs(art_handle), 6 + 3);
 }
 
 TEST_F(UrdfImport, DefaultAxisIsX) {
@@ -274,13 +280,27 @@ TEST_F(UrdfImport, LinksAreOrderedDepthFirstWithParentsFirst) {
 }
 
 TEST_F(UrdfImport, RootJointNameAvoidsClashes) {
-  const BotPrefab p = load(robot(link("base") + link("a") + joint("base_root", "fixed", "base", "a")));
-  EXPECT_EQ(p.articulation.joints[0].name, "base_root_1");
+  const BotPrefab p = load(robot(link("base") + link("a") + joint("world_joint", "fixed", "base", "a")));
+  EXPECT_EQ(p.articulation.joints[0].name, "world_joint_1");
+}
+
+TEST_F(UrdfImport, FixedBaseOptionWeldsTheRoot) {
+  const std::string path = write("robot.urdf", robot(link("base") + link("a") + joint("j", "continuous", "base", "a")));
+  const BotPrefab fixed = load_bot_prefab_from_urdf(path, &warnings_, UrdfImportOptions{.fixed_base = true});
+  EXPECT_EQ(fixed.articulation.joints[0].type, JointType::Hard);
+  EXPECT_EQ(fixed.articulation.joints[0].name, "world_joint");
+  // the floating base adds six DOFs in front of the joint's one
+  const BotPrefab floating = load_bot_prefab_from_urdf(path, &warnings_);
+  EXPECT_EQ(floating.articulation.joints[0].type, JointType::Free);
+  const auto fixed_actor = build(fixed);
+  EXPECT_EQ(scene_->num_dofs(fixed_actor), 1);
+  const auto floating_actor = build(floating);
+  EXPECT_EQ(scene_->num_dofs(floating_actor), 7);
 }
 
 TEST_F(UrdfImport, RpyIsFixedAxisRollPitchYaw) {
   const double roll = 0.3, pitch = -0.5, yaw = 1.2;
-  const BotPrefab p = load(robot(link("base") + link("a") + link("b") +
+  const BotPrefab p = load_fixed(robot(link("base") + link("a") + link("b") +
                                  joint("j1", "fixed", "base", "a", "<origin xyz=\"0.1 -0.2 0.3\" rpy=\"0.3 -0.5 1.2\"/>") +
                                  joint("j2", "continuous", "a", "b", "<origin xyz=\"0.5 0 0\" rpy=\"0 0 1.5707963267948966\"/><axis xyz=\"0 0 1\"/>")));
   const physics::Transform& X = joint_of(p, "a").parent_link_from_joint;
@@ -333,7 +353,7 @@ TEST_F(UrdfImport, MasslessLinksGetANegligibleMass) {
   // but carries a massive link welded to it
   const std::string zero_mass =
       "<inertial><mass value=\"0\"/><inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"/></inertial>";
-  const BotPrefab p = load(robot(
+  const BotPrefab p = load_fixed(robot(
       link("base") + link("arm") + link("flange", zero_mass) + link("tool", "") + link("wrist", "") + link("hand") +
       joint("j_arm", "continuous", "base", "arm", "<axis xyz=\"0 1 0\"/>") +
       joint("j_flange", "fixed", "arm", "flange", "<origin xyz=\"1 0 0\"/>") +
@@ -393,7 +413,7 @@ TEST_F(UrdfImport, UnphysicalInertiasAreRepairedWithAWarning) {
 
 TEST_F(UrdfImport, MasslessIntermediateFramesOfAMultiAxisJointMove) {
   // a hip made of three single-axis joints through two massless frames, carrying a 1 kg leg
-  const BotPrefab p = load(robot(link("pelvis") + link("hip_z", "") + link("hip_x", "") + link("leg") +
+  const BotPrefab p = load_fixed(robot(link("pelvis") + link("hip_z", "") + link("hip_x", "") + link("leg") +
                                  joint("z", "continuous", "pelvis", "hip_z", "<axis xyz=\"0 0 1\"/>") +
                                  joint("x", "continuous", "hip_z", "hip_x", "<axis xyz=\"1 0 0\"/>") +
                                  joint("y", "continuous", "hip_x", "leg", "<axis xyz=\"0 1 0\"/>")));
@@ -440,8 +460,9 @@ TEST_F(UrdfImport, WorldLinkOnAMovingJointStaysAsAWeldedLink) {
   const auto& art = p.articulation;
   ASSERT_EQ(art.links.size(), 2u);
   EXPECT_EQ(art.links[0].name, "world");
+  // a root named "world" is welded to the world whatever the options
   EXPECT_EQ(art.joints[0].type, JointType::Hard);
-  EXPECT_EQ(art.joints[0].name, "world_root");
+  EXPECT_EQ(art.joints[0].name, "world_joint");
   EXPECT_EQ(art.joints[1].name, "hinge");
   EXPECT_DOUBLE_EQ(*art.links[0].mass, 1e-9);
   build(p);

@@ -61,7 +61,7 @@ class PandaReachEnv(SuperDexEnv):
         self.force_weight = float(force_weight)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the URDF's extra collision elements and mimic joints
-            self._prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf_path()))
+            self._prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf_path()), fixed_base=True)
         self._link_names = [link.name for link in self._prefab.links]
         self._efforts = [j.effort_limit for j in self._prefab.joints if j.name.startswith("panda_joint") and j.effort_limit > 0]
         super().__init__(control_hz, sim_multiple, episode_steps, render_mode, num_worker_threads)

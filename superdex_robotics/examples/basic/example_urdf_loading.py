@@ -3,7 +3,8 @@
 robotics.load_bot_prefab_from_urdf_file turns a URDF (links, joints, inertials, collision shapes)
 into the same BotPrefab that a .superdex_bot file gives, so the rest of the SDK does not care where
 a robot came from. Each URDF joint becomes the joint of its child link (revolute, continuous ->
-Revolute, prismatic -> Prismatic, fixed -> Hard), and the root link is welded to the world.
+Revolute, prismatic -> Prismatic, fixed -> Hard). A URDF's root link floats on a free joint named
+"world_joint" unless fixed_base=True welds it to the world, as this arm is.
 
 This example loads the bundled 4-DOF arm (assets/bots/urdf/tabletop_arm_4dof, a base yaw and
 three pitch joints, see its README), builds it with robotics.create_bot, prints its links, joints
@@ -54,7 +55,7 @@ def run(urdf_path: str | None = None, pose=None, seconds: float = 0.0, dt: float
     try:
         scene = physics.create_scene("URDF loading example")
         scene.set_gravity([0, 0, -9.81])
-        prefab = robotics.load_bot_prefab_from_urdf_file(urdf_path)
+        prefab = robotics.load_bot_prefab_from_urdf_file(urdf_path, fixed_base=True)
         bot = robotics.create_bot(scene, prefab, robotics.create_context())
         try:
             actor = bot.get_articulated_actor()

@@ -79,7 +79,7 @@ def run(seconds: float = 3.0, debugger: bool = False) -> dict:
     try:
         scene = physics.create_scene("C++ pipeline")
         scene.set_gravity([0, 0, -9.81])
-        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)))
+        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)), fixed_base=True)
         prefab.default_pose = START_POSE
         declare_components(prefab)
         context = robotics.create_context()

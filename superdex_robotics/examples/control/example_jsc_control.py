@@ -71,7 +71,7 @@ def run(seconds_per_pose: float = 2.0, targets=None, debugger: bool = False) -> 
     try:
         scene = physics.create_scene("Joint-space control")
         scene.set_gravity([0, 0, -9.81])
-        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)))
+        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)), fixed_base=True)
         prefab.default_pose = START_POSE  # a URDF has no default pose
         context = robotics.create_context()
         bot = robotics.create_bot(scene, prefab, context)

@@ -125,7 +125,7 @@ def run(laps: float = 3.0, debugger: bool = False) -> dict:
     try:
         scene = physics.create_scene("Operational-space control")
         scene.set_gravity([0, 0, -9.81])
-        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)))
+        prefab = robotics.load_bot_prefab_from_urdf_file(str(physics.paths.resolve_asset(ARM_ASSET)), fixed_base=True)
         prefab.default_pose = START_POSE
         bot = robotics.create_bot(scene, prefab, robotics.create_context())
         try:

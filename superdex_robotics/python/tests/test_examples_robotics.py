@@ -220,7 +220,7 @@ def test_urdf_loading_names_dofs_and_forward_kinematics(arm_chain):
         result = ex.run(pose=pose)
         assert result["name"] == arm_chain.name
         assert result["link_names"] == arm_chain.link_order
-        assert result["joint_names"] == [f"{arm_chain.root_link}_root"] + [j.get("name") for j in arm_chain.joints]
+        assert result["joint_names"] == ["world_joint"] + [j.get("name") for j in arm_chain.joints]
         assert result["num_dofs"] == len(arm_chain.moving) == 4
         q = ex.DEFAULT_POSE if pose is None else pose
         np.testing.assert_allclose(result["pose"], q, atol=1e-6)

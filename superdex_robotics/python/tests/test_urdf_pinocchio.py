@@ -208,8 +208,8 @@ class Robot:
     frame_ids: list[int]  # Pinocchio BODY frame of each SuperDex link
 
 
-def pinocchio_model(urdf: Path, massless: set[str], link_names: list[str]) -> pin.Model:
-    model = pin.buildModelFromUrdf(str(urdf))
+def pinocchio_model(urdf: Path, massless: set[str], link_names: list[str], floating: bool = False) -> pin.Model:
+    model = pin.buildModelFromUrdf(str(urdf), pin.JointModelFreeFlyer()) if floating else pin.buildModelFromUrdf(str(urdf))
     model.gravity = pin.Motion(GRAVITY, np.zeros(3))
     for name in massless & set(link_names):
         # the same negligible inertia as the importer's, at the link origin
@@ -228,7 +228,7 @@ def robot(request, engine, tmp_path_factory) -> Robot:
         urdf = example_robot_data_file(ROBOTS[name])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf))
+        prefab = sdr.load_bot_prefab_from_urdf_file(str(urdf), fixed_base=True)
     messages = [str(w.message) for w in caught]
     for expected in EXPECTED_WARNINGS[name]:
         assert any(expected in m for m in messages), f"{name}: no warning {expected!r} in {messages}"
@@ -399,6 +399,49 @@ def test_reference_inertias_are_negligible(robot: Robot):
         np.testing.assert_allclose(M, M_plain, rtol=0, atol=1e-8 * np.abs(M_plain).max())
 
 
+def test_floating_base_dynamics_match_pinocchio(robot: Robot):
+    """Loaded without fixed_base, the root floats on a Free joint named world_joint: the mass
+    matrix and gravity forces equal Pinocchio's with a free-flyer root. Pinocchio's free-flyer
+    linear velocity is in the body frame, the engine's in the world frame: v_pin = T v with
+    T = diag(R^T, I) on the root's six DOFs, so M = T^T M_pin T and g = T^T g_pin."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        prefab = sdr.load_bot_prefab_from_urdf_file(str(robot.urdf))
+    urdf_links = [link.get("name") for link in ET.parse(robot.urdf).getroot().iter("link")]
+    if "world" in urdf_links:  # the URDF welds its base to a 'world' link itself: it stays fixed
+        assert prefab.joints[0].type == sdp.ArticulatedJointType.HARD
+        return
+    assert (prefab.joints[0].name, prefab.joints[0].type) == ("world_joint", sdp.ArticulatedJointType.FREE)
+    scene = sdp.create_scene(f"floating_{robot.name}")
+    try:
+        scene.set_gravity(GRAVITY.tolist())
+        art = sdr.create_bot(scene, prefab, sdr.create_context()).get_articulated_actor()
+        model = pinocchio_model(robot.urdf, massless_links(robot.urdf), robot.link_names, floating=True)
+        data = model.createData()
+        n = model.nv
+        assert art.get_num_dofs() == n == robot.model.nv + 6
+        # the root's six DOFs come first in both; the joints follow in the fixed-base order
+        perm = np.concatenate([np.arange(6), 6 + robot.perm])
+        rng = np.random.default_rng(11)
+        for k in range(NUM_STATES):
+            s = random_state(robot, rng)
+            p, r = rng.uniform(-1.0, 1.0, 3), rng.normal(0.0, 1.0, 3)
+            R = pin.exp3(r)
+            q_pin = np.concatenate([p, pin.Quaternion(R).coeffs(), s.q_pin])  # quaternion as x, y, z, w
+            art.set_articulated_pose_from_joints(np.concatenate([p, r, s.pose]))
+            art.set_articulated_joint_velocities(np.zeros(n))
+            T = np.eye(n)
+            T[:3, :3] = R.T
+            M_pin = np.array(pin.crba(model, data, q_pin)).reshape(n, n)
+            M_pin = (np.triu(M_pin) + np.triu(M_pin, 1).T)[np.ix_(perm, perm)]
+            g_pin = np.array(pin.computeGeneralizedGravity(model, data, q_pin)).reshape(n)[perm]
+            where = f"{robot.name} floating, state {k}"
+            assert_close(art.get_articulated_mass_matrix(), T.T @ M_pin @ T, f"mass matrix, {where}")
+            assert_close(art.get_articulated_bias_forces(), T.T @ g_pin, f"gravity forces, {where}")
+    finally:
+        sdp.destroy_scene(scene)
+
+
 # --------------------------------------------------------------------------------------
 # bad input
 
@@ -422,7 +465,16 @@ def test_missing_collision_mesh_is_an_error(engine, tmp_path):
         "</geometry></collision></link>",
     )
     with pytest.raises(sdp.Error, match=r"link 'base': collision mesh 'package://nowhere/meshes/base.stl' not found"):
+        sdr.load_bot_prefab_from_urdf_file(path, fixed_base=True)
+
+
+def test_a_floating_base_needs_mass(engine, tmp_path):
+    # a lone link without <inertial> cannot float; welded to the world it is a fixed frame
+    path = write_urdf(tmp_path, '<link name="base"/>')
+    with pytest.raises(sdp.Error, match=r"<link name='base'>: link 'base' has no inertial but moves on joint 'world_joint'"):
         sdr.load_bot_prefab_from_urdf_file(path)
+    fixed = sdr.load_bot_prefab_from_urdf_file(path, fixed_base=True)
+    assert (fixed.name, len(fixed.links), fixed.joints[0].name) == ("bad", 1, "world_joint")
 
 
 def test_unknown_joint_type_is_an_error(engine, tmp_path):

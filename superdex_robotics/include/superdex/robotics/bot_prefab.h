@@ -68,8 +68,17 @@ void add_link(BotPrefab& prefab, const BotLinkPrefab& link, const physics::Joint
 /// what was expected; unknown fields are appended to `warnings`.
 BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings);
 
+/// Choices when importing a URDF.
+struct UrdfImportOptions {
+  /// Weld the root link to the world (a Hard root joint) instead of the default floating base
+  /// (a Free root joint). Either way the root joint is named "world_joint". A URDF that
+  /// attaches its root to a link named "world" keeps that joint's type.
+  bool fixed_base = false;
+};
+
 /// Imports a URDF file (urdf_import.cpp). Throws superdex::Error naming the file and element.
-BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings);
+BotPrefab load_bot_prefab_from_urdf(const std::string& path, std::vector<std::string>* warnings,
+                                    const UrdfImportOptions& options = {});
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::robotics
