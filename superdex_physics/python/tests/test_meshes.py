@@ -2,9 +2,11 @@
 (written by the tests), baking, and a corpus of malformed inputs, each raising
 superdex.physics.Error with a message naming the file and the defect."""
 
+import re
 import struct
 
 import h5py
+
 import numpy as np
 import pytest
 
@@ -171,17 +173,30 @@ def test_empty_mesh(engine, tmp_path):
         sdp.load_shape_from_file(path)
 
 
-def test_degenerate_triangles(engine, tmp_path):
+def test_degenerate_triangles(engine, tmp_path, log_messages):
     v = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]], dtype=float)
     t = np.array([[0, 1, 3], [0, 1, 2], [0, 0, 3]])
+    # arrays given in code are checked strictly
     with pytest.raises(sdp.Error, match=r"create_tri_mesh_shape: 2 degenerate \(zero-area\) triangles; the first is triangle 1 \(vertices 0, 1, 2\)"):
         sdp.create_tri_mesh_shape(v, t)
-    (tmp_path / "flat.obj").write_text(obj_text(v, t))
-    with pytest.raises(sdp.Error, match=r"flat\.obj: 2 degenerate \(zero-area\) triangles"):
-        sdp.load_shape_from_file(tmp_path / "flat.obj")
-    (tmp_path / "flat.stl").write_bytes(stl_binary(v, t))
-    with pytest.raises(sdp.Error, match=r"flat\.stl: 2 degenerate \(zero-area\) triangles"):
-        sdp.load_shape_from_file(tmp_path / "flat.stl")
+    # files as exporters write them: the slivers are dropped with a warning naming the file
+    for name, data in [("flat.obj", obj_text(v, t)), ("flat.stl", stl_binary(v, t))]:
+        path = tmp_path / name
+        path.write_text(data) if isinstance(data, str) else path.write_bytes(data)
+        log_messages.clear()
+        shape = sdp.load_shape_from_file(path)
+        mesh = sdp.get_shape_mesh(shape)
+        assert mesh.get_num_elements() == 1
+        xyz = np.asarray(mesh.coordinates).reshape(-1, 3)
+        tri = xyz[np.asarray(mesh.connectivity)]
+        assert np.linalg.norm(np.cross(tri[1] - tri[0], tri[2] - tri[0])) == pytest.approx(1.0)  # the good triangle
+        warnings = [m for c, m in log_messages if c == sdp.LogChannel.WARNING]
+        assert len(warnings) == 1 and re.search(rf"{name}: 2 degenerate \(zero-area\) triangles ignored", warnings[0]), warnings
+        sdp.release_shape(shape)
+    # a file of nothing but degenerate triangles has no surface: an error
+    (tmp_path / "line.obj").write_text(obj_text(v, t[1:]))
+    with pytest.raises(sdp.Error, match=r"line\.obj: 2 degenerate \(zero-area\) triangles"):
+        sdp.load_shape_from_file(tmp_path / "line.obj")
 
 
 def test_open_mesh_where_a_closed_one_is_needed(scene, tmp_path):

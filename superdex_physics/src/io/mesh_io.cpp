@@ -82,6 +82,8 @@ TriangleMesh read_obj_bytes(const std::string& text, const std::string& path) {
     }
     mesh_io::add_fan(mesh, polygon);
   }
+  // exporters leave slivers: they are dropped with a warning, other defects are errors
+  remove_degenerate_triangles(mesh, path);
   check_triangle_mesh(mesh, path);
   return mesh;
 }

@@ -97,6 +97,8 @@ TriangleMesh read_off_bytes(const std::string& bytes, const std::string& path) {
     while (next < tok.size() && tok[next].line == n_tok.line) ++next;  // face colour
     mesh_io::add_fan(mesh, polygon);
   }
+  // exporters leave slivers: they are dropped with a warning, other defects are errors
+  remove_degenerate_triangles(mesh, path);
   check_triangle_mesh(mesh, path);
   return mesh;
 }

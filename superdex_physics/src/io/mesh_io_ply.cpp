@@ -258,6 +258,8 @@ TriangleMesh read_ply_bytes(const std::string& bytes, const std::string& path) {
       }
     }
   }
+  // exporters leave slivers: they are dropped with a warning, other defects are errors
+  remove_degenerate_triangles(mesh, path);
   check_triangle_mesh(mesh, path);
   return mesh;
 }

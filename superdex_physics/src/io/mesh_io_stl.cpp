@@ -115,6 +115,8 @@ TriangleMesh read_stl_bytes(const std::string& bytes, const std::string& path) {
     fail(path, 0, "not a valid STL file: no 'solid' header, and the binary header announces " + std::to_string(count) + " triangles (" +
                       std::to_string(kHeaderBytes + kRecordBytes * count) + " bytes) but the file has " + std::to_string(bytes.size()) + " bytes");
   }
+  // exporters leave slivers: they are dropped with a warning, other defects are errors
+  remove_degenerate_triangles(mesh, path);
   check_triangle_mesh(mesh, path);
   return mesh;
 }

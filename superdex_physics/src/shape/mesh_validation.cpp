@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "superdex/physics/error.h"
+#include "superdex/physics/log.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -47,23 +48,56 @@ void check_triangle_mesh(const TriangleMesh& mesh, const std::string& where) {
       if (mesh.triangles[t][k] < 0 || mesh.triangles[t][k] >= n)
         fail("triangle " + std::to_string(t) + " has vertex index " + std::to_string(mesh.triangles[t][k]) + " out of range [0, " +
              std::to_string(n) + ")");
+  const std::vector<size_t> degenerate = degenerate_triangles(mesh);
+  if (!degenerate.empty()) {
+    const size_t first = degenerate.front();
+    const auto& tri = mesh.triangles[first];
+    fail(plural(static_cast<long>(degenerate.size()), "degenerate (zero-area) triangle", "degenerate (zero-area) triangles") +
+         "; the first is triangle " + std::to_string(first) + " (vertices " + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
+         ", " + std::to_string(tri[2]) + ")");
+  }
+}
+
+std::vector<size_t> degenerate_triangles(const TriangleMesh& mesh) {
   // zero area relative to the mesh size (this also catches repeated indices)
   const double diag = bounding_diagonal(mesh);
   const double min_twice_area = 2e-12 * diag * diag;
-  long degenerate = 0, first = -1;
+  std::vector<size_t> out;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     const Eigen::Vector3d a = vertex(mesh, tri[0]);
     const double twice_area = (vertex(mesh, tri[1]) - a).cross(vertex(mesh, tri[2]) - a).norm();
-    if (!(twice_area > min_twice_area)) {
-      if (degenerate++ == 0) first = static_cast<long>(t);
+    if (!(twice_area > min_twice_area)) out.push_back(t);
+  }
+  return out;
+}
+
+long remove_degenerate_triangles(TriangleMesh& mesh, const std::string& where) {
+  // only a well-formed mesh is judged: other defects stay for check_triangle_mesh to report
+  const long n = static_cast<long>(mesh.vertices.size());
+  for (const Vec3& v : mesh.vertices)
+    if (!v.allFinite()) return 0;
+  for (const auto& tri : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (tri[k] < 0 || tri[k] >= n) return 0;
+  const std::vector<size_t> degenerate = degenerate_triangles(mesh);
+  if (degenerate.empty() || degenerate.size() == mesh.triangles.size()) return 0;
+  const auto& tri = mesh.triangles[degenerate.front()];
+  log_warning(where + ": " + plural(static_cast<long>(degenerate.size()), "degenerate (zero-area) triangle", "degenerate (zero-area) triangles") +
+              " ignored; the first was triangle " + std::to_string(degenerate.front()) + " (vertices " + std::to_string(tri[0]) + ", " +
+              std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+  std::vector<std::array<int, 3>> kept;
+  kept.reserve(mesh.triangles.size() - degenerate.size());
+  size_t next = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (next < degenerate.size() && degenerate[next] == t) {
+      ++next;
+      continue;
     }
+    kept.push_back(mesh.triangles[t]);
   }
-  if (degenerate > 0) {
-    const auto& tri = mesh.triangles[static_cast<size_t>(first)];
-    fail(plural(degenerate, "degenerate (zero-area) triangle", "degenerate (zero-area) triangles") + "; the first is triangle " +
-         std::to_string(first) + " (vertices " + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
-  }
+  mesh.triangles = std::move(kept);
+  return static_cast<long>(degenerate.size());
 }
 
 std::string EdgeReport::describe() const {

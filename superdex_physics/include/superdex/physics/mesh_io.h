@@ -7,7 +7,8 @@
 ///
 /// Every reader throws superdex::Error naming the file, the line (text formats) and the defect:
 /// missing file, unknown extension, malformed number, index out of range, empty mesh,
-/// non-finite coordinate, degenerate (zero-area) triangles.
+/// non-finite coordinate, a mesh of nothing but degenerate triangles. Degenerate (zero-area)
+/// triangles among good ones are dropped with a warning (remove_degenerate_triangles).
 
 #include <string>
 

@@ -5,6 +5,7 @@
 /// convexity.
 
 #include <string>
+#include <vector>
 
 #include "superdex/physics/shape.h"
 
@@ -15,6 +16,16 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 /// non-finite coordinate, a triangle index out of range, or degenerate triangles (area below
 /// 1e-12 of the squared bounding-box diagonal; the count and the first index are reported).
 void check_triangle_mesh(const TriangleMesh& mesh, const std::string& where);
+
+/// Indices of the triangles check_triangle_mesh calls degenerate (indices must be in range).
+std::vector<size_t> degenerate_triangles(const TriangleMesh& mesh);
+
+/// Drops the degenerate triangles of a mesh read from a file (exporters leave slivers and
+/// triangles with a repeated vertex), with one warning "<where>: N degenerate (zero-area)
+/// triangles ignored; ...". A mesh with other defects (non-finite coordinates, indices out of
+/// range) or with nothing but degenerate triangles is left for check_triangle_mesh to reject.
+/// Returns the number of triangles removed.
+long remove_degenerate_triangles(TriangleMesh& mesh, const std::string& where);
 
 /// The edges that keep a mesh from being a closed, consistently oriented surface.
 struct EdgeReport {
