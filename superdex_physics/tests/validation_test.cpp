@@ -58,6 +58,16 @@ TEST_F(ValidationTest, NegativeMassNamesTheLink) {
   EXPECT_ERROR(scene().create_articulated_actor(d, "bot.superdex_bot"), "bot.superdex_bot", "links[2].mass");
 }
 
+TEST_F(ValidationTest, BadExtraShapeNamesTheLinkAndIndex) {
+  ArticulationDesc d = valid_chain();
+  d.links[1].extra_shapes.push_back({SphereShape{Vec3::Zero(), real(0.1)}, Transform{}, ""});
+  d.links[1].extra_shapes.push_back({SphereShape{Vec3::Zero(), real(-1)}, Transform{}, ""});
+  EXPECT_ERROR(scene().create_articulated_actor(d, "bot.superdex_bot"), "bot.superdex_bot", "links[1].extraShapes[1].shape");
+  d.links[1].extra_shapes[1].shape = SphereShape{Vec3::Zero(), real(0.1)};
+  d.links[1].extra_shapes[1].link_from_shape.rotation = Quat(0, 0, 0, 0);
+  EXPECT_ERROR(scene().create_articulated_actor(d, "bot.superdex_bot"), "links[1].extraShapes[1].linkFromShape");
+}
+
 TEST_F(ValidationTest, NonPositiveDefiniteInertia) {
   ArticulationDesc d = valid_chain();
   d.links[1].moment_of_inertia = std::array<real, 6>{0.1, 0, 0, -0.1, 0, 0.1};

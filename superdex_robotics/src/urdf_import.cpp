@@ -40,8 +40,8 @@
 // import fails naming the link and the joint. The Pinocchio comparison test gives Pinocchio
 // the same negligible inertias, so it stays exact.
 //
-// Geometry. The first <collision> becomes the link's shape with its <origin> as
-// link_from_shape (further <collision> elements are ignored with a warning): <box size>,
+// Geometry. Every <collision> is imported with its <origin>: the first becomes the link's
+// shape (link_from_shape), the others its extra_shapes (compound collision): <box size>,
 // <sphere radius>, <cylinder radius length> as a closed 48-sided prism mesh (the exact
 // cylinder up to 0.2% of its radius; a capsule would change the shape: a short wheel would
 // turn into a ball), <capsule radius length> (an SDFormat extension; length is the
@@ -526,15 +526,20 @@ class UrdfImporter {
   }
 
   void read_geometry(const UrdfLink& U, LinkDesc& L) const {
-    const XMLElement* collision = U.element->FirstChildElement("collision");
-    if (collision) {
-      L.link_from_shape = to_transform(origin_of(collision));
-      L.shape = collision_shape(required_child(collision, "geometry"), U.name, &L.shape_file);
-      int extra = 0;
-      for (const XMLElement* c = collision->NextSiblingElement("collision"); c; c = c->NextSiblingElement("collision")) ++extra;
-      if (extra)
-        warn(U.element, "link " + in_quotes(U.name) + " has " + std::to_string(extra + 1) +
-                            " <collision> elements; only the first is imported (one shape per link)");
+    // every <collision>, each at its own origin: the first imported one is the link's shape,
+    // the others collide with it as one body
+    for (const XMLElement* c = U.element->FirstChildElement("collision"); c; c = c->NextSiblingElement("collision")) {
+      std::string file;
+      std::optional<ShapeGeometry> shape = collision_shape(required_child(c, "geometry"), U.name, &file);
+      if (!shape) continue;
+      const Transform X_LS = to_transform(origin_of(c));
+      if (!L.shape) {
+        L.shape = std::move(shape);
+        L.link_from_shape = X_LS;
+        L.shape_file = file;
+      } else {
+        L.extra_shapes.push_back({std::move(*shape), X_LS, file});
+      }
     }
     for (const XMLElement* v = U.element->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual")) {
       const XMLElement* geometry = v->FirstChildElement("geometry");

@@ -498,8 +498,12 @@ TEST_F(UrdfImport, PrimitiveCollisionShapes) {
   EXPECT_TRUE(std::get<physics::BoxShape>(*L0.shape).half_extents.isApprox(Vec3(0.1, 0.2, 0.3)));
   EXPECT_TRUE(L0.link_from_shape.translation.isApprox(Vec3(0.1, 0.2, 0.3)));
   EXPECT_TRUE(rotation_of(L0.link_from_shape).isApprox(rot_z(EIGEN_PI / 2), 1e-14));
-  // one shape per link: the second <collision> is dropped with a warning naming the link
-  EXPECT_THAT(all_warnings(), HasSubstr("link 'base' has 2 <collision> elements; only the first is imported"));
+  // compound collision: the second <collision> (a unit sphere at the link origin) is kept
+  ASSERT_EQ(L0.extra_shapes.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<physics::SphereShape>(L0.extra_shapes[0].shape));
+  EXPECT_DOUBLE_EQ(std::get<physics::SphereShape>(L0.extra_shapes[0].shape).radius, 1.0);
+  EXPECT_TRUE(L0.extra_shapes[0].link_from_shape.translation.isZero());
+  EXPECT_TRUE(warnings_.empty()) << all_warnings();
 
   const auto& Ls = links[link_index(p, "s")];
   ASSERT_TRUE(Ls.shape && std::holds_alternative<physics::SphereShape>(*Ls.shape));

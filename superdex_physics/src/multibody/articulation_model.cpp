@@ -267,16 +267,28 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     if (L.layer < 0 || L.layer > 63) r.fail(at("links", i, "layer"), "must be between 0 and 63, got " + std::to_string(L.layer));
     validate(L.contact, source + ": " + at("links", i, "contact"));
     const ContactMaterial cm = contact_material(L.contact);
-    if (shape && L.collider_type != "None") {
+    auto add_collider = [&](const ShapeGeometry& g, const SpatialTransform& X) {
       LinkCollider c;
       c.link = i;
-      c.shape = *shape;
-      c.X_LS = X_LS;
+      c.shape = g;
+      c.X_LS = X;
       c.material = cm;
       c.layer = L.layer;
-      c.samples_S = shape_surface_samples(*shape);
-      c.aabb_S = shape_local_aabb(*shape);
+      c.samples_S = shape_surface_samples(g);
+      c.aabb_S = shape_local_aabb(g);
       m.colliders.push_back(std::move(c));
+    };
+    if (shape && L.collider_type != "None") add_collider(*shape, X_LS);
+    // compound collision: the link's further shapes, each at its own pose
+    for (size_t k = 0; k < L.extra_shapes.size(); ++k) {
+      const LinkShapeDesc& e = L.extra_shapes[k];
+      const std::string field = at("links", i, "extraShapes") + "[" + std::to_string(k) + "]";
+      validate_shape(e.shape, source + ": " + field + ".shape");
+      if (!e.link_from_shape.translation.allFinite() || !e.link_from_shape.rotation.coeffs().allFinite() ||
+          e.link_from_shape.rotation.norm() < real(1e-6))
+        r.fail(field + ".linkFromShape", "must be finite with a non-zero rotation quaternion");
+      if (L.collider_type != "None")
+        add_collider(e.shape, SpatialTransform::from(Transform{e.link_from_shape.rotation.normalized(), e.link_from_shape.translation}));
     }
   }
 

@@ -74,8 +74,6 @@ ROBOTS = {
 # import warnings each robot must give (substrings); any other warning fails the test
 EXPECTED_WARNINGS = {
     "panda": [
-        "link 'panda_leftfinger' has 4 <collision> elements; only the first is imported",
-        "link 'panda_rightfinger' has 4 <collision> elements; only the first is imported",
         "link 'panda_rightfinger': the <origin> of the visual mesh is ignored",
         "<mimic> is ignored: joint 'panda_finger_joint2' is imported as an independent DOF",
     ],

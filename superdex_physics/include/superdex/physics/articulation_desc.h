@@ -79,6 +79,14 @@ struct JointDesc {
   real limit_damping = 0;
 };
 
+/// A further collision shape of a link (compound collision), posed in the link frame.
+struct LinkShapeDesc {
+  ShapeGeometry shape;
+  Transform link_from_shape;
+  /// The file the shape was loaded from, for messages and viewers (empty for primitives).
+  std::string shape_file;
+};
+
 /// One link (rigid body) of an articulation.
 struct LinkDesc {
   std::string name;
@@ -106,6 +114,11 @@ struct LinkDesc {
   /// Origin of this link's frame in its joint's frame (m), which rotates with the joint: the
   /// link frame is the joint frame moved by this (no rotation). Zero: the frames coincide.
   Vec3 joint_from_link = Vec3::Zero();
+  /// Further collision shapes of the link beside `shape` (a URDF link's later <collision>
+  /// elements, a body's several geoms): all of them move and collide as one body, with the
+  /// link's contact parameters and layer, and never touch each other. They add no mass: the
+  /// mass comes from `mass` (and `moment_of_inertia`), or from `shape` alone.
+  std::vector<LinkShapeDesc> extra_shapes;
   /// Contact parameters of the link's surface.
   ContactParams contact;
   /// Collision layer, 0..63 (see Scene::enable_layer_contact).
