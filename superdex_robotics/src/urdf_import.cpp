@@ -36,9 +36,11 @@
 // negligible mass, kMasslessLinkMass = 1e-9 kg at its origin with an inertia of
 // kMasslessLinkInertia = 1e-12 kg m^2 about each axis. A massless link may move on a joint
 // only when some link it carries has mass (the intermediate frames of a hip or wrist built
-// from single-axis joints), so that the joint does not move a massless body; otherwise the
-// import fails naming the link and the joint. The Pinocchio comparison test gives Pinocchio
-// the same negligible inertias, so it stays exact.
+// from single-axis joints), so that the joint does not move a massless body. Otherwise its mass
+// and inertia come from its closed collision shape at kInertiaFromGeometryDensity (MuJoCo's
+// inertiafromgeom rule), with a warning; without one the import fails naming the link and the
+// joint. The Pinocchio comparison test gives Pinocchio the same negligible inertias, so it
+// stays exact.
 //
 // Geometry. Every <collision> is imported with its <origin>: the first becomes the link's
 // shape (link_from_shape), the others its extra_shapes (compound collision): <box size>,
@@ -72,6 +74,7 @@
 #include "superdex/physics/file_path.h"
 #include "superdex/physics/inertia.h"
 #include "superdex/physics/mesh_shape.h"
+#include "superdex/physics/mesh_validation.h"
 #include "superdex/robotics/bot_prefab.h"
 
 namespace superdex::robotics {
@@ -92,6 +95,15 @@ namespace {
 // Mass (kg) and rotational inertia (kg m^2 about each axis) of links the URDF leaves massless.
 constexpr double kMasslessLinkMass = 1e-9;
 constexpr double kMasslessLinkInertia = 1e-12;
+// Density (kg/m^3) that gives a moving link carrying no mass its mass from its collision shape.
+constexpr double kInertiaFromGeometryDensity = 1000;
+
+// Whether a collision shape encloses a volume to take mass properties from.
+bool has_volume(const std::optional<ShapeGeometry>& shape) {
+  if (!shape || std::holds_alternative<physics::PlaneShape>(*shape)) return false;
+  if (const auto* mesh = std::get_if<physics::MeshShape>(&*shape)) return physics::is_closed(*mesh->mesh);
+  return true;
+}
 // Sides of the prism that stands in for a <cylinder>.
 constexpr int kCylinderSegments = 48;
 
@@ -685,27 +697,35 @@ class UrdfImporter {
         L.parent_link = index_of[uj.parent];
         J = joint_desc(uj);
       }
+      read_geometry(U, L);
       if (U.has_mass) {
         L.mass = real(U.mass);
         L.center_of_mass = U.com.cast<real>();
         const Eigen::Matrix3d& I = U.inertia;
         L.moment_of_inertia = std::array<real, 6>{real(I(0, 0)), real(I(0, 1)), real(I(0, 2)),
                                                   real(I(1, 1)), real(I(1, 2)), real(I(2, 2))};
-      } else {
-        if (J.type != JointType::Hard && !subtree_has_mass(order[k])) {
-          // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's,
-          // or the floating base's, which has no element: the link is named instead)
-          const int joint = k == 0 ? root_joint : U.parent_joint;
-          const XMLElement* where = joint >= 0 ? joints_[joint].element : U.element;
+      } else if (J.type != JointType::Hard && !subtree_has_mass(order[k])) {
+        // (a root on a Hard joint never gets here; a Free root's joint is the dropped world's,
+        // or the floating base's, which has no element: the link is named instead)
+        const int joint = k == 0 ? root_joint : U.parent_joint;
+        const XMLElement* where = joint >= 0 ? joints_[joint].element : U.element;
+        // a moving link that carries no mass at all: its mass comes from its collision shape
+        // at the density of water, as MuJoCo's inertiafromgeom does; without a closed shape
+        // there is no rule left
+        if (!has_volume(L.shape))
           fail(where, "link " + in_quotes(U.name) + " has no inertial but moves on joint " + in_quotes(J.name) +
-                          ", and no link it carries has mass (give it an <inertial> with a positive mass, or make the joint fixed)");
-        }
+                          ", and neither a closed collision shape nor any link it carries gives it mass (give it an <inertial> with a "
+                          "positive mass, or make the joint fixed)");
+        L.density = real(kInertiaFromGeometryDensity);
+        warn(where, "link " + in_quotes(U.name) + " has no inertial but moves on joint " + in_quotes(J.name) +
+                        ": its mass and inertia are computed from its collision shape at " +
+                        std::to_string(static_cast<int>(kInertiaFromGeometryDensity)) + " kg/m^3");
+      } else {
         const real I0 = real(kMasslessLinkInertia);
         L.mass = real(kMasslessLinkMass);
         L.center_of_mass = Vec3::Zero();
         L.moment_of_inertia = std::array<real, 6>{I0, 0, 0, I0, 0, I0};
       }
-      read_geometry(U, L);
       art.links.push_back(std::move(L));
       art.joints.push_back(std::move(J));
     }

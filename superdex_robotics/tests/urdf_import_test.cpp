@@ -772,9 +772,25 @@ TEST_F(UrdfImport, PhysicallyInvalidValues) {
 TEST_F(UrdfImport, MasslessLinkOnAMovingJointIsAnError) {
   const std::string msg = error_of(robot(link("base") + link("ghost", "") + link("frame", "") +
                                          joint("spin", "continuous", "base", "ghost") + joint("weld", "fixed", "ghost", "frame")));
-  EXPECT_THAT(msg, HasSubstr("<joint name='spin'>: link 'ghost' has no inertial but moves on joint 'spin', and no link it carries has mass"));
+  EXPECT_THAT(msg, HasSubstr("<joint name='spin'>: link 'ghost' has no inertial but moves on joint 'spin', and neither a closed "
+                             "collision shape nor any link it carries gives it mass"));
   EXPECT_THAT(error_of(robot(link("world", "") + link("body", "") + joint("fly", "floating", "world", "body"))),
               HasSubstr("link 'body' has no inertial but moves on joint 'fly'"));
+}
+
+TEST_F(UrdfImport, MasslessMovingLinkTakesItsMassFromItsCollisionShape) {
+  // a finger without <inertial>: a 0.02 x 0.02 x 0.1 m box centred 0.05 m along z
+  const std::string finger = "<collision><origin xyz='0 0 0.05'/><geometry><box size='0.02 0.02 0.1'/></geometry></collision>";
+  const BotPrefab p = load_fixed(robot(link("palm") + link("finger", finger) + joint("knuckle", "revolute", "palm", "finger",
+                                                                                      "<limit lower='0' upper='1' effort='1' velocity='1'/>")));
+  EXPECT_THAT(all_warnings(), HasSubstr("link 'finger' has no inertial but moves on joint 'knuckle': its mass and inertia are computed "
+                                        "from its collision shape at 1000 kg/m^3"));
+  const auto art = build(p);
+  // m = 1000 kg/m^3 x 4e-5 m^3; about the knuckle axis (x): m (b^2 + c^2) / 12 + m d^2 with d = 0.05 m
+  const real m = 1000 * 0.02 * 0.02 * 0.1;
+  EXPECT_NEAR(scene_->mass(scene_->nested_link_actors(art)[1]), m, 1e-9);
+  const physics::MatX M = scene_->mass_matrix(art);
+  EXPECT_NEAR(M(0, 0), m * (0.02 * 0.02 + 0.1 * 0.1) / 12 + m * 0.05 * 0.05, 1e-9);
 }
 
 }  // namespace
