@@ -337,6 +337,8 @@ def test_exported_state_rigid_pose_and_velocity_kept_joint_pose_not(scene, tmp_p
     ball = scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), mass=1.0,
                                     world_from_local=transform([0, 0, 5]))
     ball.set_velocity([1, 0, 0], [0, 0, 2])
+    scene.create_rigid_actor(name="balloon", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), mass=1.0, has_gravity=False,
+                             world_from_local=transform([0, -3, 2]))
     arm = scene.create_articulated_actor(
         name="arm", links=[link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
                            link("l1", parent=0, mass=1.0, center_of_mass=[0.5, 0, 0], moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3])],
@@ -352,11 +354,13 @@ def test_exported_state_rigid_pose_and_velocity_kept_joint_pose_not(scene, tmp_p
     np.testing.assert_allclose(moved["arm"].get_articulated_pose(), [0.0])
     np.testing.assert_allclose(moved["arm"].get_articulated_joint_velocities(), [0.0])
     assert_same_pose(arm, moved["arm"])  # the welded base stays where it is
-    # the exported ball flies on as the original does
+    assert pose(moved["balloon"])[0][2] == 2.0, "no gravity on it"
+    # the exported ball flies on as the original does; the balloon still floats
     for _ in range(10):
         scene.step(DT)
         again.step(DT)
     assert_same_pose(ball, moved["ball"])
+    assert pose(moved["balloon"])[0][2] == pytest.approx(2.0, abs=1e-9)
 
 
 def test_scene_settings_are_exported(scene, tmp_path):
