@@ -333,6 +333,29 @@ def test_export_actor_of_each_kind(scene, tmp_path):
         prefab.export_actor(links(arm)[1], "link", str(tmp_path))
 
 
+def test_a_box_collider_fitted_around_a_link_mesh_is_exported_as_that_box(scene, tmp_path):
+    # an octahedron (vertices 0.1 m out along each axis) carried by a link as a BOX collider
+    nodes = np.array([[0.1, 0, 0], [-0.1, 0, 0], [0, 0.1, 0], [0, -0.1, 0], [0, 0, 0.1], [0, 0, -0.1]])
+    faces = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    octahedron = sdp.create_tri_mesh_shape(nodes, faces)
+    arm = scene.create_articulated_actor(
+        name="arm", links=[link("base", shape=octahedron, collider_type=sdp.ColliderType.BOX, mass=1.0,
+                                moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01])],
+        joints=[joint("weld", "hard", at=[0, 0, 1])])
+    again, doc = export_and_reload(scene, tmp_path, "fitted")
+    assert list(doc["actors"]["articulated"][0]["links"][0]["shape"]) == ["box"]
+    # a point inside the box but outside the octahedron is inside both the original and the export
+    def distance(actor, point):
+        out = np.zeros(1, dtype=np.float64 if sdp.uses_double_precision() else np.float32)
+        actor.get_points_distance_to_surface(np.array([point], dtype=out.dtype), out)
+        return float(out[0])
+
+    corner = [0.09, 0.09, 1.09]
+    before, after = links(arm)[0], links(actors_by_name(again)["arm"])[0]
+    assert distance(before, corner) < 0
+    assert distance(after, corner) == pytest.approx(distance(before, corner), abs=1e-6)
+
+
 def test_exported_state_rigid_pose_and_velocity_kept_joint_pose_not(scene, tmp_path):
     ball = scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), mass=1.0,
                                     world_from_local=transform([0, 0, 5]))

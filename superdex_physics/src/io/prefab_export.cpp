@@ -34,7 +34,7 @@ std::string file_stem(const std::string& name) {
   return out.empty() ? "shape" : out;
 }
 
-// An actor's primitive shape written inline, or nothing for a mesh (which goes to a file).
+// Whether a shape is written inline (the primitives) rather than to a file (meshes).
 bool is_primitive(const ShapeGeometry& g) { return !std::holds_alternative<MeshShape>(g); }
 
 // A primitive with a per-axis scale applied (as the articulation model applies shapeScale: spheres

@@ -133,8 +133,10 @@ ArticulationDesc Scene::articulation_desc(ActorHandle h) const {
   for (int i = 0; i < a.model.num_links; ++i) {
     LinkDesc& l = d.links[i];
     const LinkRecord& rec = a.links[i];
-    // links made from params: the shape as given (the description holds its collider's geometry)
-    if (rec.shape && rec.shape->geometry) {
+    // links made from params: the shape as given, where the description holds the same collider
+    // (a Box or Sphere collider made from another shape stays the box or sphere in use)
+    const bool fitted = rec.collider_type == ColliderType::Box || rec.collider_type == ColliderType::Sphere;
+    if (rec.shape && rec.shape->geometry && !(fitted && l.shape)) {
       l.shape = *rec.shape->geometry;
       l.shape_scale = Vec3::Ones();
       l.link_from_shape = Transform{};

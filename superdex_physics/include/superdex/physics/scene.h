@@ -420,7 +420,8 @@ class Scene {
   /// so that the root link is where it is now with the root joint at its zero position; the other
   /// joints' positions and all velocities are not part of it (default_pose is the one given at
   /// creation). Per link: `shape` is the geometry the link was given (in frame S, before
-  /// shape_scale, placed at link_from_shape X_LS in the link frame L), mass, center_of_mass and
+  /// shape_scale, placed at link_from_shape X_LS in the link frame L; for a BOX or SPHERE collider
+  /// fitted around another shape, that box or sphere), mass, center_of_mass and
   /// moment_of_inertia the ones in use (kg, m in L, kg m^2 about the centre of mass, L's axes),
   /// layer its index in the scene (contact_layer() names it), collider_type as given. Shape files
   /// (shape_file, render_model) are not kept: links carry their geometry inline.
