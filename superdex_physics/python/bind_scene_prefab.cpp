@@ -180,6 +180,43 @@ void export_prefab_model(nb::module_& p) {
       .done(false);
 }
 
+// The handles of exclude_actors: a sequence of ActorHandle or Actor objects.
+std::vector<ActorHandle> actor_handles(nb::handle items, const char* what) {
+  if (items.is_none()) return {};
+  if (!nb::hasattr(items, "__iter__"))
+    throw Error(std::string(what) + ": exclude_actors: expected a list of ActorHandle or Actor, got " + nb::inst_name(items).c_str());
+  std::vector<ActorHandle> out;
+  for (nb::handle item : items)
+    out.push_back(actor_handle_of(item, std::string(what) + ": exclude_actors[" + std::to_string(out.size()) + "]"));
+  return out;
+}
+
+const Scene& require_scene(const Scene* scene, const char* what) {
+  if (!scene) throw Error(std::string(what) + ": scene: expected a Scene, got None");
+  return *scene;
+}
+
+void export_functions(nb::module_& p) {
+  p.def("export_scene", [](const Scene* scene, const std::string& export_name, const fs::path& output_dir) {
+        physics::prefab::export_scene(require_scene(scene, "export_scene"), export_name, output_dir.string());
+      }, "scene"_a.none(), "export_name"_a, "output_dir"_a,
+      "Writes the scene's rigid, soft and articulated actors as <output_dir>/<export_name>/<export_name>.mochi_scene, mesh "
+      "shapes as .mochi.h5 files in generated_assets/ beside it ('./generated_assets/<file>'; primitives inline), with the "
+      "scene's contact rules and its gravity and solver settings. Names are made unique ('box', 'box1'). Joint positions "
+      "(beyond the root link's pose) and velocities of articulations are not exported. Folders are created.");
+  p.def("export_scene_excluding", [](const Scene* scene, const std::string& export_name, const fs::path& output_dir, nb::handle exclude_actors) {
+        const Scene& s = require_scene(scene, "export_scene_excluding");
+        physics::prefab::export_scene_excluding(s, export_name, output_dir.string(), actor_handles(exclude_actors, "export_scene_excluding"));
+      }, "scene"_a.none(), "export_name"_a, "output_dir"_a, "exclude_actors"_a.none(),
+      "export_scene without the actors listed (an articulation with its links) and the contact rules that name them.");
+  p.def("export_actor", [](const Actor* actor, const std::string& export_name, const fs::path& output_dir) {
+        if (!actor) throw Error("export_actor: actor: expected an Actor, got None");
+        physics::prefab::export_actor(actor->scene, actor->handle, export_name, output_dir.string());
+      }, "actor"_a.none(), "export_name"_a, "output_dir"_a,
+      "Writes one rigid, soft or articulated actor (not a link: pass its articulation) as "
+      "<output_dir>/<export_name>/<export_name>.mochi_scene, named export_name, its meshes in generated_assets/.");
+}
+
 }  // namespace
 
 void export_physics_prefab(nb::module_& m) {
@@ -187,6 +224,7 @@ void export_physics_prefab(nb::module_& m) {
   nb::module_ p = m.def_submodule("prefab", "Prefabs: sets of actors read from and written to .mochi_prefab / .mochi_scene files.");
   export_actor_prefabs(p);
   export_prefab_model(p);
+  export_functions(p);
   nb::class_<PyAddToSceneResult>(p, "AddToSceneResult", "The actors add_to_scene created (a nested prefab's before its parent's own).")
       .def(nb::init<>())
       .def_rw("actors", &PyAddToSceneResult::actors)

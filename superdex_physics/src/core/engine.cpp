@@ -313,6 +313,8 @@ ShapeMeshes shape_meshes(const ShapeHandle& shape, const std::string& where) {
   return meshes_of(*shape_data(shape, where));
 }
 
+std::shared_ptr<const ModelData> shape_model(const ShapeHandle& shape, const std::string& where) { return shape_data(shape, where)->model; }
+
 std::shared_ptr<const TetMesh> tet_mesh_shape(const ShapeHandle& shape) {
   const auto data = shape_data(shape, "tet_mesh_shape");
   if (!data->tet_mesh) throw Error("shape " + std::to_string(shape.value()) + " is not a tet mesh (create it with create_tet_mesh_shape)");

@@ -161,6 +161,17 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
     }
   }
   if (r.has("shapeScale")) L.shape_scale = r.vec<3>("shapeScale");
+  // the pose of a shape file in the link frame (an inline primitive gives its own)
+  for (const char* key : {"shapeRotation", "shapeTranslation"})
+    if (r.has(key) && !(r.has("shape") && r.at("shape").is_string()))
+      r.fail(r.field_path(key), "only for a shape file (an inline primitive takes center and rotation)");
+  if (r.has("shapeTranslation")) L.link_from_shape.translation = r.vec<3>("shapeTranslation");
+  if (r.has("shapeRotation")) {
+    const auto q = r.vec<4>("shapeRotation");
+    if (q.norm() < real(1e-6)) r.fail(r.field_path("shapeRotation"), "must be a non-zero quaternion [x, y, z, w]");
+    L.link_from_shape.rotation = Quat(q[3], q[0], q[1], q[2]).normalized();
+  }
+  if (r.has("jointFromLink")) L.joint_from_link = r.vec<3>("jointFromLink");
   if (r.has("colliderType")) {
     L.collider_type = r.string("colliderType");
     static const char* const kColliders[] = {"Auto", "None", "Sphere", "Box", "Plane", "Mesh", "Sdf"};
@@ -174,7 +185,7 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
   if (r.has("layer")) L.layer = r.integer("layer");
   if (r.has("hasGravity")) L.has_gravity = r.boolean("hasGravity");
   r.check_unknown({"name", "parentLink", "mass", "centerOfMass", "momentOfInertia", "density", "shape", "shapeScale",
-                   "colliderType", "renderModel", "renderModelScale", "contact", "layer", "hasGravity", "sensors",
+                   "shapeRotation", "shapeTranslation", "jointFromLink", "colliderType", "renderModel", "renderModelScale", "contact", "layer", "hasGravity", "sensors",
                    "actuators"},
                   extra);
   return L;

@@ -44,6 +44,7 @@ void load_link_shape_files(ArticulationDesc& desc, const std::string& base_dir, 
     if (!is_existing_file(shape_path)) fail(source, path, "shape file '" + shape_path.string() + "' does not exist");
     ShapeBake bake;
     bake.scale = link.shape_scale * scale;
+    link.link_from_shape.translation *= scale;  // the file's pose (shapeTranslation), kept as the shape's
     try {
       link.shape = load_shape_file(shape_path.string(), bake);
     } catch (const Error& e) {

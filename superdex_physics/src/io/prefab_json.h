@@ -23,6 +23,12 @@ void read_bot_file(ArticulatedActorPrefab& actor, const std::string& bot_path, c
 /// The document of a prefab (nested prefabs by reference).
 nlohmann::json scene_prefab_to_json(const ScenePrefab& prefab);
 
+/// A scene's solver settings as prefab JSON (prefab_json_solver.cpp): maxNewtonIterations and
+/// contactMargin, then the fields that differ from default_scene_solver_params(), by group.
+nlohmann::json solver_params_to_json(const SolverParams& params);
+/// The reverse, from default_scene_solver_params(); errors name `file` and `path`.field.
+SolverParams solver_params_from_json(const nlohmann::json& j, const std::string& file, const std::string& path);
+
 /// The collider type a file names (collider_type_name's names), if any.
 std::optional<ColliderType> collider_type_from_name(const std::string& name);
 

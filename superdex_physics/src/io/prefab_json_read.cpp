@@ -277,11 +277,26 @@ ArticulatedActorPrefab read_articulated(const Entry& r, std::vector<std::string>
     if (!r.e.at("bot").is_string()) r.fail("bot", "expected a path to a .superdex_bot file");
     a.bot_file = r.file_path("bot");
   } else {
-    ArticulationDesc desc = articulation_desc_from_json(r.e, r.file + ": " + r.path, warnings, entry_fields);
+    // links written inline may name their contact layer (bot files number them): the names are
+    // set aside for the bot reader and given to the links after it
+    json entry = r.e;
+    std::vector<std::pair<size_t, std::string>> named_layers;
+    if (entry.contains("links") && entry.at("links").is_array())
+      for (size_t i = 0; i < entry.at("links").size(); ++i) {
+        json& l = entry.at("links")[i];
+        if (l.is_object() && l.contains("layer") && l.at("layer").is_string()) {
+          const std::string name = l.at("layer").get<std::string>();
+          if (name.empty()) Entry{l, r.file, indexed(r.path + ".links", i)}.fail("layer", "expected a layer number or a non-empty name");
+          named_layers.emplace_back(i, name);
+          l.erase("layer");
+        }
+      }
+    ArticulationDesc desc = articulation_desc_from_json(entry, r.file + ": " + r.path, warnings, entry_fields);
     for (size_t i = 0; i < desc.links.size(); ++i)
       if (!desc.links[i].shape_file.empty()) Entry{r.e.at("links")[i], r.file, indexed(r.path + ".links", i)}.file_path("shape");
     a.name = desc.name;
     take_articulation(std::move(desc), {}, a);
+    for (const auto& [i, name] : named_layers) a.links[i].layer = name;
   }
   if (auto n = r.string("name")) a.name = *n;
   const Transform X_PR = r.pose();
@@ -375,18 +390,7 @@ SceneParams read_scene(const Entry& s) {
     if (!g.is_array() || g.size() != 3) s.fail("gravity", "expected 3 numbers, got " + g.dump());
     p.gravity = s.vec<3>("gravity");
   }
-  if (s.has("solver")) {
-    const Entry so{s.e.at("solver"), s.file, s.path + ".solver"};
-    if (!so.e.is_object()) so.fail("", "expected an object {maxNewtonIterations, contactMargin}");
-    SolverParams solver = default_scene_solver_params();
-    if (auto n = so.number("maxNewtonIterations")) {
-      if (!so.e.at("maxNewtonIterations").is_number_integer() || std::abs(*n) > real(1 << 30))
-        so.fail("maxNewtonIterations", "expected an integer, got " + so.e.at("maxNewtonIterations").dump());
-      solver.non_linear_solver.max_iter = static_cast<int>(*n);
-    }
-    if (auto m = so.number("contactMargin")) solver.implicit_step.contact_margin = *m;
-    p.solver = solver;
-  }
+  if (s.has("solver")) p.solver = solver_params_from_json(s.e.at("solver"), s.file, s.path + ".solver");
   return p;
 }
 

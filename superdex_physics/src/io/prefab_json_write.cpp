@@ -59,8 +59,10 @@ json primitive(const ShapeGeometry& g, const ShapeSource& s) {
     return j;
   };
   if (auto* x = std::get_if<SphereShape>(&g)) {
+    // a sphere has no pose of its own in files: its place is its centre
+    const Real3 center = s.rotation.normalized() * x->center + s.translation;
     json j = {{"radius", x->radius}};
-    if (!x->center.isZero()) j["center"] = array(x->center);
+    if (!center.isZero()) j["center"] = array(center);
     return {{"sphere", j}};
   }
   if (auto* x = std::get_if<BoxShape>(&g)) return {{"box", posed({{"halfExtents", array(x->half_extents)}})}};
@@ -123,7 +125,7 @@ json rigid(const RigidActorPrefab& a, const std::string& where) {
   return j;
 }
 
-json soft_material(const SoftActorPrefab& a) {
+json soft_material(const SoftActorPrefab& a, const std::string& where) {
   const SoftMaterialParams& p = a.material;
   json m = {{"density", p.density}};
   auto moduli = [&](const char* type, real E, real nu) { m["type"] = type, m["youngsModulus"] = E, m["poissonRatio"] = nu; };
@@ -131,7 +133,10 @@ json soft_material(const SoftActorPrefab& a) {
     case SoftMaterialType::NeoHookean: moduli("NeoHookean", p.neo_hookean.youngs_modulus, p.neo_hookean.poisson_ratio); break;
     case SoftMaterialType::StVenantKirchhoff: moduli("StVK", p.st_venant_kirchhoff.youngs_modulus, p.st_venant_kirchhoff.poisson_ratio); break;
     case SoftMaterialType::LinearElastic: moduli("Linear", p.linear_elastic.youngs_modulus, p.linear_elastic.poisson_ratio); break;
-    default: m["type"] = soft_material_type_name(p.type);  // not readable back: the reader names it
+    default:
+      // the file format holds the models this engine simulates; a file naming another could not be read back
+      throw Error(where + ".material.type: " + soft_material_type_name(p.type) +
+                  " cannot be written to a prefab file (NeoHookean, StVenantKirchhoff or LinearElastic)");
   }
   if (p.stiffness_damping_coefficient != 0) m["damping"] = p.stiffness_damping_coefficient;
   if (p.mass_damping_coefficient != 0) m["dampingAlpha"] = p.mass_damping_coefficient;
@@ -144,7 +149,7 @@ json soft(const SoftActorPrefab& a, const std::string& where) {
   put_comment(j, a.comment);
   put_shape(j, a.shape_source, "scale", where);
   put_pose(j, a);
-  j["material"] = soft_material(a);
+  j["material"] = soft_material(a, where);
   if (!a.layer.empty()) j["layer"] = a.layer;
   if (!a.has_gravity) j["hasGravity"] = false;
   if (!a.use_recentering) j["useRecentering"] = false;
@@ -167,11 +172,12 @@ json link(const ArticulatedLinkPrefab& l, const std::string& where) {
   if (l.collider_type != ColliderType::Auto) j["colliderType"] = collider_type_name(l.collider_type);
   if (json c = contact(l.contact); !c.empty()) j["contact"] = c;
   if (!l.layer.empty()) {
-    // bot files number their layers
-    if (l.layer.find_first_not_of("0123456789") != std::string::npos || l.layer.size() > 2)
-      throw Error(where + ".layer: links of articulations written inline take layer numbers (0 to 63), got '" + l.layer + "'");
-    j["layer"] = std::stoi(l.layer);
+    // a layer number (as bot files give them) or a layer name
+    const bool number = l.layer.find_first_not_of("0123456789") == std::string::npos && l.layer.size() <= 2;
+    if (number) j["layer"] = std::stoi(l.layer);
+    else j["layer"] = l.layer;
   }
+  if (!l.parent_joint_from_link.translation.isZero()) j["jointFromLink"] = array(l.parent_joint_from_link.translation);
   if (!l.has_gravity) j["hasGravity"] = false;
   put_render_model(j, l.render_model);
   return j;
@@ -236,8 +242,7 @@ json scene(const SceneParams& s) {
   json j = {{"description", s.description}};
   put_comment(j, s.comment);
   put_optional(j, "gravity", s.gravity);
-  if (s.solver)
-    j["solver"] = {{"maxNewtonIterations", s.solver->non_linear_solver.max_iter}, {"contactMargin", s.solver->implicit_step.contact_margin}};
+  if (s.solver) j["solver"] = solver_params_to_json(*s.solver);
   return j;
 }
 

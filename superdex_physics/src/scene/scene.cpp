@@ -7,6 +7,7 @@
 #include "output/debug_link.h"
 #include "output/recording_internal.h"
 #include "output/scene_recording.h"
+#include "soft/material_from_params.h"
 #include "soft/soft_body.h"
 #include "scene/step_stages.h"
 #include "multibody/kinematics.h"
@@ -112,6 +113,7 @@ ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle&
   const std::string where = "create_soft_actor('" + name + "')";
   auto shape = shape_data(tet_mesh, where + ": shape");
   if (!shape->tet_mesh) throw Error(where + ": shape is not a tetrahedral mesh");
+  const std::shared_ptr<const TetMesh> shape_mesh = shape->tet_mesh;
   auto body = build_soft_body(name, shape->tet_mesh, material, X, fixed_nodes, where);
   body->X_WL = X;
   body->base_pinned = body->model.pinned;
@@ -120,6 +122,8 @@ ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle&
   body->contact_params.coulomb_friction_coefficient = body->model.contact.friction;
   body->contact_params.contact_stiffness = body->model.contact.stiffness;
   body->contact_params.dissipation_time_scale = body->model.contact.dissipation_time;
+  // what the material getters (and soft_actor_params) report
+  body->material_params = soft_material_params_from(material, *shape_mesh);
   return add_soft_body(s, std::move(body));
 }
 

@@ -25,5 +25,23 @@ SoftMaterial soft_material_from_params(const SoftMaterialParams& mp, const TetMe
   return material;
 }
 
+SoftMaterialParams soft_material_params_from(const SoftMaterial& m, const TetMesh& mesh, bool* corotated) {
+  SoftMaterialParams p;
+  p.density = m.density;
+  p.mass_damping_coefficient = m.damping_alpha;
+  p.stiffness_damping_coefficient = m.damping_beta;
+  if (corotated) *corotated = m.type == "Corotated";
+  real *E = &p.neo_hookean.youngs_modulus, *nu = &p.neo_hookean.poisson_ratio;
+  if (m.type == "StVK" || m.type == "StVenantKirchhoff") {
+    p.type = SoftMaterialType::StVenantKirchhoff, E = &p.st_venant_kirchhoff.youngs_modulus, nu = &p.st_venant_kirchhoff.poisson_ratio;
+  } else if (m.type == "Linear" || m.type == "LinearElastic") {
+    p.type = SoftMaterialType::LinearElastic, E = &p.linear_elastic.youngs_modulus, nu = &p.linear_elastic.poisson_ratio;
+  }
+  // soft_body.cpp's fallbacks when neither the material nor the mesh gives a value
+  *E = m.youngs_modulus ? *m.youngs_modulus : mesh.youngs_modulus.empty() ? real(1e5) : mesh.youngs_modulus[0];
+  *nu = m.poisson_ratio ? *m.poisson_ratio : mesh.poisson_ratio.empty() ? real(0.3) : mesh.poisson_ratio[0];
+  return p;
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

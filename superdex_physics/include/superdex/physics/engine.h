@@ -108,6 +108,12 @@ ShapeHandle load_shape_from_bytes(std::string_view data, MeshFileType type = Mes
 
 /// A live shape's meshes; throws naming `where` for an invalid or released handle.
 ShapeMeshes shape_meshes(const ShapeHandle& shape, const std::string& where);
+/// The model a live shape was made from (shared, immutable; it stays valid after the shape's
+/// release): its main mesh, visual mesh, primitive, distance grid and per-element material, in
+/// the shape frame (m) with any bake applied. model::save_to_file writes it back as a file that
+/// load_shape_from_file turns into the same shape. Capsules have an empty model. Throws naming
+/// `where` for an invalid or released handle.
+std::shared_ptr<const ModelData> shape_model(const ShapeHandle& shape, const std::string& where = "shape_model");
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -70,6 +70,28 @@ AddToSceneResult add_to_scene(const ScenePrefab& prefab, Scene scene, const Pref
 AddToSceneResult add_to_scene(const std::string& prefab_path, const std::string& root_path, Scene scene,
                               const PrefabParams& params = {}, std::vector<std::string>* warnings = nullptr);
 
+/// Exporting (prefab_export.cpp): writes `<output_dir>/<export_name>/<export_name>.mochi_scene`, a
+/// prefab of the actors as they are now (Scene's "creation parameters read back"), and the mesh
+/// shapes they carry as `.mochi.h5` files in `<output_dir>/<export_name>/generated_assets/`, named
+/// from the prefab as "./generated_assets/<file>"; primitives are written inline. The folders are
+/// created. Rigid actors keep their current pose and velocity; soft actors their rest mesh at
+/// their current frame; articulations their root link's current pose with the other joints at
+/// the pose given at creation and no velocity. Actor names are made unique in creation order (a
+/// second "box" becomes "box1"). Errors are superdex::Error naming the function and the argument
+/// (empty export_name, a folder that cannot be created or written, an unknown actor).
+///
+/// export_scene writes every rigid, soft and articulated actor, the scene's actor contact rules
+/// between them and its layer contact rules (contactFilter), and its gravity and solver settings
+/// (`scene`, applied with PrefabParams::apply_scene_settings).
+void export_scene(Scene scene, const std::string& export_name, const std::string& output_dir);
+/// export_scene without the actors listed (an articulation with its links; a link alone cannot be
+/// excluded) and without the contact rules that name them.
+void export_scene_excluding(Scene scene, const std::string& export_name, const std::string& output_dir,
+                            const std::vector<ActorHandle>& exclude_actors);
+/// One rigid, soft or articulated actor (not a link: pass its articulation), named `export_name`;
+/// no contact rules and no scene settings.
+void export_actor(Scene scene, ActorHandle actor, const std::string& export_name, const std::string& output_dir);
+
 /// A path named in a prefab as a file path: `input_path` if absolute, relative to the folder of
 /// `prefab_file_path` if it starts with "./" (to the root when `prefab_file_path` is empty), else
 /// relative to `root_for_relative_path`.

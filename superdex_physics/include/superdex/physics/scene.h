@@ -131,6 +131,16 @@ class Scene;
 struct StepInfo;
 /// Whether an actor contact rule covers an articulation's links.
 enum class IncludeNestedActors { No, Yes };
+
+/// One actor contact rule of a scene (Scene::enable_actor_contact_*): contact of the colliding
+/// actor with the collider is enabled or disabled. A symmetric rule is two rules, one each way.
+struct ActorContactRule {
+  ActorHandle colliding = 0;
+  ActorHandle collider = 0;
+  bool enable = true;
+  IncludeNestedActors nested = IncludeNestedActors::No;
+  bool operator==(const ActorContactRule&) const = default;
+};
 /// Called before (pre) or after (post) each step.
 using StepCallback = std::function<void(const StepInfo& info)>;
 
@@ -383,6 +393,42 @@ class Scene {
   /// two links of one articulation overrides its default (joined links do not touch).
   void enable_actor_contact_asymmetric(ActorHandle colliding, ActorHandle collider, bool enable, IncludeNestedActors nested);
   void enable_actor_contact_symmetric(ActorHandle a, ActorHandle b, bool enable, IncludeNestedActors nested);
+  /// The actor contact rules set so far, ordered by (colliding, collider) handle; the latest rule
+  /// of a pair replaces the earlier ones. Rules naming a destroyed actor are left out.
+  std::vector<ActorContactRule> actor_contact_rules() const;
+
+  // Creation parameters read back (actor_readback.cpp): what would create the actor again as it
+  // is now, for exporting scenes (prefab::export_scene). Positions are the current ones, in the
+  // world frame W; values changed by setters since creation (contact params, layers, masses,
+  // joint friction and armature, soft materials) are the current ones.
+  /// A rigid actor (not a link): world_from_local is its current pose X_WL; the shape is a new
+  /// reference to the one it was made from (release it after use); mass, center_of_mass and
+  /// moment_of_inertia are set (kg, m in frame L, kg m^2 about the centre of mass) for a dynamic
+  /// actor, density the one in use; linear and angular velocity are the current ones (m/s, rad/s,
+  /// world) when not zero. The sdf and boundary fields keep their defaults (not recorded).
+  RigidActorParams rigid_actor_params(ActorHandle rigid) const;
+  /// A soft actor: world_from_local is its current actor frame X_WL and the shape a new reference
+  /// to its rest tetrahedral mesh (in frame L; the current deformation is not part of it), the
+  /// material the actor-wide one (soft_material_params).
+  SoftActorParams soft_actor_params(ActorHandle soft) const;
+  /// The nodes of a soft actor pinned at creation (indices into its tet mesh, ascending).
+  std::vector<int> soft_fixed_nodes(ActorHandle soft) const;
+  /// The vibration modes of a reduced soft actor; 0 for the full finite-element model.
+  int soft_reduced_modes(ActorHandle soft) const;
+  /// An articulation as the description it was built from (articulation_desc.h), with the
+  /// current values of what setters change. world_from_root places the root joint's parent frame
+  /// so that the root link is where it is now with the root joint at its zero position; the other
+  /// joints' positions and all velocities are not part of it (default_pose is the one given at
+  /// creation). Per link: `shape` is the geometry the link was given (in frame S, before
+  /// shape_scale, placed at link_from_shape X_LS in the link frame L; for a BOX or SPHERE collider
+  /// fitted around another shape, that box or sphere), mass, center_of_mass and
+  /// moment_of_inertia the ones in use (kg, m in L, kg m^2 about the centre of mass, L's axes),
+  /// layer its index in the scene (contact_layer() names it), collider_type as given. Shape files
+  /// (shape_file, render_model) are not kept: links carry their geometry inline.
+  ArticulationDesc articulation_desc(ActorHandle articulation) const;
+  /// Whether gravity acts on the actor (a rigid actor, a link or a soft actor; an articulation:
+  /// on any of its links).
+  bool has_gravity(ActorHandle actor) const;
 
   /// The priority of callbacks registered without one.
   static constexpr int kDefaultCallbackPriority = 100;
