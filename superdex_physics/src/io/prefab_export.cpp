@@ -103,35 +103,32 @@ struct Exporter {
     return s;
   }
 
-  void add_rigid(ActorHandle h) {
-    // the shape reference read back is dropped with `p`
-    const RigidActorParams p = scene.rigid_actor_params(h);
-    RigidActorPrefab a;
-    static_cast<RigidActorParams&>(a) = p;
-    a.name = unique_name(p.name.empty() ? "rigid" : p.name);
+  // A rigid or soft actor's prefab from its creation params: a unique name, its shape as a
+  // source, the params' pose moved to the prefab's placement.
+  template <class Prefab, class Params>
+  Prefab actor_prefab(ActorHandle h, const Params& p, const char* fallback_name) {
+    Prefab a;
+    static_cast<Params&>(a) = p;
+    a.name = unique_name(p.name.empty() ? fallback_name : p.name);
     a.shape_source = shape_source(p.shape, a.name);
     a.shape = ShapeHandle();
     a.rotation = p.world_from_local.rotation;
     a.translation = p.world_from_local.translation;
     a.world_from_local = TransformRT();
     exported[h] = a.name;
-    prefab.actors.rigid.push_back(std::move(a));
+    return a;
+  }
+
+  void add_rigid(ActorHandle h) {
+    // the shape reference read back is dropped with the params
+    prefab.actors.rigid.push_back(actor_prefab<RigidActorPrefab>(h, scene.rigid_actor_params(h), "rigid"));
   }
 
   void add_soft(ActorHandle h) {
-    const SoftActorParams p = scene.soft_actor_params(h);
-    SoftActorPrefab a;
-    static_cast<SoftActorParams&>(a) = p;
-    a.name = unique_name(p.name.empty() ? "soft" : p.name);
-    a.shape_source = shape_source(p.shape, a.name);
-    a.shape = ShapeHandle();
-    a.rotation = p.world_from_local.rotation;
-    a.translation = p.world_from_local.translation;
-    a.world_from_local = TransformRT();
+    SoftActorPrefab a = actor_prefab<SoftActorPrefab>(h, scene.soft_actor_params(h), "soft");
     a.use_recentering = scene.recentering_params(h).use_recentering;
     a.fixed_nodes = scene.soft_fixed_nodes(h);
     a.reduced_modes = scene.soft_reduced_modes(h);
-    exported[h] = a.name;
     prefab.actors.soft.push_back(std::move(a));
   }
 
@@ -169,34 +166,11 @@ struct Exporter {
     a.translation = d.world_from_root.translation;
     for (size_t i = 0; i < d.links.size(); ++i) {
       const LinkDesc& l = d.links[i];
-      ArticulatedLinkPrefab p;
-      p.name = l.name;
-      p.parent_link = l.parent_link;
-      p.parent_joint_from_link.translation = l.joint_from_link;
+      ArticulatedLinkPrefab p = link_prefab(l);
       p.shape_source = link_shape(l, a.name + "_" + (l.name.empty() ? "link" + std::to_string(i) : l.name));
       p.layer = scene.contact_layer(link_actors[i]);
-      p.collider_type = collider_type_from_name(l.collider_type).value_or(ColliderType::Auto);
-      p.contact = l.contact;
-      p.has_gravity = l.has_gravity;
-      p.density = l.density;
-      p.mass = l.mass;
-      p.center_of_mass = l.center_of_mass;
-      if (l.moment_of_inertia) p.moment_of_inertia = Real6(Eigen::Map<const Real6>(l.moment_of_inertia->data()));
       a.links.push_back(std::move(p));
-      const JointDesc& j = d.joints[i];
-      ArticulatedJointPrefab q;
-      q.name = j.name;
-      q.type = j.type;
-      q.parent_link_from_joint = j.parent_link_from_joint;
-      q.axis = j.axis;
-      q.friction.coulomb = j.coulomb_friction;
-      q.friction.viscous = j.viscous_friction;
-      if (j.armature != 0) q.inertia = j.armature;
-      q.min_limit = j.min_limit;
-      q.max_limit = j.max_limit;
-      q.limit_stiffness = j.limit_stiffness;
-      q.limit_damping = j.limit_damping;
-      a.joints.push_back(q);
+      a.joints.push_back(joint_prefab(d.joints[i]));
     }
     a.default_pose = d.default_pose;
     a.contact_overrides = d.contact_overrides;

@@ -32,6 +32,13 @@ SolverParams solver_params_from_json(const nlohmann::json& j, const std::string&
 /// The collider type a file names (collider_type_name's names), if any.
 std::optional<ColliderType> collider_type_from_name(const std::string& name);
 
+// A link of an articulation description as a prefab link: name, parent, mass properties, offset
+// from its joint, collider type, contact and gravity (the caller sets its shape, render model and
+// layer, which depend on where the description came from).
+ArticulatedLinkPrefab link_prefab(const LinkDesc& link);
+// A joint of an articulation description as a prefab joint.
+ArticulatedJointPrefab joint_prefab(const JointDesc& joint);
+
 /// "<label>: " for errors about a prefab: its file, or "ScenePrefab" for one without a file.
 std::string error_prefix(const ScenePrefab& prefab);
 

@@ -26,6 +26,37 @@ std::optional<ColliderType> collider_type_from_name(const std::string& name) {
 
 std::string error_prefix(const ScenePrefab& prefab) { return (prefab.source_file.empty() ? "ScenePrefab" : prefab.source_file) + ": "; }
 
+ArticulatedLinkPrefab link_prefab(const LinkDesc& l) {
+  ArticulatedLinkPrefab p;
+  p.name = l.name;
+  p.parent_link = l.parent_link;
+  p.mass = l.mass;
+  p.density = l.density;
+  p.center_of_mass = l.center_of_mass;
+  if (l.moment_of_inertia) p.moment_of_inertia = Real6(Eigen::Map<const Real6>(l.moment_of_inertia->data()));
+  p.parent_joint_from_link.translation = l.joint_from_link;
+  p.collider_type = collider_type_from_name(l.collider_type).value_or(ColliderType::Auto);
+  p.contact = l.contact;
+  p.has_gravity = l.has_gravity;
+  return p;
+}
+
+ArticulatedJointPrefab joint_prefab(const JointDesc& j) {
+  ArticulatedJointPrefab p;
+  p.name = j.name;
+  p.type = j.type;
+  p.axis = j.axis;
+  p.parent_link_from_joint = j.parent_link_from_joint;
+  p.min_limit = j.min_limit;
+  p.max_limit = j.max_limit;
+  p.friction.coulomb = j.coulomb_friction;
+  p.friction.viscous = j.viscous_friction;
+  if (j.armature != 0) p.inertia = j.armature;
+  p.limit_stiffness = j.limit_stiffness;
+  p.limit_damping = j.limit_damping;
+  return p;
+}
+
 namespace {
 
 // Reads the fields of one entry; errors name the source, the entry's path and the field.
@@ -225,42 +256,21 @@ void take_articulation(ArticulationDesc desc, const fs::path& bot_dir, Articulat
     return file.empty() || bot_dir.empty() || fs::path(file).is_absolute() ? file : (bot_dir / file).lexically_normal().string();
   };
   for (const LinkDesc& l : desc.links) {
-    ArticulatedLinkPrefab p;
-    p.name = l.name;
-    p.parent_link = l.parent_link;
-    p.mass = l.mass;
-    p.density = l.density;
-    p.center_of_mass = l.center_of_mass;
-    if (l.moment_of_inertia) p.moment_of_inertia = Real6(Eigen::Map<const Real6>(l.moment_of_inertia->data()));
-    p.parent_joint_from_link.translation = l.joint_from_link;
+    ArticulatedLinkPrefab p = link_prefab(l);
     p.shape_source.file = located(l.shape_file);
     p.shape_source.primitive = l.shape;
     p.shape_source.scale = l.shape_scale;
     p.shape_source.rotation = l.link_from_shape.rotation;
     p.shape_source.translation = l.link_from_shape.translation;
-    p.collider_type = collider_type_from_name(l.collider_type).value_or(ColliderType::Auto);
     p.render_model.file = located(l.render_model);
     p.render_model.scale = l.render_model_scale;
-    p.contact = l.contact;
     p.layer = l.layer == 0 ? "" : std::to_string(l.layer);
-    p.has_gravity = l.has_gravity;
     a.links.push_back(std::move(p));
   }
   for (size_t i = 0; i < desc.joints.size(); ++i) {
-    const JointDesc& j = desc.joints[i];
-    ArticulatedJointPrefab p;
-    p.name = j.name;
-    p.type = j.type;
-    p.axis = j.axis;
+    ArticulatedJointPrefab p = joint_prefab(desc.joints[i]);
     // the file's worldFromRoot places the root joint in the root frame R
-    p.parent_link_from_joint = i == 0 ? desc.world_from_root * j.parent_link_from_joint : j.parent_link_from_joint;
-    p.min_limit = j.min_limit;
-    p.max_limit = j.max_limit;
-    p.friction.coulomb = j.coulomb_friction;
-    p.friction.viscous = j.viscous_friction;
-    if (j.armature != 0) p.inertia = j.armature;
-    p.limit_stiffness = j.limit_stiffness;
-    p.limit_damping = j.limit_damping;
+    if (i == 0) p.parent_link_from_joint = desc.world_from_root * p.parent_link_from_joint;
     a.joints.push_back(p);
   }
   a.default_pose = std::move(desc.default_pose);

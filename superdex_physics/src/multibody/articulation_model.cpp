@@ -284,9 +284,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       const LinkShapeDesc& e = L.extra_shapes[k];
       const std::string field = at("links", i, "extraShapes") + "[" + std::to_string(k) + "]";
       validate_shape(e.shape, source + ": " + field + ".shape");
-      if (!e.link_from_shape.translation.allFinite() || !e.link_from_shape.rotation.coeffs().allFinite() ||
-          e.link_from_shape.rotation.norm() < real(1e-6))
-        r.fail(field + ".linkFromShape", "must be finite with a non-zero rotation quaternion");
+      check_transform(e.link_from_shape, r, field + ".linkFromShape");
       if (L.collider_type != "None")
         add_collider(e.shape, SpatialTransform::from(Transform{e.link_from_shape.rotation.normalized(), e.link_from_shape.translation}));
     }

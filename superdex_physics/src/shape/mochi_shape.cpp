@@ -3,7 +3,6 @@
 
 #include <sstream>
 
-#include "io/file_extension.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/mesh_validation.h"
@@ -102,11 +101,6 @@ ShapeGeometry shape_from_mochi_h5(const MochiH5& h, const std::string& path, con
       throw Error(path + ": sdf/: the grid's rotation or non-uniform scale cannot be applied to an open mesh (no distance field to recompute)");
   }
   return make_mesh_shape(std::move(m), path, {}, std::move(sdf));
-}
-
-std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake) {
-  if (lower_extension(path) != ".h5") return std::nullopt;
-  return tet_mesh_from_mochi_h5(read_mochi_h5(path), path, bake);
 }
 
 std::optional<TetMesh> tet_mesh_from_mochi_h5(const MochiH5& h, const std::string& path, const ShapeBake& bake) {

@@ -27,10 +27,6 @@ void check_bake(const ShapeBake& bake, const std::string& where);
 /// Applies `bake` to every vertex: v' = rotation * (scale .* v) + translation, after check_bake.
 void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& where);
 
-/// When `path` is a `.h5` (mochi) file whose mesh/ holds tetrahedra, its tet mesh with `bake`
-/// applied to the nodes; otherwise nothing. Throws superdex::Error naming the file for a bad file.
-std::optional<TetMesh> read_tet_mesh_file(const std::string& path, const ShapeBake& bake = {});
-
 /// Loads a shape file by extension: `.mochi.h5` (shape_from_mochi_h5), or a mesh file
 /// (read_mesh_file) made into a MeshShape after baking `bake` into its vertices.
 ShapeGeometry load_shape_file(const std::string& path, const ShapeBake& bake = {});
