@@ -345,14 +345,24 @@ void export_robotics(nb::module_& parent) {
         emit(warnings);
         return p;
       }, "path"_a, "Reads a .superdex_bot file.");
-  m.def("load_bot_prefab_from_urdf_file", [](const std::string& path, bool fixed_base) {
+  m.def("load_bot_prefab_from_urdf_file", [](const std::string& path, bool fixed_base, bool exclude_overlapping_links,
+                                              const std::string& mesh_collision) {
         std::vector<std::string> warnings;
-        BotPrefab p = robotics::load_bot_prefab_from_urdf(path, &warnings, robotics::UrdfImportOptions{fixed_base});
+        robotics::UrdfImportOptions options;
+        options.fixed_base = fixed_base;
+        options.exclude_overlapping_links = exclude_overlapping_links;
+        if (mesh_collision == "mesh") options.mesh_collision = robotics::MeshCollision::Mesh;
+        else if (mesh_collision != "convex_hull")
+          throw Error("load_bot_prefab_from_urdf_file: mesh_collision must be 'convex_hull' or 'mesh', got '" + mesh_collision + "'");
+        BotPrefab p = robotics::load_bot_prefab_from_urdf(path, &warnings, options);
         emit(warnings);
         return p;
-      }, "path"_a, nb::kw_only(), "fixed_base"_a = false,
+      }, "path"_a, nb::kw_only(), "fixed_base"_a = false, "exclude_overlapping_links"_a = true, "mesh_collision"_a = "convex_hull",
       "Imports a URDF file. The root link hangs on a free joint named 'world_joint' (a floating base), or on a "
-      "fixed one with fixed_base=True; a root attached to a 'world' link keeps that joint.");
+      "fixed one with fixed_base=True; a root attached to a 'world' link keeps that joint. Links whose collision "
+      "shapes already overlap with every joint at zero do not collide with each other (one warning names them) "
+      "unless exclude_overlapping_links=False. Mesh colliders are the meshes' convex hulls (mesh_collision='convex_hull'), "
+      "or the triangle meshes themselves with mesh_collision='mesh'.");
   m.def("create_bot", [](nb::handle scene_arg, nb::handle prefab_arg, nb::object ctx) {
         const Scene& scene = object_of<Scene>(scene_arg, "create_bot: scene", "a superdex.physics.Scene");
         const BotPrefab& prefab = object_of<BotPrefab>(prefab_arg, "create_bot: prefab", "a BotPrefab (load_bot_prefab_from_file)");

@@ -70,10 +70,13 @@
 #include <set>
 #include <sstream>
 
+#include "superdex/physics/convex_hull.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/file_path.h"
 #include "superdex/physics/inertia.h"
+#include "superdex/physics/link_overlaps.h"
 #include "superdex/physics/mesh_shape.h"
+#include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_validation.h"
 #include "superdex/robotics/bot_prefab.h"
 
@@ -467,6 +470,27 @@ class UrdfImporter {
     return shape;
   }
 
+  // The collider of a mesh file: read, scaled by `scale` (> 0) and mirrored across the axes where
+  // `sign` is -1, then its convex hull or the mesh itself as the options say.
+  ShapeGeometry mesh_collider(const XMLElement* g, const fs::path& file, const Vec3& scale, const Eigen::Vector3d& sign) const {
+    physics::TriangleMesh m = physics::read_mesh_file(file.string());
+    const Vec3 s = scale.cwiseProduct(sign.cast<real>());
+    for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
+    // an odd number of mirrored axes turns the surface inside out: the winding is reversed
+    if (s.prod() < 0)
+      for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    const std::string source = file.string() + ((sign.array() < 0).any() ? " (mirrored)" : "");
+    if (options_.mesh_collision == MeshCollision::ConvexHull) {
+      try {
+        return physics::make_mesh_shape(physics::convex_hull(m.vertices, source), source + " (convex hull)");
+      } catch (const Error& e) {
+        // a flat mesh (a plate, a single quad) has no hull with volume: its triangles collide
+        warn(g, std::string("collision mesh ") + in_quotes(file.string()) + ": " + e.what() + "; the mesh itself collides");
+      }
+    }
+    return physics::make_mesh_shape(std::move(m), source);
+  }
+
   // ------------------------------------------------------------------ geometry
 
   static physics::TriangleMesh cylinder_mesh(double radius, double length) {
@@ -522,9 +546,10 @@ class UrdfImporter {
       std::string ext = file->extension().string();
       for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       try {
+        *shape_file = file->string();
+        if (ext == ".obj" || ext == ".stl" || ext == ".ply") return mesh_collider(g, *file, bake.scale, scale.cwiseSign());
         ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
         if ((scale.array() < 0).any()) shape = mirrored(std::move(shape), scale.cwiseSign(), file->string() + " (mirrored)");
-        *shape_file = file->string();
         return shape;
       } catch (const Error& e) {
         if (ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".h5")
@@ -676,6 +701,9 @@ class UrdfImporter {
     std::set<std::string> joint_names;
     for (const UrdfJoint& j : joints_) joint_names.insert(j.name);
 
+    // the default pose: zero, except for joints whose limits exclude zero (set by start_inside_limits)
+    std::vector<real> default_pose;
+    bool pose_moved = false;
     for (size_t k = 0; k < order.size(); ++k) {
       const UrdfLink& U = links_[order[k]];
       LinkDesc L;
@@ -696,6 +724,7 @@ class UrdfImporter {
         const UrdfJoint& uj = joints_[U.parent_joint];
         L.parent_link = index_of[uj.parent];
         J = joint_desc(uj);
+        pose_moved |= start_inside_limits(uj, J, default_pose);
       }
       read_geometry(U, L);
       if (U.has_mass) {
@@ -729,9 +758,45 @@ class UrdfImporter {
       art.links.push_back(std::move(L));
       art.joints.push_back(std::move(J));
     }
+    if (pose_moved) art.default_pose = std::move(default_pose);
     prefab.sensors.resize(art.links.size());
     prefab.actuators.resize(art.links.size());
+    if (options_.exclude_overlapping_links) exclude_overlaps(art);
     return prefab;
+  }
+
+  // Appends joint J's default positions to `pose`: zero, or for a revolute or prismatic joint whose
+  // limits exclude zero (an arm whose elbow range is [0.33, 5.95] rad) the nearest limit, with a
+  // warning, so that the robot does not start violating its limits. Returns whether it moved.
+  bool start_inside_limits(const UrdfJoint& uj, const JointDesc& J, std::vector<real>& pose) const {
+    const int nv = physics::joint_num_dofs(J.type);
+    if ((J.type != JointType::Revolute && J.type != JointType::Prismatic) || !J.min_limit || !J.max_limit) {
+      pose.insert(pose.end(), static_cast<size_t>(nv), real(0));
+      return false;
+    }
+    const real lower = J.axis.dot(*J.min_limit), upper = J.axis.dot(*J.max_limit);
+    const real q0 = std::clamp(real(0), lower, upper);
+    pose.push_back(q0);
+    if (q0 == 0) return false;
+    warn(uj.element, "zero lies outside the joint's limits [" + format_number(lower) + ", " + format_number(upper) +
+                         "]: the robot starts with the joint at " + format_number(q0));
+    return true;
+  }
+
+  // Link pairs whose collision shapes already interpenetrate at the zero configuration would push
+  // on each other from the first step: they are switched off, named in one warning.
+  void exclude_overlaps(physics::ArticulationDesc& art) const {
+    const auto overlaps = physics::overlapping_link_pairs(art, 0, path_);
+    if (overlaps.empty()) return;
+    std::string names;
+    for (size_t k = 0; k < overlaps.size(); ++k) {
+      const auto& o = overlaps[k];
+      art.contact_overrides.push_back({art.links[o.link_a].name, art.links[o.link_b].name, false});
+      if (k < 8) names += (k ? ", (" : "(") + in_quotes(art.links[o.link_a].name) + ", " + in_quotes(art.links[o.link_b].name) + ")";
+    }
+    if (overlaps.size() > 8) names += ", ...";
+    warn(robot_, std::to_string(overlaps.size()) + " pair(s) of links whose collision shapes overlap at the zero configuration "
+                 "do not collide with each other: " + names + " (exclude_overlapping_links=False keeps them colliding)");
   }
 
   std::string path_;

@@ -183,11 +183,13 @@ def test_links_joined_by_a_joint_do_not_collide(engine):
     np.testing.assert_allclose(trajectories[0], trajectories[1], atol=atol)
 
 
-def folding_chain(scene):
-    """Three links, gravity off: 'a' welded at height 1 with a ball at x = 0.5; 'b' welded to 'a';
+def folding_chain(scene, ab="revolute"):
+    """Three links, gravity off: 'a' welded at height 1 with a ball at x = 0.5; 'b' hinged to 'a'
+    about X (nothing turns it: 'c' swings in the XZ plane, so its reaction has no moment about X);
     'c' hinged (about Y) to 'b' at x = 0.25, with a ball 0.25 further out. At q = 0 the balls
     coincide; they touch (centres 2 r apart) at |q| = 2 asin(2 r / 0.5) = 0.823 rad. 'c' starts
-    at q = -1.2 swinging towards q = 0 at 2 rad/s. 'a' and 'c' are not joined to each other."""
+    at q = -1.2 swinging towards q = 0 at 2 rad/s. 'a' and 'c' are not joined to each other,
+    unless ab="hard" welds 'b' to 'a': then 'c' hangs on the rigid body of 'a' and 'b'."""
     scene.set_gravity([0, 0, 0])
     links = [
         link("a", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01], shape=sdp.create_sphere_shape([0.5, 0, 0], R)),
@@ -197,12 +199,12 @@ def folding_chain(scene):
     ]
     joints = [
         joint("weld", "hard", at=[0, 0, 1]),
-        joint("ab", "hard"),
+        joint("ab", ab, axis=[1, 0, 0]),
         joint("bc", "revolute", at=[0.25, 0, 0], axis=[0, 1, 0]),
     ]
     chain = articulation(scene, "chain", links, joints)
-    chain.set_articulated_pose_from_joints([-1.2])
-    chain.set_articulated_joint_velocities([2.0])
+    chain.set_articulated_pose_from_joints([0.0, -1.2] if ab == "revolute" else [-1.2])
+    chain.set_articulated_joint_velocities([0.0, 2.0] if ab == "revolute" else [2.0])
     handles = chain.get_nested_link_actors()
     return chain, scene.get_actor(handles[0]), scene.get_actor(handles[2])
 
@@ -212,8 +214,17 @@ def test_non_adjacent_links_collide(scene):
     (touching at -0.823; -0.80 would be 5 mm of penetration)."""
     chain, a, c = folding_chain(scene)
     q_max = []
-    step_for(scene, DT, 1.0, lambda _: q_max.append(float(chain.get_articulated_pose()[0])))
+    step_for(scene, DT, 1.0, lambda _: q_max.append(float(chain.get_articulated_pose()[-1])))
     assert max(q_max) < -0.80, f"link c swung through link a (q reached {max(q_max):.3f})"
+
+
+def test_a_link_hanging_on_a_welded_group_is_joined_to_all_of_it(scene):
+    """With 'b' welded to 'a', 'a' and 'b' are one rigid body and 'c' hangs on it by its hinge: as
+    a child of 'b' it is joined to 'a' too (MuJoCo's weld rule), so it swings through 'a' freely:
+    q = -1.2 + 2 t = 0.8 after 1 s."""
+    chain, a, c = folding_chain(scene, ab="hard")
+    step_for(scene, DT, 1.0)
+    assert float(chain.get_articulated_pose()[-1]) == pytest.approx(0.8, abs=1e-3)
 
 
 def test_self_collision_can_be_disabled_by_actor_pair(scene):
@@ -222,4 +233,4 @@ def test_self_collision_can_be_disabled_by_actor_pair(scene):
     chain, a, c = folding_chain(scene)
     scene.enable_actor_contact_symmetric(a, c, False, sdp.IncludeNestedActors.NO)
     step_for(scene, DT, 1.0)
-    assert float(chain.get_articulated_pose()[0]) == pytest.approx(0.8, abs=1e-3)
+    assert float(chain.get_articulated_pose()[-1]) == pytest.approx(0.8, abs=1e-3)

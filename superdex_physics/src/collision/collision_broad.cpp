@@ -89,13 +89,13 @@ bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider&
   if (!layers_may_touch(s, ca.layer, cb.layer)) return false;
   const ActorHandle la = link_actor(A, ca.link), lb = link_actor(B, cb.link);
   if (&A == &B) {
-    if (ca.link == cb.link) return false;
+    const LinkPairContact rule = link_pair_contact(A.model, ca.link, cb.link);
+    if (rule == LinkPairContact::Never) return false;
     const auto key = std::make_pair(std::min(ca.link, cb.link), std::max(ca.link, cb.link));
     auto it = A.model.contact_overrides.find(key);
     if (it != A.model.contact_overrides.end()) return it->second;
     // joined links do not touch unless the filter says so for these links
-    const bool joined = A.model.parent[ca.link] == cb.link || A.model.parent[cb.link] == ca.link;
-    return actors_may_touch(s, la, la, lb, lb, !joined);
+    return actors_may_touch(s, la, la, lb, lb, rule == LinkPairContact::OnByDefault);
   }
   return actors_may_touch(s, la, A.handle, lb, B.handle, true);
 }
@@ -173,6 +173,7 @@ void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, 
     if (!pair_enabled(s, A, ca, B, cb)) continue;
     points.clear();
     collide_shapes(ca, pa.X_WS, cb, pb.X_WS, pairs.margin + pa.sweep + pb.sweep, points);
+    reduce_contacts(points, kMaxContactsPerPair);
     const ContactMaterial m = combine_materials(ca.material, cb.material);
     for (const ShapeContact& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});
   }

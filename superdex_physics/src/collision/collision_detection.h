@@ -82,6 +82,13 @@ struct ShapeContact {
 void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const LinkCollider& b,
                     const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 
+// At most `max_points` of a shape pair's contacts, spread over its contact patch (collision_reduce.cpp):
+// the one farthest from the patch's centre, then repeatedly the one farthest from those kept
+// (distance in position plus the patch's size times 1 - cos of the angle between normals), and the
+// deepest; in their original order.
+constexpr size_t kMaxContactsPerPair = 32;
+void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points);
+
 // Box-box manifold (collision_box_box.cpp); boxes centred on their frames.
 void collide_box_box(const BoxShape& a, const SpatialTransform& X_WA, const BoxShape& b, const SpatialTransform& X_WB,
                      real margin, std::vector<ShapeContact>& out);

@@ -177,6 +177,9 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
                      (i & 4 ? 1 : -1) * box->half_extents.z());
         add(X_WA.R * c + X_WA.p, 0);
       }
+    } else if (const auto* mesh = std::get_if<MeshShape>(&a.shape); mesh && mesh->convex) {
+      // a convex mesh reaches deepest into a plane at its vertices: its contact polygon is theirs
+      for (const Vec3& v : mesh->mesh->vertices) add(X_WA.R * v + X_WA.p, 0);
     } else {
       for (const Vec3& s : a.samples_S) add(X_WA.R * s + X_WA.p, 0);
     }

@@ -309,6 +309,8 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     if (!std::isfinite(desc.default_pose[k])) r.fail(at("defaultPose", k), "must be finite");
   m.desc = desc;
   merge_welded_links(m);
+  m.rigid_body.assign(n, 0);
+  for (int i : m.order) m.rigid_body[i] = m.parent[i] >= 0 && m.joints[i].nv == 0 ? m.rigid_body[m.parent[i]] : i;
   return m;
 }
 
@@ -375,6 +377,14 @@ ArticulationState initial_state(const ArticulationModel& model) {
   }
   if (!model.desc.default_pose.empty()) q_from_pose(model, model.desc.default_pose.data(), true, s.q);
   return s;
+}
+
+LinkPairContact link_pair_contact(const ArticulationModel& model, int link_a, int link_b) {
+  const int a = model.rigid_body[link_a], b = model.rigid_body[link_b];
+  if (a == b) return LinkPairContact::Never;
+  const bool joined = (model.parent[b] >= 0 && model.rigid_body[model.parent[b]] == a) ||
+                      (model.parent[a] >= 0 && model.rigid_body[model.parent[a]] == b);
+  return joined ? LinkPairContact::OffByDefault : LinkPairContact::OnByDefault;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -57,6 +57,9 @@ struct ArticulationModel {
   // parent, so its inertia is added to the parent's and the dynamics skip it.
   std::vector<int> dynamics_order;               // the other links, parents first
   std::vector<SpatialInertia> dynamics_inertia;  // per link: its own plus the welded ones it carries (num_links)
+  // per link: the first link of the rigid body it belongs to (itself, unless welded by a Hard
+  // joint to its parent, then its parent's) (num_links)
+  std::vector<int> rigid_body;
   std::vector<std::string> link_names, joint_names;
   std::vector<LinkCollider> colliders; // collision shapes, in link order
   std::map<std::pair<int, int>, bool> contact_overrides;  // (link a < link b) -> enabled
@@ -83,6 +86,13 @@ struct ArticulationKinematics {
 
 // Validates `desc` and builds the model; errors name `source` and the field path.
 ArticulationModel build_articulation_model(const ArticulationDesc& desc, const std::string& source);
+
+// Default contact between two links of one articulation. Links of one rigid body never touch.
+// Links of two rigid bodies joined by a joint (one body's first link hangs on a link of the
+// other: MuJoCo's parent-child filter, links welded to either counted in) are off unless an
+// override enables them; the others are on unless an override disables them.
+enum class LinkPairContact { Never, OffByDefault, OnByDefault };
+LinkPairContact link_pair_contact(const ArticulationModel& model, int link_a, int link_b);
 
 // Zero-pose state for `model` with the description's default pose and world_from_root applied.
 ArticulationState initial_state(const ArticulationModel& model);

@@ -68,12 +68,27 @@ void add_link(BotPrefab& prefab, const BotLinkPrefab& link, const physics::Joint
 /// what was expected; unknown fields are appended to `warnings`.
 BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings);
 
+/// What collides for a URDF <mesh> (a .obj, .stl or .ply file; a .mochi.h5 shape is used as it is).
+enum class MeshCollision {
+  /// Its convex hull, as MuJoCo does: closed and convex whatever the file holds (open shells,
+  /// stray or duplicate triangles), cheap to collide. Flat meshes keep their triangles.
+  ConvexHull,
+  /// The triangle mesh itself: concave shapes keep their cavities; a closed mesh gets a
+  /// signed-distance field, an open one can only touch shapes that have one.
+  Mesh,
+};
+
 /// Choices when importing a URDF.
 struct UrdfImportOptions {
   /// Weld the root link to the world (a Hard root joint) instead of the default floating base
   /// (a Free root joint). Either way the root joint is named "world_joint". A URDF that
   /// attaches its root to a link named "world" keeps that joint's type.
   bool fixed_base = false;
+  /// Switch off contact between links whose collision shapes already interpenetrate with every
+  /// joint at zero (see physics::overlapping_link_pairs), as contact overrides named in one
+  /// warning. Off: every pair of links not joined to each other collides.
+  bool exclude_overlapping_links = true;
+  MeshCollision mesh_collision = MeshCollision::ConvexHull;
 };
 
 /// Imports a URDF file (urdf_import.cpp). Throws superdex::Error naming the file and element.
