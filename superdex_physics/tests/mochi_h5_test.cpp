@@ -256,7 +256,7 @@ TEST_F(MochiH5Test, UnreadableFilesAndOtherGroups) {
   MochiH5 empty;
   write_mochi_h5(dir_.file("empty.mochi.h5"), empty);
   EXPECT_THAT(error_of([&] { shape_from_mochi_h5(dir_.file("empty.mochi.h5")); }), HasSubstr("empty.mochi.h5: no shape"));
-  EXPECT_THAT(error_of([&] { load_shape_file(dir_.file("shape.glb")); }), HasSubstr("unknown shape file extension '.glb'"));
+  EXPECT_THAT(error_of([&] { load_shape_file(dir_.file("shape.fbx")); }), HasSubstr("unknown shape file extension '.fbx'"));
 }
 
 }  // namespace

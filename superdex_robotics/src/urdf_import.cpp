@@ -545,14 +545,15 @@ class UrdfImporter {
       bake.scale = scale.cwiseAbs().cast<real>();
       std::string ext = file->extension().string();
       for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const bool surface = physics::is_surface_mesh_file(file->string());
       try {
         *shape_file = file->string();
-        if (ext == ".obj" || ext == ".stl" || ext == ".ply") return mesh_collider(g, *file, bake.scale, scale.cwiseSign());
+        if (surface) return mesh_collider(g, *file, bake.scale, scale.cwiseSign());
         ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
         if ((scale.array() < 0).any()) shape = mirrored(std::move(shape), scale.cwiseSign(), file->string() + " (mirrored)");
         return shape;
       } catch (const Error& e) {
-        if (ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".h5")
+        if (surface || ext == ".h5")
           fail(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(file->string()) + ": " + e.what());
         warn(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(file->string()) +
                     " is in an unsupported format (" + e.what() + "); the link has no collider");

@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 using physics::JointType;
 using physics::real;
 using physics::Vec3;
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
@@ -615,16 +616,22 @@ TEST_F(UrdfImport, RosPackagePathIsSearched) {
   EXPECT_EQ(fs::path(p->articulation.links[0].shape_file), fs::path(cube));
 }
 
-TEST_F(UrdfImport, DaeCollisionMeshLeavesTheLinkWithoutColliderWithAWarning) {
-  write("meshes/part.dae", "<COLLADA/>");
-  const BotPrefab p = load(robot(mesh_link("base", "meshes/part.dae")));
+TEST_F(UrdfImport, UnsupportedCollisionMeshFormatLeavesTheLinkWithoutColliderWithAWarning) {
+  write("meshes/part.fbx", "Kaydara FBX Binary");
+  const BotPrefab p = load(robot(mesh_link("base", "meshes/part.fbx")));
   const auto& L = p.articulation.links[0];
   EXPECT_FALSE(L.shape.has_value());
-  EXPECT_EQ(fs::path(L.render_model), dir_.path() / "meshes/part.dae");
+  EXPECT_EQ(fs::path(L.render_model), dir_.path() / "meshes/part.fbx");
   EXPECT_THAT(all_warnings(), HasSubstr("link 'base': collision mesh"));
-  EXPECT_THAT(all_warnings(), HasSubstr("part.dae"));
+  EXPECT_THAT(all_warnings(), HasSubstr("part.fbx"));
   EXPECT_THAT(all_warnings(), HasSubstr("the link has no collider"));
   build(p);
+}
+
+TEST_F(UrdfImport, BrokenDaeCollisionMeshIsAnError) {
+  write("meshes/part.dae", "<COLLADA/>");
+  EXPECT_THAT(error_of(robot(mesh_link("base", "meshes/part.dae"))),
+              AllOf(HasSubstr("link 'base': collision mesh"), HasSubstr("part.dae: cannot read")));
 }
 
 TEST_F(UrdfImport, MissingVisualMeshIsAWarning) {

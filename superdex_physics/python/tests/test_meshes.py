@@ -297,8 +297,8 @@ def test_bad_arrays_and_arguments(engine, tmp_path):
         sdp.load_shape_from_file(path, bake_transform="identity")
     with pytest.raises(sdp.Error, match=r"missing\.stl: file not found"):
         sdp.load_shape_from_file(tmp_path / "missing.stl")
-    with pytest.raises(sdp.Error, match=r"shape\.glb: unknown shape file extension '\.glb'"):
-        sdp.load_shape_from_file(tmp_path / "shape.glb")
+    with pytest.raises(sdp.Error, match=r"shape\.fbx: unknown shape file extension '\.fbx'"):
+        sdp.load_shape_from_file(tmp_path / "shape.fbx")
     (tmp_path / "bad.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n")
     with pytest.raises(sdp.Error, match=r"bad\.obj:3: malformed number 'x' in vertex"):
         sdp.load_shape_from_file(tmp_path / "bad.obj")

@@ -10,6 +10,7 @@
 #include "io/file_extension.h"
 #include "multibody/kinematics.h"
 #include "scene/scene_data.h"
+#include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/recording.h"
@@ -286,13 +287,13 @@ ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake)
     const MochiH5 file = read_mochi_h5(path);
     if (std::optional<TetMesh> tets = tet_mesh_from_mochi_h5(file, path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
     else data = shape_from_geometry(shape_from_mochi_h5(file, path, bake));
-  } else if (ext == ".obj" || ext == ".stl" || ext == ".ply") {
+  } else if (is_surface_mesh_file(path)) {
     data = shape_from_geometry(load_shape_file(path, bake));
   } else if (ext == ".json" || ext == ".off") {
     data = shape_from_model(baked(model::load_from_file(path), bake, path), path);
   } else {
     throw Error(path + ": unknown shape file extension '" + std::filesystem::path(path).extension().string() +
-                "' (expected .mochi.json, .mochi.h5, .obj, .off, .stl or .ply)");
+                "' (expected .mochi.json, .mochi.h5, .obj, .off, .stl, .ply, .dae, .gltf or .glb)");
   }
   cache_shape(key, data);
   return register_shape(std::move(data), "load_shape_from_file");

@@ -22,7 +22,13 @@ TriangleMesh read_mesh_file(const std::string& path) {
   if (ext == ".stl") return read_stl_file(path);
   if (ext == ".ply") return read_ply_file(path);
   if (ext == ".off") return read_off_file(path);
-  fail(path, 0, "unknown mesh file extension '" + ext + "' (expected .obj, .stl, .ply or .off)");
+  if (ext == ".dae" || ext == ".gltf" || ext == ".glb") return read_assimp_file(path);
+  fail(path, 0, "unknown mesh file extension '" + ext + "' (expected .obj, .stl, .ply, .off, .dae, .gltf or .glb)");
+}
+
+bool is_surface_mesh_file(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".dae" || ext == ".gltf" || ext == ".glb";
 }
 
 TriangleMesh read_obj_file(const std::string& path) { return read_obj_bytes(mesh_io::read_bytes(path), path); }

@@ -53,9 +53,9 @@ void bake_mesh(TriangleMesh& mesh, const ShapeBake& bake, const std::string& whe
 ShapeGeometry load_shape_file(const std::string& path, const ShapeBake& bake) {
   const std::string ext = lower_extension(path);
   if (ext == ".h5") return shape_from_mochi_h5(path, bake);
-  if (ext != ".obj" && ext != ".stl" && ext != ".ply")
+  if (!is_surface_mesh_file(path))
     throw Error(path + ": unknown shape file extension '" + std::filesystem::path(path).extension().string() +
-                "' (expected .mochi.h5, .obj, .stl or .ply)");
+                "' (expected .mochi.h5, .obj, .stl, .ply, .dae, .gltf or .glb)");
   TriangleMesh mesh = read_mesh_file(path);
   if (!bake.is_identity()) bake_mesh(mesh, bake, path);
   return make_mesh_shape(std::move(mesh), path);

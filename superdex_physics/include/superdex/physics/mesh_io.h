@@ -17,9 +17,19 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-/// Reads a mesh file chosen by extension (.obj, .stl, .ply, .off; case-insensitive) and checks it
-/// with check_triangle_mesh (mesh_validation.h).
+/// Reads a mesh file chosen by extension (.obj, .stl, .ply, .off, .dae, .gltf, .glb;
+/// case-insensitive) and checks it with check_triangle_mesh (mesh_validation.h).
 TriangleMesh read_mesh_file(const std::string& path);
+
+/// Whether `path` names a triangle-surface file read_mesh_file reads into a rigid mesh shape (.obj,
+/// .stl, .ply, .dae, .gltf, .glb; .off files are models, see model.h).
+bool is_surface_mesh_file(const std::string& path);
+
+/// COLLADA (.dae) and glTF (.gltf, .glb) through Assimp: the triangles of every mesh in the
+/// file's node tree, each placed by its node's accumulated transform (so a COLLADA file's
+/// `<unit meter>` and `<up_axis>` apply, as in other Assimp-based robot tools); points and lines
+/// are skipped. Errors name the file and Assimp's reason.
+TriangleMesh read_assimp_file(const std::string& path);
 
 /// Wavefront OBJ: `v x y z` and `f a b c ...` records (1-based, negative = relative to the end
 /// of the vertex list so far, `a/t/n` forms accepted); every other record is ignored.

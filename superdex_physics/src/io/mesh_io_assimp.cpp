@@ -1,0 +1,67 @@
+// Scene formats read through Assimp: COLLADA (.dae), glTF (.gltf, .glb). Every mesh of the file's
+// node tree is placed by its node's accumulated transform (a COLLADA file's unit and up axis are
+// in the root's), triangles only (points and lines are skipped).
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <filesystem>
+
+#include "io/mesh_io_detail.h"
+#include "superdex/physics/mesh_io.h"
+#include "superdex/physics/mesh_validation.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, TriangleMesh& mesh) {
+  const aiMatrix4x4 X = parent * node.mTransformation;
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    const aiMesh& m = *scene.mMeshes[node.mMeshes[k]];
+    const int base = static_cast<int>(mesh.vertices.size());
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      const aiVector3D p = X * m.mVertices[v];
+      mesh.vertices.push_back(Vec3(real(p.x), real(p.y), real(p.z)));
+    }
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      if (face.mNumIndices == 3)
+        mesh.triangles.push_back({base + static_cast<int>(face.mIndices[0]), base + static_cast<int>(face.mIndices[1]),
+                                  base + static_cast<int>(face.mIndices[2])});
+    }
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c) add_node(scene, *node.mChildren[c], X, mesh);
+}
+
+}  // namespace
+
+TriangleMesh read_assimp_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) mesh_io::fail(path, 0, "file not found");
+  Assimp::Importer importer;
+  // only positions are needed: normals, colours, texture coordinates and materials are dropped
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                                          aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                                          aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
+                                                          aiComponent_MATERIALS);
+  // COLLADA's up axis stays as authored: robot meshes are modelled in their link's frame (z up for
+  // ROS), and URDF tools keep them so; the unit still scales
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  const aiScene* scene = importer.ReadFile(path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                                     aiProcess_SortByPType);
+  if (!scene || !scene->mRootNode) mesh_io::fail(path, 0, std::string("cannot read: ") + importer.GetErrorString());
+  TriangleMesh mesh;
+  add_node(*scene, *scene->mRootNode, aiMatrix4x4(), mesh);
+  for (const Vec3& v : mesh.vertices)
+    if (!v.allFinite()) mesh_io::fail(path, 0, "a vertex has a non-finite coordinate");
+  if (mesh.triangles.empty()) mesh_io::fail(path, 0, "no triangles in the file");
+  remove_degenerate_triangles(mesh, path);
+  check_triangle_mesh(mesh, path);
+  return mesh;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
