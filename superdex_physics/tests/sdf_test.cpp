@@ -179,9 +179,33 @@ TEST(SdfCache, UnwritableDirectoryOnlyDisablesCaching) {
   EXPECT_EQ(grid->size[0], 8 + 4 + 1);
 }
 
-TEST(MeshGeometry, SurfaceSamplesCoverTheSurface) {
+TEST(MeshGeometry, ConvexMeshesAreSampledAlongTheirEdges) {
   CacheDir cache;
   const MeshShape shape = make_mesh_shape(cube_mesh(0.5), "cube");
+  ASSERT_TRUE(shape.convex);
+  const std::vector<Vec3> samples = mesh_surface_samples(shape);
+  for (int v = 0; v < 8; ++v) EXPECT_EQ(samples[v], shape.mesh->vertices[v]);
+  // vertices and points along the triangle edges (the cube's edges and face diagonals): on a face
+  // diagonal at most, never strictly inside a face away from both diagonals
+  for (const Vec3& s : samples) {
+    const Eigen::Vector3d a = s.cast<double>().cwiseAbs();
+    int on_faces = 0;
+    for (int k = 0; k < 3; ++k) on_faces += std::abs(a[k] - 0.5) < 1e-9;
+    ASSERT_GE(on_faces, 1) << s.transpose();
+    if (on_faces == 1) {
+      Eigen::Vector2d in_face;
+      for (int k = 0, j = 0; k < 3; ++k)
+        if (std::abs(a[k] - 0.5) >= 1e-9) in_face[j++] = a[k];
+      EXPECT_NEAR(in_face[0], in_face[1], 1e-9) << "off the face diagonals: " << s.transpose();
+    }
+  }
+}
+
+TEST(MeshGeometry, SurfaceSamplesCoverTheSurface) {
+  CacheDir cache;
+  // sampled as a general (non-convex) mesh: faces too
+  MeshShape shape = make_mesh_shape(cube_mesh(0.5), "cube");
+  shape.convex = false;
   const std::vector<Vec3> samples = mesh_surface_samples(shape);
   EXPECT_EQ(samples, mesh_surface_samples(shape)) << "deterministic";
   for (int v = 0; v < 8; ++v) EXPECT_EQ(samples[v], shape.mesh->vertices[v]);

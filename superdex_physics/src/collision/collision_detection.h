@@ -82,8 +82,9 @@ struct ShapeContact {
 void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const LinkCollider& b,
                     const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 
-// At most `max_points` of a shape pair's contacts, spread over its contact patch (collision_reduce.cpp):
-// the one farthest from the patch's centre, then repeatedly the one farthest from those kept
+// At most `max_points` of a shape pair's contacts, spread over its contact patch (collision_reduce.cpp).
+// More than 8 max_points are first thinned to the deepest per cell of a 16^3 grid over the patch
+// and direction of the normal (its dominant axis and sign). Then the one farthest from the patch's centre, then repeatedly the one farthest from those kept
 // (distance in position plus the patch's size times 1 - cos of the angle between normals), and the
 // deepest; in their original order.
 constexpr size_t kMaxContactsPerPair = 32;

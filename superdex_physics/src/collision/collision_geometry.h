@@ -28,8 +28,9 @@ struct WorldPlane {
 };
 WorldPlane world_plane(const PlaneShape& s, const SpatialTransform& X_WS);
 
-// Points on the surface used as contact candidates against another shape's distance field.
-// Empty for planes (unbounded).
+// Points on the surface used as contact candidates against another shape's distance field:
+// vertices, points along edges and, unless the mesh is convex, across faces (4 % of the longest
+// side apart). Empty for planes (unbounded).
 std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape);
 
 // Bounding box in the shape frame; infinite for planes.

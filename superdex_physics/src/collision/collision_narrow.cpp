@@ -131,9 +131,12 @@ void points_vs_field(const LinkCollider& a, const SpatialTransform& X_WA, const 
                      const SpatialTransform& X_WF, real margin, std::vector<ShapeContact>& out) {
   if (!has_field(field)) return;
   const SpatialTransform X_FA = X_WF.inverse() * X_WA;
+  // a sample outside the field's bounds grown by the margin is at least the margin away
+  const Vec3 lo = field.aabb_S.min.array() - margin, hi = field.aabb_S.max.array() + margin;
   for (const Vec3& s_A : a.samples_S) {
     Vec3 g_F;
     const Vec3 p_F = X_FA.R * s_A + X_FA.p;
+    if ((p_F.array() < lo.array()).any() || (p_F.array() > hi.array()).any()) continue;
     const real phi = shape_signed_distance(field.shape, p_F, &g_F);
     if (phi >= margin) continue;
     const Vec3 n = X_WF.R * g_F;

@@ -2,7 +2,9 @@
 // contact patch, so that a mesh lying on another keeps a small, well-spread manifold.
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <unordered_map>
 
 #include "collision/collision_detection.h"
 
@@ -10,13 +12,36 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
-  const size_t n = points.size();
-  if (n <= max_points || max_points == 0) return;
-  // normals that differ count as distance, on the scale of the patch: points facing other ways
-  // (two faces of a corner, a peg's sides) are kept apart
+  if (points.size() <= max_points || max_points == 0) return;
   Bounds box;
   for (const ShapeContact& p : points) box.extend(p.p_W);
   const real extent = (box.max - box.min).norm();
+  // many points (a mesh lying on another gives thousands) are first thinned to the deepest per
+  // cell of a 16^3 grid over the patch and per direction of the normal, in their order
+  if (points.size() > 8 * max_points && extent > 0) {
+    const real cell = extent / 16;
+    std::unordered_map<std::uint64_t, size_t> best;
+    std::vector<char> keep(points.size(), 0);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const ShapeContact& p = points[i];
+      const Eigen::Array3i c = ((p.p_W - box.min) / cell).array().floor().cast<int>().min(16);
+      // the normal's dominant axis and its sign: six directions
+      int axis = 0;
+      p.n_W.cwiseAbs().maxCoeff(&axis);
+      const std::uint64_t key = static_cast<std::uint64_t>(c.x() + 17 * (c.y() + 17 * c.z())) * 6 + 2 * axis + (p.n_W[axis] < 0);
+      auto [it, inserted] = best.try_emplace(key, i);
+      if (!inserted && p.phi < points[it->second].phi) it->second = i;
+    }
+    for (const auto& [key, i] : best) keep[i] = 1;
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i)
+      if (keep[i]) points[k++] = points[i];
+    points.resize(k);
+    if (points.size() <= max_points) return;
+  }
+  const size_t n = points.size();
+  // normals that differ count as distance, on the scale of the patch: points facing other ways
+  // (two faces of a corner, a peg's sides) are kept apart
   auto distance = [&](const ShapeContact& a, const ShapeContact& b) {
     return (a.p_W - b.p_W).norm() + extent * (1 - a.n_W.dot(b.n_W));
   };

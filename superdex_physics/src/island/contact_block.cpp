@@ -3,6 +3,7 @@
 #include "island/contact_block.h"
 
 #include <cmath>
+#include <limits>
 
 #include "multibody/articulation_step.h"
 #include "solver/step_settings.h"
@@ -32,8 +33,12 @@ ConstraintBlock frictional_contact_block(const ContactMaterial& material, real p
     blk.vhat = -phi / (dt + tau_d);
   } else {
     blk.Rn = near_rigid * w;
-    const real vhat = -phi / dt;
-    blk.vhat = vhat + (blk.Rn / w_nn) * (vhat - vn_free);
+    // closing a gap within the step (phi > 0); out of penetration no faster than the bound
+    const real vhat = phi < 0 ? std::min(-phi / dt, params.max_depenetration_speed) : -phi / dt;
+    // a contact that cannot move along its normal (a straight leg's foot on a welded base: a
+    // singular configuration, w_nn = 0) gets no regularisation correction: nothing could follow it
+    const real follow = w_nn > std::numeric_limits<real>::epsilon() * w ? blk.Rn / w_nn : real(0);
+    blk.vhat = vhat + follow * (vhat - vn_free);
   }
   blk.R = params.friction_sigma * w;
   blk.bound = material.friction;

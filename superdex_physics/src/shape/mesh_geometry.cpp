@@ -102,7 +102,10 @@ std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh) {
     const int n = subdivisions(a, b);
     for (int i = 1; i < n; ++i) samples.push_back(a + (b - a) * (static_cast<real>(i) / n));
   }
-  // interior points of each triangle on a barycentric lattice fine enough for its longest edge
+  // interior points of each triangle on a barycentric lattice fine enough for its longest edge;
+  // not for convex meshes: a face pressed on by another shape meets that shape's vertices and
+  // edges (or its face samples), and a face against a face shows in both faces' edges
+  if (mesh.convex) return samples;
   for (const auto& t : m.triangles) {
     const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
     const int n = std::max({subdivisions(a, b), subdivisions(b, c), subdivisions(c, a)});

@@ -35,6 +35,9 @@ struct StepSettings {
   real friction_sigma = real(1e-3);
   /// Pairs of shapes closer than this (m) produce contact candidates (speculative contact).
   real contact_margin = real(0.01);
+  /// Fastest a rigid contact is pushed out of penetration (m/s): a robot spawned with its feet 8 cm
+  /// in the ground rises out of it over 0.08 s instead of being thrown at 0.08 m / dt.
+  real max_depenetration_speed = 1;
   /// Coulomb friction without the cone model's drift: in the convex cone model a contact that
   /// slides at speed s (m/s, beyond its friction regularisation) moves apart at mu s. During up
   /// to this many Newton iterations of a solve, each contact's normal target velocity is lowered
