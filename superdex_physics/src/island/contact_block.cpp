@@ -2,8 +2,8 @@
 
 #include "island/contact_block.h"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "multibody/articulation_step.h"
 #include "solver/step_settings.h"
@@ -35,9 +35,11 @@ ConstraintBlock frictional_contact_block(const ContactMaterial& material, real p
     blk.Rn = near_rigid * w;
     // closing a gap within the step (phi > 0); out of penetration no faster than the bound
     const real vhat = phi < 0 ? std::min(-phi / dt, params.max_depenetration_speed) : -phi / dt;
-    // a contact that cannot move along its normal (a straight leg's foot on a welded base: a
-    // singular configuration, w_nn = 0) gets no regularisation correction: nothing could follow it
-    const real follow = w_nn > std::numeric_limits<real>::epsilon() * w ? blk.Rn / w_nn : real(0);
+    // the regularisation's correction, Rn / w_nn of the target's excess over the free motion, is at
+    // most the excess itself: a contact that can hardly move along its normal (a nearly straight
+    // leg's foot on a welded base, w_nn << w) would otherwise get a target many times too fast,
+    // and one that cannot (w_nn = 0) a division by zero
+    const real follow = w_nn > 0 ? std::min(blk.Rn / w_nn, real(1)) : real(0);
     blk.vhat = vhat + follow * (vhat - vn_free);
   }
   blk.R = params.friction_sigma * w;

@@ -40,11 +40,8 @@ EXPECTED_ERRORS = {
 }
 
 # Robots that load but do not yet step 1 s, kept failing on purpose (strict): each one's fix must
-# remove its entry. Both are fixed-base cases; with a floating base they step.
+# remove its entry. With a floating base it steps.
 KNOWN_FAILURES = {
-    # welded at 1 m, its straight legs' wheels start 2.6 cm in the ground; the solve spikes a
-    # joint velocity to 3e5 rad/s at the second step and then diverges
-    ("centauro_description/urdf/centauro.urdf", "fixed"): "fixed-base centauro diverges at its third step",
     # chains of revolute joints through near-massless links (ball joints split into three hinges)
     # spin up to 7e4 rad/s within 0.8 s and diverge
     ("human_description/robots/human.urdf", "fixed"): "fixed-base human spins up and diverges",
