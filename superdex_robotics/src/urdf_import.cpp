@@ -122,7 +122,7 @@ std::string format_number(double x) {
 struct UrdfLink {
   const XMLElement* element = nullptr;
   std::string name;
-  bool has_mass = false;      // an <inertial> with mass > 0
+  bool has_mass = false;      // an <inertial> with mass > 0 or a rotational inertia
   Eigen::Vector3d com = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the COM, link frame
   double mass = 0;
@@ -291,9 +291,12 @@ class UrdfImporter {
     const XMLElement* ie = required_child(in, "inertia");
     const double ixx = number(ie, "ixx"), ixy = number(ie, "ixy"), ixz = number(ie, "ixz");
     const double iyy = number(ie, "iyy"), iyz = number(ie, "iyz"), izz = number(ie, "izz");
-    if (L.mass == 0) return;  // a massless frame (see the top of the file)
     Eigen::Matrix3d I;
     I << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
+    // mass 0 with no rotational inertia: a massless frame (see the top of the file); mass 0 with
+    // one (bolt's feet): the rotational inertia is kept, as Pinocchio keeps it, on the negligible mass
+    if (L.mass == 0 && I.isZero()) return;
+    if (L.mass == 0) L.mass = kMasslessLinkMass;
     const Eigen::Isometry3d X_LC = origin_of(in);  // the inertia frame in the link frame
     L.has_mass = true;
     L.com = X_LC.translation();

@@ -412,6 +412,26 @@ TEST_F(UrdfImport, UnphysicalInertiasAreRepairedWithAWarning) {
   EXPECT_TRUE(scene_->mass_matrix(h).allFinite());
 }
 
+TEST_F(UrdfImport, ZeroMassWithARotationalInertiaKeepsTheInertia) {
+  // a foot of mass 0 that still gives a rotational inertia (as example-robot-data's bolt does):
+  // kept, as Pinocchio keeps it, on the negligible mass at the inertial origin
+  const std::string foot =
+      "<inertial><origin xyz=\"0 0 0.05\"/><mass value=\"0\"/>"
+      "<inertia ixx=\"5e-7\" ixy=\"0\" ixz=\"0\" iyy=\"8e-7\" iyz=\"0\" izz=\"4e-7\"/></inertial>";
+  const BotPrefab p = load_fixed(robot(link("base") + link("leg") + link("foot", foot) +
+                                       joint("j_leg", "continuous", "base", "leg", "<axis xyz=\"0 1 0\"/>") +
+                                       joint("j_foot", "continuous", "leg", "foot", "<axis xyz=\"1 0 0\"/>")));
+  const auto& L = p.articulation.links[link_index(p, "foot")];
+  ASSERT_TRUE(L.mass && L.moment_of_inertia && L.center_of_mass);
+  EXPECT_DOUBLE_EQ(*L.mass, 1e-9);
+  EXPECT_TRUE(inertia_of(L).isApprox(Eigen::Vector3d(5e-7, 8e-7, 4e-7).asDiagonal().toDenseMatrix(), 1e-6));
+  EXPECT_TRUE(L.center_of_mass->isApprox(Vec3(0, 0, real(0.05))));
+  EXPECT_TRUE(warnings_.empty()) << all_warnings();
+  // the foot's own hinge sees its inertia about x, not a negligible one
+  const auto h = build(p);
+  EXPECT_NEAR(scene_->mass_matrix(h)(1, 1), 5e-7 + 1e-9 * 0.05 * 0.05, 1e-12);
+}
+
 TEST_F(UrdfImport, MasslessIntermediateFramesOfAMultiAxisJointMove) {
   // a hip made of three single-axis joints through two massless frames, carrying a 1 kg leg
   const BotPrefab p = load_fixed(robot(link("pelvis") + link("hip_z", "") + link("hip_x", "") + link("leg") +
