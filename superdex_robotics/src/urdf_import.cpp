@@ -457,32 +457,33 @@ class UrdfImporter {
     return v;
   }
 
-  // `shape` mirrored across the planes of the axes where `sign` is -1: a mesh's vertices, with
-  // its winding reversed when an odd number of axes flip so that it still faces outward; a
+  // Scales a mesh per axis (`s` non-zero; a negative component mirrors), with its winding reversed
+  // when an odd number of axes flip, so that it still faces outward.
+  static void scale_mesh(physics::TriangleMesh& m, const Vec3& s) {
+    for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
+    if (s.prod() < 0)
+      for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  }
+
+  // `shape` mirrored across the planes of the axes where `sign` is -1: a mesh (scale_mesh), a
   // sphere's centre. Boxes (centred) and capsules (symmetric) stay as they are.
   static ShapeGeometry mirrored(ShapeGeometry shape, const Eigen::Vector3d& sign, const std::string& source) {
     const Vec3 s = sign.cast<real>();
     if (auto* sphere = std::get_if<physics::SphereShape>(&shape)) sphere->center = sphere->center.cwiseProduct(s);
     if (auto* mesh = std::get_if<physics::MeshShape>(&shape)) {
       physics::TriangleMesh m = *mesh->mesh;
-      for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
-      if (s.prod() < 0)
-        for (auto& t : m.triangles) std::swap(t[1], t[2]);
+      scale_mesh(m, s);
       return physics::make_mesh_shape(std::move(m), source);
     }
     return shape;
   }
 
-  // The collider of a mesh file: read, scaled by `scale` (> 0) and mirrored across the axes where
-  // `sign` is -1, then its convex hull or the mesh itself as the options say.
-  ShapeGeometry mesh_collider(const XMLElement* g, const fs::path& file, const Vec3& scale, const Eigen::Vector3d& sign) const {
+  // The collider of a mesh file: read, scaled by `scale` (a negative component mirrors), then its
+  // convex hull or the mesh itself as the options say.
+  ShapeGeometry mesh_collider(const XMLElement* g, const fs::path& file, const Eigen::Vector3d& scale) const {
     physics::TriangleMesh m = physics::read_mesh_file(file.string());
-    const Vec3 s = scale.cwiseProduct(sign.cast<real>());
-    for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
-    // an odd number of mirrored axes turns the surface inside out: the winding is reversed
-    if (s.prod() < 0)
-      for (auto& t : m.triangles) std::swap(t[1], t[2]);
-    const std::string source = file.string() + ((sign.array() < 0).any() ? " (mirrored)" : "");
+    scale_mesh(m, scale.cast<real>());
+    const std::string source = file.string() + ((scale.array() < 0).any() ? " (mirrored)" : "");
     if (options_.mesh_collision == MeshCollision::ConvexHull) {
       try {
         return physics::make_mesh_shape(physics::convex_hull(m.vertices, source), source + " (convex hull)");
@@ -543,7 +544,7 @@ class UrdfImporter {
       std::string tried;
       const auto file = resolve_mesh(filename, &tried);
       if (!file) fail(g, "link " + in_quotes(link_name) + ": collision mesh " + in_quotes(filename) + " not found (" + tried + ")");
-      // a negative scale mirrors: the mesh is loaded at the scale's magnitude, then mirrored
+      // a negative scale mirrors: a .mochi.h5 shape is loaded at the scale's magnitude, then mirrored
       physics::ShapeBake bake;
       bake.scale = scale.cwiseAbs().cast<real>();
       std::string ext = file->extension().string();
@@ -551,7 +552,7 @@ class UrdfImporter {
       const bool surface = physics::is_surface_mesh_file(file->string());
       try {
         *shape_file = file->string();
-        if (surface) return mesh_collider(g, *file, bake.scale, scale.cwiseSign());
+        if (surface) return mesh_collider(g, *file, scale);
         ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
         if ((scale.array() < 0).any()) shape = mirrored(std::move(shape), scale.cwiseSign(), file->string() + " (mirrored)");
         return shape;

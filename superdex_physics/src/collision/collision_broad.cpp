@@ -73,14 +73,6 @@ namespace {
 
 ActorHandle link_actor(const Articulation& a, int link) { return a.link_handles[link]; }
 
-// Whether any joint between the world and this link has DOFs (a link welded to the world, like
-// a robot's base, cannot take part in a contact with another immovable one).
-bool link_moves(const ArticulationModel& m, int link) {
-  for (int l = link; l >= 0; l = m.parent[l])
-    if (m.joints[l].nv > 0) return true;
-  return false;
-}
-
 // Whether two colliders may touch: not both immovable (welded to the world), layers, per-actor switches, and
 // within one articulation the joined-links rule and its overrides.
 bool pair_enabled(const SceneData& s, const Articulation& A, const LinkCollider& ca, const Articulation& B,

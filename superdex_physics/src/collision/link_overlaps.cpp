@@ -13,17 +13,6 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-namespace {
-
-// Whether any joint between the world and this link has DOFs.
-bool moves(const ArticulationModel& m, int link) {
-  for (int l = link; l >= 0; l = m.parent[l])
-    if (m.joints[l].nv > 0) return true;
-  return false;
-}
-
-}  // namespace
-
 std::vector<LinkOverlap> overlapping_link_pairs(const ArticulationDesc& desc, real tolerance, const std::string& source) {
   const ArticulationModel model = build_articulation_model(desc, source);
   const ArticulationState state = initial_state(model);
@@ -44,7 +33,7 @@ std::vector<LinkOverlap> overlapping_link_pairs(const ArticulationDesc& desc, re
     for (size_t j = i + 1; j < n; ++j) {
       const LinkCollider &a = model.colliders[i], &b = model.colliders[j];
       if (link_pair_contact(model, a.link, b.link) != LinkPairContact::OnByDefault) continue;
-      if (!moves(model, a.link) && !moves(model, b.link)) continue;
+      if (!link_moves(model, a.link) && !link_moves(model, b.link)) continue;
       if (!box[i].overlaps(box[j])) continue;
       const std::pair<int, int> key(std::min(a.link, b.link), std::max(a.link, b.link));
       if (model.contact_overrides.count(key)) continue;

@@ -379,6 +379,12 @@ ArticulationState initial_state(const ArticulationModel& model) {
   return s;
 }
 
+bool link_moves(const ArticulationModel& model, int link) {
+  for (int l = link; l >= 0; l = model.parent[l])
+    if (model.joints[l].nv > 0) return true;
+  return false;
+}
+
 LinkPairContact link_pair_contact(const ArticulationModel& model, int link_a, int link_b) {
   const int a = model.rigid_body[link_a], b = model.rigid_body[link_b];
   if (a == b) return LinkPairContact::Never;

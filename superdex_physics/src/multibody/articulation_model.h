@@ -87,6 +87,10 @@ struct ArticulationKinematics {
 // Validates `desc` and builds the model; errors name `source` and the field path.
 ArticulationModel build_articulation_model(const ArticulationDesc& desc, const std::string& source);
 
+// Whether any joint between the world and this link has DOFs (a link welded to the world, like a
+// fixed robot's base, cannot take part in a contact with another immovable one).
+bool link_moves(const ArticulationModel& model, int link);
+
 // Default contact between two links of one articulation. Links of one rigid body never touch.
 // Links of two rigid bodies joined by a joint (one body's first link hangs on a link of the
 // other: MuJoCo's parent-child filter, links welded to either counted in) are off unless an
