@@ -18,3 +18,13 @@ def example_robot_data_file(relative: str = PANDA_URDF) -> Path:
         if str(f).replace("\\", "/").endswith(relative):
             return Path(dist.locate_file(f)).resolve()
     raise FileNotFoundError(f"{relative} is not part of example-robot-data {dist.version}")
+
+
+def example_robot_data_urdfs() -> list[Path]:
+    """Every URDF the installed example-robot-data package ships, sorted by path. Raises
+    FileNotFoundError naming the package version when it ships none."""
+    dist = importlib.metadata.distribution("example-robot-data")
+    files = sorted(Path(dist.locate_file(f)).resolve() for f in dist.files or [] if str(f).endswith(".urdf"))
+    if not files:
+        raise FileNotFoundError(f"example-robot-data {dist.version} ships no URDF")
+    return files

@@ -12,19 +12,9 @@ import superdex.physics as sdp
 DT = 0.005
 
 
-@pytest.fixture
-def scene():
-    sdp.initialize(num_worker_threads=0)
-    s = sdp.create_scene("depenetration")
-    s.set_gravity([0, 0, -9.81])
-    s.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    yield s
-    sdp.destroy_scene(s)
-    sdp.shutdown()
-
-
 @pytest.mark.parametrize("depth", [0.05, 0.09])
 def test_a_box_spawned_in_the_ground_rises_out_slowly(scene, depth):
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
     box = scene.create_rigid_actor(name="box", shape=sdp.create_box_shape([0.1, 0.1, 0.1]), density=500.0,
                                    world_from_local=sdp.TransformRT(translation=[0, 0, 0.1 - depth]))
     top_speed, top_height = 0.0, 0.0

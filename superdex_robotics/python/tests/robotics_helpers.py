@@ -1,4 +1,4 @@
-"""Shared pieces of the robotics tests: an engine fixture and the example bot's path."""
+"""Shared pieces of the robotics tests: engine fixtures and the example bot's path."""
 
 import json
 import shutil
@@ -19,6 +19,13 @@ def scene():
     s.set_gravity([0, 0, -9.81])
     yield s
     sdp.shutdown()
+
+
+@pytest.fixture
+def ground_scene(scene):
+    """The scene with a static ground plane at z = 0."""
+    scene.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
+    return scene
 
 
 def example_bot_json() -> dict:

@@ -6,7 +6,6 @@ cannot make a robot, which must raise superdex.physics.Error naming the file and
 
 from __future__ import annotations
 
-import importlib.metadata
 import warnings
 from pathlib import Path
 
@@ -15,16 +14,11 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
+from robotics_helpers import ground_scene, scene  # noqa: F401
+from superdex.robot_files import example_robot_data_urdfs
 
 DT = 0.005
 STEPS = 200
-
-
-def urdf_files() -> list[Path]:
-    dist = importlib.metadata.distribution("example-robot-data")
-    files = sorted(Path(dist.locate_file(f)).resolve() for f in dist.files or [] if str(f).endswith(".urdf"))
-    assert files, "example-robot-data ships no URDF: is it installed (uv sync)?"
-    return files
 
 
 def name_of(path: Path) -> str:
@@ -47,7 +41,7 @@ KNOWN_FAILURES = {
     ("human_description/robots/human.urdf", "fixed"): "fixed-base human spins up and diverges",
 }
 
-URDFS = urdf_files()
+URDFS = example_robot_data_urdfs()
 
 # The sweep runs in the double build (the float build steps the same robots; its tolerances are
 # not what is under test here).
@@ -60,20 +54,9 @@ def test_at_least_66_of_69_step_with_a_floating_base():
     assert len(URDFS) - len(EXPECTED_ERRORS) - len(floating_failures) >= 66
 
 
-@pytest.fixture
-def scene():
-    sdp.initialize(num_worker_threads=0)
-    s = sdp.create_scene("example_robot_data")
-    s.set_gravity([0, 0, -9.81])
-    s.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    yield s
-    sdp.destroy_scene(s)
-    sdp.shutdown()
-
-
 @pytest.mark.parametrize("base", ["floating", "fixed"])
 @pytest.mark.parametrize("urdf", URDFS, ids=name_of)
-def test_robot_loads_and_steps_one_second(request, scene, urdf, base):
+def test_robot_loads_and_steps_one_second(request, ground_scene, urdf, base):
     name = name_of(urdf)
     if (name, base) in KNOWN_FAILURES:
         request.applymarker(pytest.mark.xfail(reason=KNOWN_FAILURES[(name, base)], raises=sdp.Error, strict=True))
@@ -88,12 +71,12 @@ def test_robot_loads_and_steps_one_second(request, scene, urdf, base):
     dropped = [str(w.message) for w in caught if "no collider" in str(w.message)]
     assert not dropped, dropped
     prefab.world_from_root = sdp.TransformRT(translation=[0, 0, 1.0])
-    art = sdr.create_bot(scene, prefab, sdr.create_context()).get_articulated_actor()
+    art = sdr.create_bot(ground_scene, prefab, sdr.create_context()).get_articulated_actor()
     for step in range(STEPS):
-        scene.step(DT)
+        ground_scene.step(DT)
         q = np.asarray(art.get_articulated_pose())
         assert np.all(np.isfinite(q)), f"{name}: non-finite positions after step {step}"
     # nothing flew off: every link within a few metres of where it started
     for h in art.get_nested_link_actors():
-        p = np.asarray(scene.get_actor(h).get_root_transform().translation)
-        assert np.all(np.abs(p) < 5.0), f"{name}: link {scene.get_actor(h).get_name()} at {p}"
+        p = np.asarray(ground_scene.get_actor(h).get_root_transform().translation)
+        assert np.all(np.abs(p) < 5.0), f"{name}: link {ground_scene.get_actor(h).get_name()} at {p}"

@@ -9,7 +9,6 @@ here: comparing them needs the repaired model exported to URDF.
 
 from __future__ import annotations
 
-import importlib.metadata
 import warnings
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -24,6 +23,7 @@ except ImportError as exc:  # a declared dev dependency: missing means a broken 
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
+from superdex.robot_files import example_robot_data_urdfs
 
 pytestmark = pytest.mark.skipif(not sdp.uses_double_precision(), reason="compares to 1e-8: double build only")
 
@@ -31,11 +31,6 @@ MASSLESS_MASS = 1e-9
 MASSLESS_INERTIA = 1e-12
 REPAIRS = ("using the nearest physical inertia", "computed from its collision shape")
 COMPARED: list[str] = []
-
-
-def urdf_files() -> list[Path]:
-    dist = importlib.metadata.distribution("example-robot-data")
-    return sorted(Path(dist.locate_file(f)).resolve() for f in dist.files or [] if str(f).endswith(".urdf"))
 
 
 def name_of(path: Path) -> str:
@@ -61,7 +56,7 @@ def pinocchio_model(urdf: Path) -> pin.Model:
     return model
 
 
-@pytest.mark.parametrize("urdf", urdf_files(), ids=name_of)
+@pytest.mark.parametrize("urdf", example_robot_data_urdfs(), ids=name_of)
 def test_mass_matrix_matches_pinocchio(urdf):
     name = name_of(urdf)
     try:

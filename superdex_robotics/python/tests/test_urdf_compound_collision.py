@@ -14,6 +14,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
+from robotics_helpers import ground_scene, scene  # noqa: F401
 
 FOOT_RADIUS = 0.1
 FOOT_DEPTH = 0.5
@@ -34,29 +35,18 @@ def table_urdf(path):
     return str(path)
 
 
-@pytest.fixture
-def scene():
-    sdp.initialize(num_worker_threads=0)
-    s = sdp.create_scene("compound")
-    s.set_gravity([0, 0, -9.81])
-    s.create_rigid_actor(name="ground", shape=sdp.create_plane_shape([0, 0, 1], 0), is_static=True)
-    yield s
-    sdp.destroy_scene(s)
-    sdp.shutdown()
-
-
-def test_every_collision_element_holds_the_body_up(scene, tmp_path):
+def test_every_collision_element_holds_the_body_up(ground_scene, tmp_path):
     prefab = sdr.load_bot_prefab_from_urdf_file(table_urdf(tmp_path / "table.urdf"))
     prefab.world_from_root = sdp.TransformRT(translation=[0, 0, 1.0])
-    bot = sdr.create_bot(scene, prefab, sdr.create_context())
+    bot = sdr.create_bot(ground_scene, prefab, sdr.create_context())
     art = bot.get_articulated_actor()
-    (top,) = [scene.get_actor(h) for h in art.get_nested_link_actors()]
+    (top,) = [ground_scene.get_actor(h) for h in art.get_nested_link_actors()]
     # the link's box spans all five shapes
     box = top.get_aabb_local()
     np.testing.assert_allclose(box.min, [-0.3 - FOOT_RADIUS, -0.3 - FOOT_RADIUS, -FOOT_DEPTH - FOOT_RADIUS], atol=1e-6)
     np.testing.assert_allclose(box.max, [0.3 + FOOT_RADIUS, 0.3 + FOOT_RADIUS, 0.1], atol=1e-6)
     for _ in range(750):
-        scene.step(0.002)
+        ground_scene.step(0.002)
     z = np.asarray(art.get_root_transform().translation)[2]
     assert z == pytest.approx(FOOT_DEPTH + FOOT_RADIUS, abs=2e-3)
     assert np.asarray(top.get_aabb_world().min)[2] == pytest.approx(0.0, abs=2e-3)

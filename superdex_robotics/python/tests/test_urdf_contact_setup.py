@@ -13,6 +13,7 @@ import pytest
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
+from robotics_helpers import scene  # noqa: F401
 
 INERTIAL = '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
 
@@ -37,15 +38,6 @@ def load(path, text, **options):
         warnings.simplefilter("always")
         prefab = sdr.load_bot_prefab_from_urdf_file(str(path), fixed_base=True, **options)
     return prefab, [str(w.message) for w in caught]
-
-
-@pytest.fixture
-def scene():
-    sdp.initialize(num_worker_threads=0)
-    s = sdp.create_scene("urdf_contact_setup")
-    yield s
-    sdp.destroy_scene(s)
-    sdp.shutdown()
 
 
 # A base box (0.2 m, welded to the world); 'arm' hinged to it about z with a box 0.3 m away;

@@ -7,7 +7,6 @@ load without dropping a collision element.
 
 from __future__ import annotations
 
-import importlib.metadata
 import warnings
 from pathlib import Path
 
@@ -21,26 +20,15 @@ except ImportError as exc:  # a declared dev dependency: missing means a broken 
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
+from robotics_helpers import scene  # noqa: F401
+from superdex.robot_files import example_robot_data_file
 
 ROBOTS = ["kinova_description/robots/kinova.urdf", "baxter_description/urdf/baxter.urdf", "hyq_description/robots/hyq_no_sensors.urdf",
           "tiago_description/robots/tiago.urdf", "romeo_description/urdf/romeo_small.urdf"]
 
 
 def robot_file(relative: str) -> Path:
-    dist = importlib.metadata.distribution("example-robot-data")
-    for f in dist.files or []:
-        if str(f).replace("\\", "/").endswith("robots/" + relative):
-            return Path(dist.locate_file(f)).resolve()
-    raise FileNotFoundError(relative)
-
-
-@pytest.fixture
-def scene():
-    sdp.initialize(num_worker_threads=0)
-    s = sdp.create_scene("scene_meshes")
-    yield s
-    sdp.destroy_scene(s)
-    sdp.shutdown()
+    return example_robot_data_file("robots/" + relative)
 
 
 @pytest.mark.parametrize("relative", ROBOTS, ids=lambda r: Path(r).stem)
