@@ -32,11 +32,15 @@ std::vector<LinkOverlap> overlapping_link_pairs(const ArticulationDesc& desc, re
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j) {
       const LinkCollider &a = model.colliders[i], &b = model.colliders[j];
-      if (link_pair_contact(model, a.link, b.link) != LinkPairContact::OnByDefault) continue;
+      // pairs that touch: by default, or switched on by an override
+      const std::pair<int, int> key(std::min(a.link, b.link), std::max(a.link, b.link));
+      const auto override_it = model.contact_overrides.find(key);
+      const bool touch = override_it != model.contact_overrides.end()
+                             ? override_it->second
+                             : link_pair_contact(model, a.link, b.link) == LinkPairContact::OnByDefault;
+      if (!touch || a.link == b.link) continue;
       if (!link_moves(model, a.link) && !link_moves(model, b.link)) continue;
       if (!box[i].overlaps(box[j])) continue;
-      const std::pair<int, int> key(std::min(a.link, b.link), std::max(a.link, b.link));
-      if (model.contact_overrides.count(key)) continue;
       contacts.clear();
       try {
         collide_shapes(a, X_WS[i], b, X_WS[j], 0, contacts);

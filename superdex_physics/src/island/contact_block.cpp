@@ -26,6 +26,14 @@ ConstraintBlock frictional_contact_block(const ContactMaterial& material, real p
   const real near_rigid = near_rigid_factor(params);
   ConstraintBlock blk;
   blk.kind = BlockKind::FrictionalContact;
+  if (!(w > 0)) {
+    // a contact no DOF can move (a point on a hinge's axis, between a link and the welded one it
+    // hangs from): no force can act through it; a passive block keeps it at zero
+    blk.Rn = blk.R = 1;
+    blk.vhat = 0;
+    blk.bound = material.friction;
+    return blk;
+  }
   if (material.stiffness > 0) {
     // compliant contact (SAP): impulse = dt k (-(phi + dt vn) - tau_d vn), no stiffer than near-rigid
     const real tau_d = material.dissipation_time;

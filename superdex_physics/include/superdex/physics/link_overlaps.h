@@ -19,8 +19,8 @@ struct LinkOverlap {
   real depth = 0;
 };
 
-/// The pairs of links of `desc` that touch by default (not on one rigid body, not on two bodies
-/// joined by a joint, no contact override for them, not both welded to the world) and whose collision shapes
+/// The pairs of links of `desc` that touch (by default: not on one rigid body, not on two bodies
+/// joined by a joint, not both welded to the world; or switched on by a contact override) and whose collision shapes
 /// interpenetrate by more than `tolerance` (m) with every joint at the description's default
 /// pose, in increasing (link_a, link_b) order. Pairs whose overlap cannot be measured (an open
 /// mesh against another mesh) are left out. Throws superdex::Error for an invalid description,
