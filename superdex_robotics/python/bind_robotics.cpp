@@ -4,12 +4,14 @@
 #include <algorithm>
 
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 
 #include "bind_common.h"
 #include "bind_robotics_types.h"
 #include "python_component.h"
 #include "superdex/physics/engine.h"
 #include "superdex/robotics/context.h"
+#include "superdex/robotics/mjcf_import.h"
 
 namespace superdex::python {
 
@@ -363,6 +365,28 @@ void export_robotics(nb::module_& parent) {
       "shapes already overlap with every joint at zero do not collide with each other (one warning names them) "
       "unless exclude_overlapping_links=False. Mesh colliders are the meshes' convex hulls (mesh_collision='convex_hull'), "
       "or the triangle meshes themselves with mesh_collision='mesh'.");
+  nb::class_<robotics::MjcfModel>(m, "MjcfModel", "An MJCF model as bots (load_mjcf_file).")
+      .def_ro("name", &robotics::MjcfModel::name, "<mujoco model>, else the file's stem.")
+      .def_ro("bots", &robotics::MjcfModel::bots,
+              "The bots, in order: the world (a welded root link 'world' with the worldbody's geoms and every tree not on a "
+              "free joint; left out when empty), then one per tree on a free joint.")
+      .def_prop_ro("gravity", [](const robotics::MjcfModel& mm) { return std::vector<real>{mm.gravity.x(), mm.gravity.y(), mm.gravity.z()}; },
+                   "<option gravity> (m/s^2, world frame, z up): give it to the scene with scene.set_gravity.")
+      .def_ro("timestep", &robotics::MjcfModel::timestep, "<option timestep> (s).");
+  m.def("load_mjcf_file", [](nb::handle path, const std::string& mesh_collision) {
+        std::vector<std::string> warnings;
+        robotics::MjcfImportOptions options;
+        if (mesh_collision == "mesh") options.mesh_collision = robotics::MeshCollision::Mesh;
+        else if (mesh_collision != "convex_hull")
+          throw Error("load_mjcf_file: mesh_collision must be 'convex_hull' or 'mesh', got '" + mesh_collision + "'");
+        const std::string p = nb::cast<std::string>(nb::module_::import_("os").attr("fspath")(path));
+        robotics::MjcfModel model = robotics::load_mjcf(p, &warnings, options);
+        emit(warnings);
+        return model;
+      }, "path"_a, nb::kw_only(), "mesh_collision"_a = "convex_hull",
+      "Imports an MJCF (MuJoCo XML) file as bots with MuJoCo's kinematics and mass properties: create each of "
+      "model.bots with create_bot. What is not imported (actuators, tendons, equality constraints, ...) is named in "
+      "warnings. Mesh geoms collide as their convex hulls (MuJoCo's choice), or as triangles with mesh_collision='mesh'.");
   m.def("create_bot", [](nb::handle scene_arg, nb::handle prefab_arg, nb::object ctx) {
         const Scene& scene = object_of<Scene>(scene_arg, "create_bot: scene", "a superdex.physics.Scene");
         const BotPrefab& prefab = object_of<BotPrefab>(prefab_arg, "create_bot: prefab", "a BotPrefab (load_bot_prefab_from_file)");

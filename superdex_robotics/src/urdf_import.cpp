@@ -62,7 +62,6 @@
 #include <tinyxml2.h>
 
 #include <Eigen/Eigenvalues>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -70,7 +69,6 @@
 #include <set>
 #include <sstream>
 
-#include "superdex/physics/convex_hull.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/file_path.h"
 #include "superdex/physics/inertia.h"
@@ -78,6 +76,7 @@
 #include "superdex/physics/mesh_shape.h"
 #include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_validation.h"
+#include "import/import_support.h"
 #include "superdex/robotics/bot_prefab.h"
 
 namespace superdex::robotics {
@@ -109,14 +108,6 @@ bool has_volume(const std::optional<ShapeGeometry>& shape) {
 }
 // Sides of the prism that stands in for a <cylinder>.
 constexpr int kCylinderSegments = 48;
-
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
-
-std::string format_number(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
 
 // The pieces of the URDF the importer works from, in document order.
 struct UrdfLink {
@@ -193,18 +184,10 @@ class UrdfImporter {
   // Whitespace-separated numbers of an attribute; `count` of them (0: any number >= 1).
   std::vector<double> numbers(const XMLElement* e, const char* name, size_t count) const {
     const std::string text = required_attribute(e, name);
-    std::vector<double> out;
-    std::istringstream words(text);
-    std::string w;
-    while (words >> w) {
-      const char* first = w.data() + (w[0] == '+' ? 1 : 0);
-      const char* last = w.data() + w.size();
-      double x = 0;
-      const auto [end, ec] = std::from_chars(first, last, x);
-      if (ec != std::errc() || end != last || !std::isfinite(x))
-        fail(e, std::string("attribute '") + name + "': malformed number '" + w + "' in \"" + text + "\"");
-      out.push_back(x);
-    }
+    std::string bad;
+    const std::optional<std::vector<double>> parsed = parse_numbers(text, &bad);
+    if (!parsed) fail(e, std::string("attribute '") + name + "': malformed number '" + bad + "' in \"" + text + "\"");
+    const std::vector<double>& out = *parsed;
     if (out.empty() || (count && out.size() != count))
       fail(e, std::string("attribute '") + name + "': expected " + (count ? std::to_string(count) : "at least one") +
                   " number" + (count == 1 ? "" : "s") + ", got \"" + text + "\"");
@@ -241,13 +224,6 @@ class UrdfImporter {
       X.translation() = vec3_or(o, "xyz", Eigen::Vector3d::Zero());
     }
     return X;
-  }
-
-  static physics::Transform to_transform(const Eigen::Isometry3d& X) {
-    physics::Transform t;
-    t.rotation = Eigen::Quaterniond(X.linear()).normalized().cast<real>();
-    t.translation = X.translation().cast<real>();
-    return t;
   }
 
   // ------------------------------------------------------------------ document
@@ -457,14 +433,6 @@ class UrdfImporter {
     return v;
   }
 
-  // Scales a mesh per axis (`s` non-zero; a negative component mirrors), with its winding reversed
-  // when an odd number of axes flip, so that it still faces outward.
-  static void scale_mesh(physics::TriangleMesh& m, const Vec3& s) {
-    for (Vec3& v : m.vertices) v = v.cwiseProduct(s);
-    if (s.prod() < 0)
-      for (auto& t : m.triangles) std::swap(t[1], t[2]);
-  }
-
   // `shape` mirrored across the planes of the axes where `sign` is -1: a mesh (scale_mesh), a
   // sphere's centre. Boxes (centred) and capsules (symmetric) stay as they are.
   static ShapeGeometry mirrored(ShapeGeometry shape, const Eigen::Vector3d& sign, const std::string& source) {
@@ -480,44 +448,17 @@ class UrdfImporter {
 
   // The collider of a mesh file: read, scaled by `scale` (a negative component mirrors), then its
   // convex hull or the mesh itself as the options say.
-  ShapeGeometry mesh_collider(const XMLElement* g, const fs::path& file, const Eigen::Vector3d& scale) const {
+  ShapeGeometry mesh_file_collider(const XMLElement* g, const fs::path& file, const Eigen::Vector3d& scale) const {
     physics::TriangleMesh m = physics::read_mesh_file(file.string());
     scale_mesh(m, scale.cast<real>());
     const std::string source = file.string() + ((scale.array() < 0).any() ? " (mirrored)" : "");
-    if (options_.mesh_collision == MeshCollision::ConvexHull) {
-      try {
-        return physics::make_mesh_shape(physics::convex_hull(m.vertices, source), source + " (convex hull)");
-      } catch (const Error& e) {
-        // a flat mesh (a plate, a single quad) has no hull with volume: its triangles collide
-        warn(g, std::string("collision mesh ") + in_quotes(file.string()) + ": " + e.what() + "; the mesh itself collides");
-      }
-    }
-    return physics::make_mesh_shape(std::move(m), source);
+    std::string warning;
+    ShapeGeometry shape = mesh_collider(std::move(m), source, options_.mesh_collision, &warning);
+    if (!warning.empty()) warn(g, "collision mesh " + in_quotes(file.string()) + ": " + warning);
+    return shape;
   }
 
   // ------------------------------------------------------------------ geometry
-
-  static physics::TriangleMesh cylinder_mesh(double radius, double length) {
-    physics::TriangleMesh m;
-    const int n = kCylinderSegments;
-    for (int k = 0; k < n; ++k) {
-      const double a = 2 * EIGEN_PI * k / n;
-      const double x = radius * std::cos(a), y = radius * std::sin(a);
-      m.vertices.push_back(Vec3(real(x), real(y), real(-length / 2)));
-      m.vertices.push_back(Vec3(real(x), real(y), real(length / 2)));
-    }
-    const int bottom = 2 * n, top = 2 * n + 1;
-    m.vertices.push_back(Vec3(0, 0, real(-length / 2)));
-    m.vertices.push_back(Vec3(0, 0, real(length / 2)));
-    for (int k = 0; k < n; ++k) {
-      const int b0 = 2 * k, t0 = 2 * k + 1, b1 = 2 * ((k + 1) % n), t1 = b1 + 1;
-      m.triangles.push_back({b0, b1, t1});  // side, counter-clockwise seen from outside
-      m.triangles.push_back({b0, t1, t0});
-      m.triangles.push_back({bottom, b1, b0});
-      m.triangles.push_back({top, t0, t1});
-    }
-    return m;
-  }
 
   // The collision shape of a <geometry>; nullopt (with a warning) for a mesh format that
   // cannot be a collider. Sets `shape_file` for meshes.
@@ -534,7 +475,7 @@ class UrdfImporter {
     if (kind == "sphere") return physics::SphereShape{Vec3::Zero(), real(positive(g, "radius"))};
     if (kind == "cylinder") {
       const double radius = positive(g, "radius"), length = positive(g, "length");
-      return physics::make_mesh_shape(cylinder_mesh(radius, length),
+      return physics::make_mesh_shape(cylinder_mesh(radius, length, kCylinderSegments),
                                       path_ + ": link " + in_quotes(link_name) + " <cylinder>");
     }
     if (kind == "capsule") return physics::CapsuleShape{real(positive(g, "radius")), real(positive(g, "length") / 2)};
@@ -552,7 +493,7 @@ class UrdfImporter {
       const bool surface = physics::is_surface_mesh_file(file->string());
       try {
         *shape_file = file->string();
-        if (surface) return mesh_collider(g, *file, scale);
+        if (surface) return mesh_file_collider(g, *file, scale);
         ShapeGeometry shape = physics::load_shape_file(file->string(), bake);
         if ((scale.array() < 0).any()) shape = mirrored(std::move(shape), scale.cwiseSign(), file->string() + " (mirrored)");
         return shape;

@@ -92,6 +92,8 @@ def load_bot_prefab_from_file(path):
     return _r.load_bot_prefab_from_file(os.fspath(path))
 
 load_bot_prefab_from_urdf_file = _r.load_bot_prefab_from_urdf_file
+load_mjcf_file = _r.load_mjcf_file
+MjcfModel = _r.MjcfModel
 create_bot = _r.create_bot
 destroy_bot = _r.destroy_bot
 
