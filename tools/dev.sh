@@ -56,7 +56,7 @@ case "${1:-}" in
     # mochi_h5 gets fewer inputs: the reader tries each new file in a child process (HDF5 can
     # crash on a corrupt file), and forking the sanitized fuzzer costs about 15 ms
     echo "== Fuzzing (tools/fuzz.sh)"
-    FUZZ_RUNS=150000 FUZZ_SEED=1 bash tools/fuzz.sh mochi_h5:3000 bot_json prefab_json urdf obj stl ply recording \
+    FUZZ_RUNS=150000 FUZZ_SEED=1 bash tools/fuzz.sh mochi_h5:3000 bot_json prefab_json urdf mjcf:30000 obj stl ply recording \
       debugger_message
     ;;
   sanitize)

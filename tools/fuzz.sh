@@ -19,7 +19,7 @@ export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 
 seconds=${FUZZ_SECONDS:-30}
 dir=build/fuzz
-all=(bot_json prefab_json urdf mochi_h5 model_json model_h5 obj stl ply off recording debugger_message)
+all=(bot_json prefab_json urdf mjcf mochi_h5 model_json model_h5 obj stl ply off recording debugger_message)
 specs=("${@:-${all[@]}}")
 # target names without their run counts, and the counts by name
 targets=()

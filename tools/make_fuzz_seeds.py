@@ -3,7 +3,7 @@
     uv run python tools/make_fuzz_seeds.py
 
 Each target starts from a few valid inputs (the example bot, the duck-lamp prefab, the tabletop
-URDF, small meshes, shapes and a recording written here) and the malformed corpus of the test
+URDF, an MJCF model, small meshes, shapes and a recording written here) and the malformed corpus of the test
 suite (tools/make_malformed_corpus.py), so that the fuzzer begins both inside and at the edges of
 each format. To keep the corpora small, the valid seeds come first and the malformed files follow
 in corpus order while the target's folder stays under 48 KB (files over 8 KB are left out). The output is deterministic;
@@ -26,8 +26,64 @@ OUT = REPO / "fuzz" / "corpus"
 BUDGET_BYTES = 48 * 1024  # per target
 MAX_FILE_BYTES = 8 * 1024
 # malformed-corpus folder -> fuzz target
-TARGET_OF = {"bot": "bot_json", "prefab": "prefab_json", "urdf": "urdf", "h5": "mochi_h5",
+TARGET_OF = {"bot": "bot_json", "prefab": "prefab_json", "urdf": "urdf", "mjcf": "mjcf", "h5": "mochi_h5",
              "obj": "obj", "stl": "stl", "ply": "ply", "recording": "recording"}
+
+
+# an MJCF model touching what the importer reads: compiler settings, nested default classes,
+# childclass, an inline mesh, free, multi-joint, slide and ball joints with ref, fromto, cylinders,
+# ellipsoids, contact filters, an explicit inertial, a body welded to the world, <exclude>
+MJCF_MODEL = """<mujoco model="corpus_mjcf">
+  <compiler angle="degree" autolimits="true"/>
+  <option timestep="0.005" gravity="0 0 -9.81"/>
+  <default>
+    <joint damping="0.1" armature="0.01"/>
+    <geom density="800" friction="0.8 0.01 0.001"/>
+    <default class="limb">
+      <geom type="capsule" size="0.04"/>
+      <joint range="-60 60"/>
+    </default>
+  </default>
+  <asset>
+    <mesh name="wedge" vertex="0 0 0  0.1 0 0  0 0.1 0  0 0 0.1" face="0 2 1  0 1 3  0 3 2  1 2 3"/>
+  </asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="torso" pos="0 0 0.6" childclass="limb">
+      <freejoint name="root"/>
+      <geom type="box" size="0.1 0.08 0.05"/>
+      <body name="hip" pos="0.1 0 0" euler="0 0 30">
+        <joint name="hip_x" axis="1 0 0" pos="0 0 0.02"/>
+        <joint name="hip_y" axis="0 1 0" ref="10"/>
+        <geom fromto="0 0 0 0 0 -0.3"/>
+        <body name="shin" pos="0 0 -0.3">
+          <joint name="knee" type="slide" axis="0 0 1" range="-0.05 0.05"/>
+          <geom type="cylinder" size="0.03 0.1" pos="0 0 -0.1"/>
+          <geom type="mesh" mesh="wedge" pos="0 0 -0.2" contype="2" conaffinity="2"/>
+        </body>
+      </body>
+      <body name="head" pos="0 0 0.1">
+        <joint name="neck" type="ball" range="0 45"/>
+        <geom type="ellipsoid" size="0.05 0.04 0.06"/>
+        <inertial pos="0 0 0.02" mass="0.5" diaginertia="0.001 0.001 0.0008"/>
+      </body>
+    </body>
+    <body name="shelf" pos="1 0 0.3">
+      <geom type="box" size="0.2 0.2 0.02"/>
+      <body name="lid" pos="0 0 0.05">
+        <joint name="lid_hinge" axis="0 1 0" pos="-0.2 0 0"/>
+        <geom type="box" size="0.2 0.2 0.01"/>
+      </body>
+    </body>
+  </worldbody>
+  <contact>
+    <exclude body1="shelf" body2="lid"/>
+  </contact>
+  <actuator>
+    <motor joint="hip_x" gear="10"/>
+  </actuator>
+</mujoco>
+"""
 
 
 def valid_seeds():
@@ -39,6 +95,7 @@ def valid_seeds():
     yield "prefab_json", "box.mochi_prefab", mc.prefab(rigid=[mc.box_actor()])
     yield "urdf", "tabletop_arm_4dof.urdf", (assets / "bots/urdf/tabletop_arm_4dof/tabletop_arm_4dof.urdf").read_bytes()
     yield "urdf", "corpus_urdf.urdf", mc.urdf()
+    yield "mjcf", "corpus_mjcf.xml", MJCF_MODEL
     yield "obj", "cube.obj", mc.obj_text()
     yield "obj", "cube_slashes.obj", mc.obj_text().replace("f 1 2 3", "f 1/1/1 2//2 3/3")
     yield "stl", "cube_binary.stl", mc.stl_binary(mc.CUBE_T)
@@ -78,7 +135,7 @@ def valid_seeds():
 
 
 def main():
-    for make in (mc.bot_cases, mc.prefab_cases, mc.urdf_cases, mc.h5_cases, mc.mesh_cases, mc.recording_cases):
+    for make in (mc.bot_cases, mc.prefab_cases, mc.urdf_cases, mc.mjcf_cases, mc.h5_cases, mc.mesh_cases, mc.recording_cases):
         make()
     if OUT.exists():
         shutil.rmtree(OUT)

@@ -3,7 +3,7 @@
     uv run python tools/make_malformed_corpus.py [--out DIR]
 
 Every file is a small, deliberately broken input for one of the engine's loaders: bot JSON
-(`.superdex_bot`), prefab JSON (`.mochi_prefab`), URDF, `.mochi.h5`, OBJ, STL, PLY and debugger
+(`.superdex_bot`), prefab JSON (`.mochi_prefab`), URDF, MJCF, `.mochi.h5`, OBJ, STL, PLY and debugger
 recordings (`.jsonl`, read by `superdex view`). `manifest.json` lists, for each file, the loader
 that reads it and the error it must raise: always `superdex.physics.Error`, with a message that
 names the file and matches `message` (a regular expression naming the field and what was
@@ -220,7 +220,7 @@ def prefab_cases():
     case(P, "dynamic_plane" + e, prefab(rigid=[box_actor(shape={"plane": {"normal": [0, 0, 1], "distance": 0}})]),
          r"actors\.rigid\[0\]: create_rigid_actor\('corpus/box'\): params\.shape: a plane is unbounded and can only carry a static actor \(is_static=True\)")
     case(P, "layer_not_a_name" + e, prefab(rigid=[box_actor(layer=99)]), r"actors\.rigid\[0\]\.layer: expected a contact layer name \(a string\), got 99")
-    case(P, "soft_triangle_mesh" + e, prefab(soft=[soft_actor(shape="./valid_cube.obj")]), r"actors\.soft\[0\]\.shape: '.*prefab/valid_cube\.obj' has no tetrahedral mesh/ \(connectivity M x 4\)")
+    case(P, "soft_triangle_mesh" + e, prefab(soft=[soft_actor(shape="./valid_cube.obj")]), r"actors\.soft\[0\]\.shape: '.*prefab/valid_cube\.obj' has no tetrahedral mesh \(soft actors need one\)")
     case(P, "soft_unknown_material" + e, prefab(soft=[soft_actor(material={"type": "Jelly", "youngsModulus": 1e5, "poissonRatio": 0.3})]),
          r"actors\.soft\[0\]\.material\.type: unknown material type 'Jelly' \(expected NeoHookean, StVK or Linear\)")
     case(P, "soft_poisson_half" + e, prefab(soft=[soft_actor(material={"type": "NeoHookean", "youngsModulus": 1e5, "poissonRatio": 0.5})]),
@@ -573,13 +573,53 @@ def helper_files(out: Path):
     (out / "bot").mkdir(parents=True, exist_ok=True)
     (out / "bot" / "valid_params.json").write_text('{"kp": 1.0}\n')
     (out / "bot" / "valid_readme.txt").write_text("params files are JSON; this one is not\n")
+    # a MuJoCo .msh whose header announces 10 vertices and 2 faces, cut after 4 bytes of data
+    (out / "mjcf").mkdir(parents=True, exist_ok=True)
+    (out / "mjcf" / "valid_truncated.msh").write_bytes(struct.pack("<4i", 10, 0, 0, 2) + bytes(4))
+
+# ---------------------------------------------------------------------------------------------
+# MJCF (MuJoCo XML)
+
+def mjcf(body='<body name="arm" pos="0 0 1"><joint name="hinge"/><geom type="capsule" size="0.05 0.2"/></body>', head=""):
+    return f'<mujoco model="corpus_mjcf">\n{head}<worldbody>\n<geom type="plane" size="1 1 0.1"/>\n{body}\n</worldbody>\n</mujoco>\n'
+
+
+def mjcf_cases():
+    M = "mjcf"
+    e = ".xml"
+    case(M, "not_xml" + e, "<mujoco <worldbody>", r"not a valid XML file")
+    case(M, "root_not_mujoco" + e, '<robot name="r"><link name="a"/></robot>\n', r"not an MJCF file: the root element is <robot>, expected <mujoco>")
+    case(M, "unknown_joint_type" + e, mjcf('<body name="arm"><joint name="j" type="twist"/><geom size="0.1"/></body>'),
+         r"line 4: <body name='arm'>/<joint name='j'>: unknown joint type 'twist' \(expected hinge, slide, ball or free\)")
+    case(M, "size_not_number" + e, mjcf('<body name="arm"><joint name="j"/><geom type="box" size="0.1 wide 0.1"/></body>'),
+         r"line 4: <body name='arm'>/<geom>: attribute 'size': malformed number 'wide'")
+    case(M, "capsule_without_size" + e, mjcf('<body name="arm"><joint name="j"/><geom type="capsule"/></body>'),
+         r"line 4: <body name='arm'>/<geom>: a capsule geom needs 2 positive size value\(s\)")
+    case(M, "undefined_class" + e, mjcf('<body name="arm" childclass="missing"><joint name="j"/><geom size="0.1"/></body>'),
+         r"line 4: <body name='arm'>: childclass 'missing' is not a defined default class")
+    case(M, "undefined_mesh" + e, mjcf('<body name="arm"><joint name="j"/><geom type="mesh" mesh="hand"/></body>'),
+         r"line 4: <body name='arm'>/<geom>: refers to mesh 'hand', which is not defined in <asset>")
+    case(M, "missing_mesh_file" + e, mjcf('<body name="arm"><joint name="j"/><geom type="mesh" mesh="hand"/></body>',
+                                            head='<asset><mesh name="hand" file="no_such_hand.stl"/></asset>\n'),
+         r"<asset>/<mesh name='hand'>: mesh file '.*no_such_hand.stl' not found")
+    case(M, "missing_include" + e, mjcf(head='<include file="no_such_part.xml"/>\n'), r"line 2: <mujoco>/<include>: included file '.*no_such_part.xml' not found")
+    case(M, "nested_free_joint" + e, mjcf('<body name="arm"><joint name="j"/><geom size="0.1"/><body name="hand"><freejoint/><geom size="0.1"/></body></body>'),
+         r"<body name='hand'>/<freejoint>: a free joint must be the only joint of a body that is a child of the world")
+    case(M, "range_inverted" + e, mjcf('<body name="arm"><joint name="j" range="30 -30"/><geom size="0.1"/></body>'),
+         r"<joint name='j'>: attribute 'range': the lower limit 0.523599 exceeds the upper limit -0.523599")
+    case(M, "negative_inertial_mass" + e, mjcf('<body name="arm"><joint name="j"/><inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/></body>'),
+         r"<body name='arm'>/<inertial>: missing or negative 'mass'")
+    case(M, "coordinate_global" + e, mjcf(head='<compiler coordinate="global"/>\n'), r"coordinate=\"global\" is not supported")
+    case(M, "msh_truncated" + e, mjcf('<body name="arm"><joint name="j"/><geom type="mesh" mesh="hand"/></body>',
+                                       head='<asset><mesh name="hand" file="valid_truncated.msh"/></asset>\n'),
+         r"not a MuJoCo .msh file: 20 bytes where its header announces 160")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=DEFAULT_OUT)
     args = parser.parse_args()
-    for make in (bot_cases, prefab_cases, urdf_cases, h5_cases, mesh_cases, recording_cases):
+    for make in (bot_cases, prefab_cases, urdf_cases, mjcf_cases, h5_cases, mesh_cases, recording_cases):
         make()
     if args.out.exists():
         shutil.rmtree(args.out)

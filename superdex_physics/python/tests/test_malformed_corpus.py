@@ -31,6 +31,12 @@ def load_urdf(path, scene, entry):
     sdr.create_bot(scene, prefab, sdr.create_context())
 
 
+def load_mjcf(path, scene, entry):
+    ctx = sdr.create_context()
+    for prefab in sdr.load_mjcf_file(path).bots:
+        sdr.create_bot(scene, prefab, ctx)
+
+
 def load_prefab(path, scene, entry):
     params = PrefabParams(name="corpus", apply_scene_settings=entry.get("apply_scene_settings", False))
     add_to_scene(str(path), str(path.parent), scene, params=params)
@@ -55,13 +61,13 @@ def replay(path, scene, entry):
         server.stop()
 
 
-LOADERS = {"bot": load_bot, "urdf": load_urdf, "prefab": load_prefab, "h5": load_shape, "h5_soft": load_soft_shape,
+LOADERS = {"bot": load_bot, "urdf": load_urdf, "mjcf": load_mjcf, "prefab": load_prefab, "h5": load_shape, "h5_soft": load_soft_shape,
            "mesh": load_shape, "recording": replay}
 
 
 def test_corpus_is_large_and_covers_every_format():
     folders = {entry["file"].split("/")[0] for entry in MANIFEST}
-    assert folders == {"bot", "prefab", "urdf", "h5", "obj", "stl", "ply", "recording"}
+    assert folders == {"bot", "prefab", "urdf", "mjcf", "h5", "obj", "stl", "ply", "recording"}
     assert len(MANIFEST) >= 100
     on_disk = {p.relative_to(CORPUS).as_posix() for p in CORPUS.rglob("*") if p.is_file() and not p.name.startswith("valid_")}
     assert on_disk - {"manifest.json"} == {entry["file"] for entry in MANIFEST}, "every corpus file is in the manifest"
