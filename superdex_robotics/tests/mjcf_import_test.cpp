@@ -84,6 +84,7 @@ constexpr const char* kModel = R"(<mujoco model="walker">
     </body>
   </worldbody>
   <contact><exclude body1="door_frame" body2="door"/></contact>
+  <tendon><fixed name="cable"><joint joint="hip_x" coef="1"/></fixed></tendon>
   <actuator><motor joint="knee"/></actuator>
 </mujoco>
 )";
@@ -108,8 +109,14 @@ TEST_F(MjcfImport, WorldAndFreeBodiesBecomeBots) {
   EXPECT_EQ(walker.articulation.joints[0].name, "root");
   EXPECT_NEAR(walker.articulation.world_from_root.translation.z(), 1, 1e-12);
   EXPECT_NEAR(std::abs(walker.articulation.world_from_root.rotation.z()), 1, 1e-12);
-  // an actuator is not imported: named in a warning
-  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find("actuators are not imported") != std::string::npos; }));
+  // the knee's motor: an IDEAL_PD actuator on the knee's link that passes its effort through
+  const int shin = link_index(walker, "shin");
+  ASSERT_EQ(walker.actuators[shin].size(), 1u);
+  EXPECT_EQ(walker.actuators[shin][0].type, "IDEAL_PD");
+  EXPECT_EQ(walker.actuators[shin][0].name, "<motor joint='knee'>");
+  EXPECT_THAT(walker.actuators[shin][0].params, HasSubstr("\"kp\": 0, \"kd\": 0, \"effort_limit\": -1"));
+  // the tendon it does not import is named in a warning
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find("tendons are not imported: 'cable'") != std::string::npos; }));
 }
 
 TEST_F(MjcfImport, BodyWithSeveralJointsIsAChainAndRefIsTheDefaultPose) {

@@ -32,7 +32,9 @@
 //    parent-child pairs below the world are filtered). <contact><exclude> switches pairs off, and
 //    so do pairs whose shapes already interpenetrate at the start pose (limbs drawn to meet at
 //    their joint), named in a warning.
-//  * Not imported, named in warnings: actuators, tendons, equality constraints, sensors,
+//  * Joint actuators (<motor>, <position>, <velocity>, <general> of those kinds) become IDEAL_PD
+//    actuators on their joint's link (read_actuators says how).
+//  * Not imported, named in warnings: other actuators, tendons, equality constraints, sensors,
 //    <contact><pair>, joint springs (stiffness), height fields.
 
 #include <Eigen/Eigenvalues>
@@ -44,6 +46,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <cmath>
 #include <sstream>
 
 #include "import/import_support.h"
@@ -167,6 +170,7 @@ class MjcfImporter {
     apply_total_mass();
     find_smallest_mass();
     for (size_t b = 0; b < model_.bots.size(); ++b) finish(static_cast<int>(b));
+    read_actuators();
     // a world with nothing on it is left out
     const auto& w = model_.bots[0].articulation;
     if (w.links.size() == 1 && !w.links[0].shape && model_.bots.size() > 1) model_.bots.erase(model_.bots.begin());
@@ -363,6 +367,7 @@ class MjcfImporter {
       if (J.type == JointType::Spherical) pose.insert(pose.end(), 3, real(0));
       else pose.push_back(real(ref_q));
       at.link = add_link(at.bot, std::move(L), std::move(J));
+      joint_link_[jname] = at;
       X_PJ_pending = Eigen::Isometry3d::Identity();
     }
     if (joints.empty()) {
@@ -687,7 +692,7 @@ class MjcfImporter {
   void note_unsupported() {
     const XMLElement* root = doc_.root();
     static const std::pair<const char*, const char*> kSections[] = {
-        {"actuator", "actuators are not imported"},          {"tendon", "tendons are not imported"},
+        {"tendon", "tendons are not imported"},
         {"equality", "equality constraints are not imported"}, {"sensor", "sensors are not imported"},
         {"deformable", "deformable bodies are not imported"},  {"skin", "skins are not imported"},
     };
@@ -695,6 +700,90 @@ class MjcfImporter {
       for (const XMLElement* s = root->FirstChildElement(section); s; s = s->NextSiblingElement(section))
         for (const XMLElement* e = s->FirstChildElement(); e; e = e->NextSiblingElement())
           notes_[what].push_back(e->Attribute("name") ? e->Attribute("name") : unnamed(e));
+  }
+
+  // ------------------------------------------------------------------ actuators
+
+  // MuJoCo's joint actuators as IDEAL_PD actuators on their joint's link (joint effort =
+  // gear x actuator force, actuator length = gear x q): <motor> passes the effort command
+  // through (the joint's torque or force: ctrl x gear); <position kp kv> is kp g^2 (q_cmd - q) -
+  // kv g^2 v with q_cmd = ctrl / g; <velocity kv> is kv g^2 (v_cmd - v); <general> with a fixed
+  // gain and no bias is a motor, with an affine bias (0, -kp, -kv) a position actuator.
+  // forcerange x |gear| bounds the effort (forcelimited, or auto with autolimits). ctrlrange is
+  // left to the controller that issues the commands.
+  void read_actuators() {
+    for (const XMLElement* sec = doc_.root()->FirstChildElement("actuator"); sec; sec = sec->NextSiblingElement("actuator"))
+      for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
+        const std::string kind = e->Name();
+        const char* n = e->Attribute("name");
+        const std::string label = n && *n ? n : unnamed(e);
+        const char* joint = doc_.attr(e, "joint", "");
+        if (!joint) {
+          notes_["actuators on tendons, sites and bodies are not imported"].push_back(label);
+          continue;
+        }
+        const auto it = joint_link_.find(joint);
+        if (it == joint_link_.end()) doc_.fail(e, "refers to joint " + in_quotes(joint) + ", which is not defined");
+        const LinkRef at = it->second;
+        BotPrefab& bot = model_.bots[at.bot];
+        const JointDesc& J = bot.articulation.joints[at.link];
+        if (J.type != JointType::Revolute && J.type != JointType::Prismatic) {
+          notes_["actuators on ball joints are not imported"].push_back(label);
+          continue;
+        }
+        const auto gears = doc_.numbers(e, "gear", "", 0);
+        const double gear = gears ? (*gears)[0] : 1.0;
+        double kp = 0, kd = 0;
+        if (kind == "position") {
+          kp = doc_.number_or(e, "kp", "", 1);
+          kd = doc_.number_or(e, "kv", "", 0);
+        } else if (kind == "velocity") {
+          kd = doc_.number_or(e, "kv", "", 1);
+        } else if (kind == "general") {
+          const char* bias = doc_.attr(e, "biastype", "");
+          const auto gain = doc_.numbers(e, "gainprm", "", 0);
+          const auto bp = doc_.numbers(e, "biasprm", "", 0);
+          const std::string gaintype = doc_.attr(e, "gaintype", "") ? doc_.attr(e, "gaintype", "") : "fixed";
+          const double g0 = gain ? (*gain)[0] : 1;
+          auto b = [&](size_t k) { return bp && bp->size() > k ? (*bp)[k] : 0.0; };
+          if (gaintype != "fixed") {
+            notes_["actuators with a non-fixed gain are not imported"].push_back(label);
+            continue;
+          }
+          if (!bias || std::string(bias) == "none") {
+            if (g0 != 1) notes_["general actuators' gains scale the effort command (give the joint effort)"].push_back(label);
+          } else if (std::string(bias) == "affine" && b(0) == 0 && b(1) == -g0) {
+            kp = g0;
+            kd = -b(2);
+          } else {
+            notes_["general actuators with this bias are not imported"].push_back(label);
+            continue;
+          }
+        } else if (kind != "motor") {
+          notes_["actuators of kind <" + kind + "> are not imported"].push_back(label);
+          continue;
+        }
+        kp *= gear * gear;
+        kd *= gear * gear;
+        double effort_limit = -1;
+        const auto range = doc_.numbers(e, "forcerange", "", 2);
+        const std::optional<bool> limited = doc_.boolean(e, "forcelimited", "");
+        if (range && (limited ? *limited : doc_.compiler().autolimits)) {
+          effort_limit = std::max(std::abs((*range)[0]), std::abs((*range)[1])) * std::abs(gear);
+          if ((*range)[0] != -(*range)[1]) notes_["asymmetric force ranges are imported as symmetric bounds"].push_back(label);
+        }
+        if (kp < 0 || kd < 0) doc_.fail(e, "kp and kv must not be negative");
+        std::ostringstream params;
+        params.precision(17);
+        params << "{\"kp\": " << kp << ", \"kd\": " << kd << ", \"effort_limit\": " << effort_limit << "}";
+        ComponentDecl d;
+        d.type = "IDEAL_PD";
+        d.name = label;
+        for (int k = 1; actuator_names_[at.bot].count(d.name); ++k) d.name = label + "_" + std::to_string(k);
+        actuator_names_[at.bot].insert(d.name);
+        d.params = params.str();
+        bot.actuators[at.link].push_back(std::move(d));
+      }
   }
 
   // "<motor joint='hip'>": an unnamed element by its kind and what it acts on
@@ -773,7 +862,8 @@ class MjcfImporter {
   MjcfImportOptions options_;
   MjcfModel model_;
   std::map<std::string, MeshAsset> meshes_;
-  std::map<std::string, LinkRef> body_link_;
+  std::map<std::string, LinkRef> body_link_, joint_link_;
+  std::map<int, std::set<std::string>> actuator_names_;  // per bot
   // per bot, per link: the contact filters of its collision geoms, and its mass
   std::vector<std::vector<std::vector<Filter>>> filters_;
   std::vector<std::vector<Mass>> link_mass_;
