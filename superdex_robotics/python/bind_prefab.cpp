@@ -14,6 +14,7 @@ NB_MAKE_OPAQUE(std::vector<superdex::robotics::ComponentDecl>)
 NB_MAKE_OPAQUE(std::vector<std::vector<superdex::robotics::ComponentDecl>>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotSensorPrefab>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotActuatorPrefab>)
+NB_MAKE_OPAQUE(std::vector<superdex::physics::JointCoupling>)
 
 
 #include "bind_common.h"
@@ -98,6 +99,14 @@ void export_prefab(nb::module_& m) {
       .field("name", &BotActuatorPrefab::name, "instance name")
       .field("params", &BotActuatorPrefab::params, "inline JSON, a JSON file path relative to the bot file, or empty")
       .done();
+  StructBinder<physics::JointCoupling>(m, "JointCoupling",
+                                       "A joint that follows another: q_joint = ratio q_leader + offset (BotPrefab.couplings).")
+      .field("joint", &physics::JointCoupling::joint, "the follower's name")
+      .field("leader", &physics::JointCoupling::leader, "the name of the joint it follows")
+      .field("ratio", &physics::JointCoupling::ratio, "(rad or m) per (rad or m)")
+      .field("offset", &physics::JointCoupling::offset, "rad or m")
+      .done();
+  nb::bind_vector<std::vector<physics::JointCoupling>, nb::rv_policy::reference_internal>(m, "DynamicArrayJointCoupling");
   nb::bind_vector<std::vector<BotSensorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotSensorPrefab");
   nb::bind_vector<std::vector<BotActuatorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotActuatorPrefab");
   nb::bind_vector<std::vector<std::vector<ComponentDecl>>, nb::rv_policy::reference_internal>(m, "ComponentDeclLists");
@@ -195,6 +204,9 @@ void export_prefab(nb::module_& m) {
                    }, "joint positions in DOF order after the root joint's DOFs")
       .def_prop_rw("world_from_root", [](const BotPrefab& p) { return p.articulation.world_from_root; },
                    [](BotPrefab& p, nb::handle t) { p.articulation.world_from_root = read_transform(t, "world_from_root"); })
+      .def_prop_rw("couplings", [](BotPrefab& p) -> std::vector<physics::JointCoupling>& { return p.articulation.couplings; },
+                   [](BotPrefab& p, std::vector<physics::JointCoupling> c) { p.articulation.couplings = std::move(c); },
+                   nb::rv_policy::reference_internal, "joints that follow others (URDF <mimic>, MJCF joint equalities)")
       .def_prop_ro("sensors", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.sensors; },
                    nb::rv_policy::reference_internal, "per link: the sensors declared on it")
       .def_prop_ro("actuators", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.actuators; },

@@ -17,8 +17,9 @@
 //    joint frame (as in URDF). rpy is fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
 //    The axis (default 1 0 0) is normalised; limits become the vectors axis*lower, axis*upper.
 //    <limit effort> -> effortLimit; <dynamics damping friction> -> viscous / Coulomb friction.
-//    <mimic> is ignored with a warning (the joint is an independent DOF, as in Pinocchio's
-//    default URDF parser).
+//    <mimic joint multiplier offset> couples the joint to the one it names (a JointCoupling:
+//    q = multiplier q_leader + offset, held by the step; the joint keeps its own DOF). A mimic
+//    that names no joint, or joins a fixed joint, is ignored with a warning.
 //  * Inertials: mass, centre of mass = inertial origin xyz, rotational inertia about the COM
 //    rotated into the link frame, I_L = R I R^T (R from the inertial origin rpy). An inertia
 //    that no mass distribution has (not positive definite, or principal moments breaking the
@@ -62,6 +63,7 @@
 #include <tinyxml2.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -590,8 +592,6 @@ class UrdfImporter {
       if (dyn->Attribute("friction")) d.coulomb_friction = real(number(dyn, "friction"));
       if (d.viscous_friction < 0 || d.coulomb_friction < 0) fail(dyn, "damping and friction must not be negative");
     }
-    if (const XMLElement* m = e->FirstChildElement("mimic"))
-      warn(m, "<mimic> is ignored: joint " + in_quotes(J.name) + " is imported as an independent DOF");
     return d;
   }
 
@@ -705,10 +705,39 @@ class UrdfImporter {
       art.joints.push_back(std::move(J));
     }
     if (pose_moved) art.default_pose = std::move(default_pose);
+    read_mimics(art);
     prefab.sensors.resize(art.links.size());
     prefab.actuators.resize(art.links.size());
     if (options_.exclude_overlapping_links) exclude_overlaps(art);
     return prefab;
+  }
+
+  // <mimic joint multiplier offset>: the joint follows the named one, q = multiplier q_leader +
+  // offset (defaults 1 and 0), as a coupling held by the step.
+  void read_mimics(physics::ArticulationDesc& art) const {
+    for (const UrdfJoint& J : joints_) {
+      const XMLElement* m = J.element->FirstChildElement("mimic");
+      if (!m) continue;
+      const std::string leader = required_attribute(m, "joint");
+      // robot files ship broken mimics (a leader misspelled, a joint made fixed in a reduced
+      // model): the robot still loads, the joint moves on its own, and a warning says why
+      auto moving = [](const std::string& type) { return type == "revolute" || type == "continuous" || type == "prismatic"; };
+      const auto lj = std::find_if(joints_.begin(), joints_.end(), [&](const UrdfJoint& u) { return u.name == leader; });
+      std::string why;
+      if (lj == joints_.end()) why = "it refers to joint " + in_quotes(leader) + ", which is not defined";
+      else if (!moving(J.type)) why = "joint " + in_quotes(J.name) + " is " + J.type;
+      else if (!moving(lj->type)) why = "the joint it follows, " + in_quotes(leader) + ", is " + lj->type;
+      if (!why.empty()) {
+        warn(m, "<mimic> is ignored: " + why + " (only revolute, continuous and prismatic joints can follow each other)");
+        continue;
+      }
+      physics::JointCoupling c;
+      c.joint = J.name;
+      c.leader = leader;
+      c.ratio = real(m->Attribute("multiplier") ? number(m, "multiplier") : 1.0);
+      c.offset = real(m->Attribute("offset") ? number(m, "offset") : 0.0);
+      art.couplings.push_back(std::move(c));
+    }
   }
 
   // Appends joint J's default positions to `pose`: zero, or for a revolute or prismatic joint whose

@@ -489,13 +489,23 @@ TEST_F(UrdfImport, WorldLinkOnAMovingJointStaysAsAWeldedLink) {
   build(p);
 }
 
-TEST_F(UrdfImport, MimicIsIgnoredWithAWarning) {
+TEST_F(UrdfImport, MimicBecomesACoupling) {
   const BotPrefab p = load(robot(link("base") + link("a") + link("b") +
                                  joint("j1", "continuous", "base", "a") +
-                                 joint("j2", "continuous", "base", "b", "<mimic joint=\"j1\" multiplier=\"-1\"/>")));
+                                 joint("j2", "continuous", "base", "b", "<mimic joint=\"j1\" multiplier=\"-1\" offset=\"0.25\"/>")));
   EXPECT_EQ(p.articulation.joints.size(), 3u);
-  EXPECT_THAT(all_warnings(), HasSubstr("<mimic> is ignored"));
-  EXPECT_THAT(all_warnings(), HasSubstr("'j2'"));
+  ASSERT_EQ(p.articulation.couplings.size(), 1u);
+  const physics::JointCoupling& c = p.articulation.couplings[0];
+  EXPECT_EQ(c.joint, "j2");
+  EXPECT_EQ(c.leader, "j1");
+  EXPECT_EQ(c.ratio, -1);
+  EXPECT_EQ(c.offset, real(0.25));
+  EXPECT_THAT(all_warnings(), Not(HasSubstr("mimic")));
+  build(p);
+  // a mimic of a joint that does not exist: ignored, named in a warning
+  const BotPrefab q = load(robot(link("base") + link("a") + joint("j2", "continuous", "base", "a", "<mimic joint=\"nope\"/>")));
+  EXPECT_TRUE(q.articulation.couplings.empty());
+  EXPECT_THAT(all_warnings(), HasSubstr("<mimic> is ignored: it refers to joint 'nope', which is not defined"));
 }
 
 // ------------------------------------------------------------------------------------

@@ -307,6 +307,23 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
                               std::to_string(desc.default_pose.size()));
   for (size_t k = 0; k < desc.default_pose.size(); ++k)
     if (!std::isfinite(desc.default_pose[k])) r.fail(at("defaultPose", k), "must be finite");
+  for (size_t k = 0; k < desc.couplings.size(); ++k) {
+    const JointCoupling& c = desc.couplings[k];
+    auto one_dof_joint = [&](const std::string& name, const char* field) {
+      for (int i = 0; i < n; ++i)
+        if (m.joint_names[i] == name) {
+          if (m.joints[i].type != JointType::Revolute && m.joints[i].type != JointType::Prismatic)
+            r.fail(at("couplings", k, field), "joint '" + name + "' is " + joint_type_name(m.joints[i].type) +
+                                                   "; couplings join revolute and prismatic joints");
+          return i;
+        }
+      r.fail(at("couplings", k, field), "no joint named '" + name + "'");
+    };
+    const int f = one_dof_joint(c.joint, "joint"), l = one_dof_joint(c.leader, "leader");
+    if (f == l) r.fail(at("couplings", k, "leader"), "a joint cannot follow itself");
+    if (!std::isfinite(c.ratio) || !std::isfinite(c.offset)) r.fail(at("couplings", k, "ratio"), "ratio and offset must be finite");
+    m.couplings.push_back({m.joints[f].v_offset, m.joints[l].v_offset, m.joints[f].q_offset, m.joints[l].q_offset, c.ratio, c.offset});
+  }
   m.desc = desc;
   merge_welded_links(m);
   m.rigid_body.assign(n, 0);

@@ -63,6 +63,12 @@ struct ArticulationModel {
   std::vector<std::string> link_names, joint_names;
   std::vector<LinkCollider> colliders; // collision shapes, in link order
   std::map<std::pair<int, int>, bool> contact_overrides;  // (link a < link b) -> enabled
+  // joint couplings (ArticulationDesc::couplings): q[q] = ratio q[leader_q] + offset, on DOFs
+  struct Coupling {
+    int dof = 0, leader_dof = 0, q = 0, leader_q = 0;
+    real ratio = 1, offset = 0;
+  };
+  std::vector<Coupling> couplings;
   ArticulationDesc desc;               // the validated description it was built from
 };
 

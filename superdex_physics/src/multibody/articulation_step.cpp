@@ -73,6 +73,26 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
   }
 }
 
+// Joint coupling rows: v[dof] - ratio v[leader] = vhat closing the relation's error within the
+// step, near-rigid (regularised by the row's own compliance, as contacts are), unbounded.
+void coupling_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const StepSettings& params,
+                   ArticulationTerms& t) {
+  const real near_rigid = near_rigid_factor(params);
+  for (const auto& c : model.couplings) {
+    JointRow row;
+    row.J = VecX::Zero(model.nv);
+    row.J[c.dof] = 1;
+    row.J[c.leader_dof] -= c.ratio;
+    MatX X = row.J;
+    const real w = compliance_diagonal(t.A_llt, X)[0];
+    row.block.kind = BlockKind::Bounded;
+    row.block.R = near_rigid * w;
+    row.block.vhat = -(state.q[c.q] - c.ratio * state.q[c.leader_q] - c.offset) / dt;
+    row.block.bound = std::numeric_limits<real>::infinity();
+    t.joint_rows.push_back(std::move(row));
+  }
+}
+
 // A single free body's gyroscopic torque w x (I w), explicit in the bias forces, lets a tumbling
 // body gain energy. Replace it by backward Euler on Euler's equations in the body frame,
 // I (w2 - w1) + dt w2 x (I w2) = 0 (Newton), whose solution never gains kinetic energy
@@ -161,6 +181,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   t.v_free = t.r;
   t.A_llt.solve_in_place(t.v_free);
   joint_rows(model, a.state, dt, params, t);
+  coupling_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
 }
 

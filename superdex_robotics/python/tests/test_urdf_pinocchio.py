@@ -22,7 +22,9 @@ Two modelling differences are accounted for, both documented in urdf_import.cpp:
   a negligible mass (1e-9 kg, inertia 1e-12 kg m^2 at their origin) because the engine
   needs positive masses. Pinocchio gets exactly the same inertias added at those links'
   frames, so the two models are identical and the comparison stays exact.
-* `<mimic>` (the Panda's second finger) is ignored by both: each finger is its own DOF.
+* `<mimic>` (the Panda's second finger): Pinocchio's model keeps each finger its own DOF; the
+  importer does too, and holds the relation with a coupling in the step, so the mass matrices
+  are the same.
 
 URDFs have no armature, so the mass matrices carry none on either side.
 
@@ -75,7 +77,6 @@ ROBOTS = {
 EXPECTED_WARNINGS = {
     "panda": [
         "link 'panda_rightfinger': the <origin> of the visual mesh is ignored",
-        "<mimic> is ignored: joint 'panda_finger_joint2' is imported as an independent DOF",
         # joint 4's range [-3.0718, -0.0698] rad excludes zero
         "<joint name='panda_joint4'>: zero lies outside the joint's limits [-3.0718, -0.0698]: the robot starts with the joint at -0.0698",
         # the wrist's and fingers' collision meshes overlap in the robot's start pose

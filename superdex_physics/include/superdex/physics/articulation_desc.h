@@ -132,6 +132,16 @@ struct ContactOverride {
   bool enable = false;
 };
 
+/// A joint that follows another of the same articulation: q_joint = ratio q_leader + offset (a URDF
+/// <mimic>, a linear transmission, an MJCF joint equality). Both are revolute or prismatic; the
+/// step holds the relation as a near-rigid constraint (position errors closed within a step).
+struct JointCoupling {
+  std::string joint;   ///< the follower
+  std::string leader;  ///< the joint it follows
+  real ratio = 1;      ///< (rad or m) per (rad or m)
+  real offset = 0;     ///< rad or m
+};
+
 /// A whole articulation: links[i] is attached to its parent by joints[i].
 struct ArticulationDesc {
   std::string name;
@@ -143,6 +153,8 @@ struct ArticulationDesc {
   Transform world_from_root;
   /// Link pairs whose contact differs from the default (joined links off, others on).
   std::vector<ContactOverride> contact_overrides;
+  /// Joints that follow others.
+  std::vector<JointCoupling> couplings;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
