@@ -34,7 +34,8 @@
 //    their joint), named in a warning.
 //  * Joint actuators (<motor>, <position>, <velocity>, <general> of those kinds) become IDEAL_PD
 //    actuators on their joint's link (read_actuators says how).
-//  * Not imported, named in warnings: other actuators, tendons, equality constraints, sensors,
+//  * <equality><joint> (q1 = c0 + c1 q2) becomes a joint coupling (JointCoupling).
+//  * Not imported, named in warnings: other actuators, tendons, other equality constraints, sensors,
 //    <contact><pair>, joint springs (stiffness), height fields.
 
 #include <Eigen/Eigenvalues>
@@ -171,6 +172,7 @@ class MjcfImporter {
     find_smallest_mass();
     for (size_t b = 0; b < model_.bots.size(); ++b) finish(static_cast<int>(b));
     read_actuators();
+    read_equalities();
     // a world with nothing on it is left out
     const auto& w = model_.bots[0].articulation;
     if (w.links.size() == 1 && !w.links[0].shape && model_.bots.size() > 1) model_.bots.erase(model_.bots.begin());
@@ -693,7 +695,7 @@ class MjcfImporter {
     const XMLElement* root = doc_.root();
     static const std::pair<const char*, const char*> kSections[] = {
         {"tendon", "tendons are not imported"},
-        {"equality", "equality constraints are not imported"}, {"sensor", "sensors are not imported"},
+        {"sensor", "sensors are not imported"},
         {"deformable", "deformable bodies are not imported"},  {"skin", "skins are not imported"},
     };
     for (const auto& [section, what] : kSections)
@@ -783,6 +785,48 @@ class MjcfImporter {
         actuator_names_[at.bot].insert(d.name);
         d.params = params.str();
         bot.actuators[at.link].push_back(std::move(d));
+      }
+  }
+
+  // <equality><joint joint1 joint2 polycoef="c0 c1 ..."/>: q1 = c0 + c1 q2 as a joint coupling
+  // (higher polynomial terms are not imported); other equality constraints are named in a warning.
+  void read_equalities() {
+    for (const XMLElement* sec = doc_.root()->FirstChildElement("equality"); sec; sec = sec->NextSiblingElement("equality"))
+      for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
+        const char* n = e->Attribute("name");
+        const std::string label = n && *n ? n : unnamed(e);
+        const std::string kind = e->Name();
+        if (const auto active = doc_.boolean(e, "active", ""); active && !*active) continue;
+        if (kind != "joint") {
+          notes_["equality constraints of kind <" + kind + "> are not imported"].push_back(label);
+          continue;
+        }
+        const char* j1 = e->Attribute("joint1");
+        const char* j2 = e->Attribute("joint2");
+        if (!j1) doc_.fail(e, "missing required attribute 'joint1'");
+        const auto f = joint_link_.find(j1);
+        if (f == joint_link_.end()) doc_.fail(e, "refers to joint " + in_quotes(j1) + ", which is not defined");
+        const auto coef = doc_.numbers(e, "polycoef", "", 0);
+        auto c = [&](size_t k) { return coef && coef->size() > k ? (*coef)[k] : (k == 1 ? 1.0 : 0.0); };
+        if (!j2) {
+          notes_["joint equalities that fix a joint (no joint2) are not imported"].push_back(label);
+          continue;
+        }
+        const auto l = joint_link_.find(j2);
+        if (l == joint_link_.end()) doc_.fail(e, "refers to joint " + in_quotes(j2) + ", which is not defined");
+        if (f->second.bot != l->second.bot) {
+          notes_["joint equalities between separate bots are not imported"].push_back(label);
+          continue;
+        }
+        if (c(2) != 0 || c(3) != 0 || c(4) != 0) notes_["joint equalities' quadratic and higher terms are not imported"].push_back(label);
+        auto& art = model_.bots[f->second.bot].articulation;
+        const JointType t1 = art.joints[f->second.link].type, t2 = art.joints[l->second.link].type;
+        auto one_dof = [](JointType t) { return t == JointType::Revolute || t == JointType::Prismatic; };
+        if (!one_dof(t1) || !one_dof(t2)) {
+          notes_["joint equalities on ball joints are not imported"].push_back(label);
+          continue;
+        }
+        art.couplings.push_back({j1, j2, real(c(1)), real(c(0))});
       }
   }
 
