@@ -383,6 +383,67 @@ SoftMaterial soft_material_from_json(const json& j, const std::string& source, c
   });
 }
 
+namespace {
+
+// "linearTransmissions": SuperDex's transmissions, sum_i c_i q_i driven towards a target
+// displacement by a spring. One that joins two joints is a coupling that holds the relation
+// c_0 q_0 + c_1 q_1 = target rigidly: the second joint follows the first, ratio -c_0 / c_1,
+// offset target / c_1 (the mimic joints of hands such as the Revo2). Its stiffness and damping
+// are not modelled (a warning says so); one of more joints is ignored with a warning.
+void read_linear_transmissions(const Reader& top, ArticulationDesc& d, const std::string& source, std::vector<std::string>* warnings) {
+  const json& list = top.at("linearTransmissions");
+  if (!list.is_array()) top.fail("linearTransmissions", std::string("expected an array, got ") + type_name(list));
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = index_path("linearTransmissions", i);
+    Reader t(list[i], source, path, warnings);
+    auto numbers = [&](const char* key) {
+      const json& v = t.at(key);
+      if (!v.is_array()) t.fail(t.field_path(key), std::string("expected an array, got ") + type_name(v));
+      std::vector<real> out;
+      for (size_t k = 0; k < v.size(); ++k) {
+        if (!v[k].is_number()) t.fail(t.field_path(key) + "[" + std::to_string(k) + "]", std::string("expected a number, got ") + type_name(v[k]));
+        out.push_back(v[k].get<real>());
+        if (!std::isfinite(out.back())) t.fail(t.field_path(key) + "[" + std::to_string(k) + "]", "must be finite");
+      }
+      return out;
+    };
+    const std::vector<real> index = numbers("jointIndices"), coef = numbers("jointCoefficients");
+    if (coef.size() != index.size())
+      t.fail(t.field_path("jointCoefficients"), "expected " + std::to_string(index.size()) + " coefficients (one per joint index), got " +
+                                                    std::to_string(coef.size()));
+    for (size_t k = 0; k < index.size(); ++k)
+      if (index[k] != std::floor(index[k]) || index[k] < 0 || index[k] >= static_cast<real>(d.joints.size()))
+        t.fail(t.field_path("jointIndices") + "[" + std::to_string(k) + "]", "expected the index of a joint (0 to " +
+                                                                             std::to_string(d.joints.size() - 1) + ")");
+    const real target = t.opt_number("targetDisplacement").value_or(0);
+    if (t.has("jointAxisDisps"))
+      for (real x : numbers("jointAxisDisps"))
+        if (x != 0 && warnings) {
+          warnings->push_back(source + ": " + t.field_path("jointAxisDisps") + ": non-zero joint axis displacements are not modelled");
+          break;
+        }
+    t.check_unknown({"name", "jointIndices", "jointCoefficients", "jointAxisDisps", "targetDisplacement", "stiffness", "damping",
+                     "allowCompressiveForce"}, {});
+    if (index.size() != 2) {
+      if (warnings) warnings->push_back(source + ": " + path + ": a transmission of " + std::to_string(index.size()) +
+                                        " joints is not modelled yet (two joints become a coupling); ignored");
+      continue;
+    }
+    if (coef[1] == 0) t.fail(t.field_path("jointCoefficients") + "[1]", "must not be zero (the second joint follows the first)");
+    JointCoupling c;
+    c.leader = d.joints[static_cast<size_t>(index[0])].name;
+    c.joint = d.joints[static_cast<size_t>(index[1])].name;
+    c.ratio = -coef[0] / coef[1];
+    c.offset = target / coef[1];
+    if (warnings && (t.has("stiffness") || t.has("damping")))
+      warnings->push_back(source + ": " + path + ": held as a rigid coupling of joints '" + c.leader + "' and '" + c.joint +
+                          "'; its stiffness and damping are not modelled yet");
+    d.couplings.push_back(std::move(c));
+  }
+}
+
+}  // namespace
+
 ArticulationDesc articulation_desc_from_json(const json& doc, const std::string& source, std::vector<std::string>* warnings,
                                              const std::vector<std::string>& extra) {
   return with_source(source, [&] {
@@ -419,7 +480,8 @@ ArticulationDesc articulation_desc_from_json(const json& doc, const std::string&
         d.contact_overrides.push_back({o.string("linkA"), o.string("linkB"), o.boolean("enable")});
       }
     }
-    top.check_unknown({"name", "links", "joints", "defaultPose", "worldFromRoot", "contactOverrides"}, extra);
+    if (top.has("linearTransmissions")) read_linear_transmissions(top, d, source, warnings);
+    top.check_unknown({"name", "links", "joints", "defaultPose", "worldFromRoot", "contactOverrides", "linearTransmissions"}, extra);
     return d;
   });
 }
