@@ -108,8 +108,6 @@ bool has_volume(const std::optional<ShapeGeometry>& shape) {
   if (const auto* mesh = std::get_if<physics::MeshShape>(&*shape)) return physics::is_closed(*mesh->mesh);
   return true;
 }
-// Sides of the prism that stands in for a <cylinder>.
-constexpr int kCylinderSegments = 48;
 
 // The pieces of the URDF the importer works from, in document order.
 struct UrdfLink {
@@ -477,7 +475,7 @@ class UrdfImporter {
     if (kind == "sphere") return physics::SphereShape{Vec3::Zero(), real(positive(g, "radius"))};
     if (kind == "cylinder") {
       const double radius = positive(g, "radius"), length = positive(g, "length");
-      return physics::make_mesh_shape(cylinder_mesh(radius, length, kCylinderSegments),
+      return physics::make_mesh_shape(cylinder_mesh(radius, length),
                                       path_ + ": link " + in_quotes(link_name) + " <cylinder>");
     }
     if (kind == "capsule") return physics::CapsuleShape{real(positive(g, "radius")), real(positive(g, "length") / 2)};

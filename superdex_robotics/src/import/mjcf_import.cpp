@@ -81,7 +81,6 @@ namespace {
 // world) get this fraction of the model's smallest body mass and principal moment: negligible
 // at any scale, from a fly (1e-6 kg) to a truck, yet nonzero so that every link has a valid inertia.
 constexpr double kNegligibleFraction = 1e-9;
-constexpr int kCylinderSegments = 48;
 
 Eigen::Isometry3d translation(const Eigen::Vector3d& p) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -132,11 +131,32 @@ struct Filter {
   int contype = 1, conaffinity = 1;
 };
 
+// What the importer keeps for a bot beside its prefab while building it.
+struct BotBuild {
+  std::vector<std::vector<Filter>> filters;  // per link: the contact filters of its collision geoms
+  std::vector<Mass> masses;                  // per link
+  std::vector<real> default_pose;            // MuJoCo's qpos0 in DOF order, the root's DOFs excluded
+  std::set<std::string> link_names, actuator_names;
+};
+
 // An element found in a body, with the frame it sits in (body frame) and its class.
 struct Placed {
   const XMLElement* element;
   Eigen::Isometry3d X_BF;  // the enclosing <frame>s' pose in the body frame
   std::string cls;
+};
+
+// A geom's type, sizes (MuJoCo's size, fromto resolved), mesh and pose in its body's frame.
+struct GeomShape {
+  std::string type, mesh;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();
+};
+
+// A geom as found in its body, and its shape, read once for its mass and its collider.
+struct Geom {
+  Placed placed;
+  GeomShape shape;
 };
 
 class MjcfImporter {
@@ -151,20 +171,13 @@ class MjcfImporter {
     read_option();
     read_assets();
     // the world: a welded root link that carries the worldbody's geoms
-    BotPrefab world;
-    world.articulation.name = model_.name;
+    const int world = new_bot(model_.name, Transform{});
     LinkDesc wl;
-    wl.name = "world";
+    wl.name = unique_link_name(world, "world");
     JointDesc wj;
     wj.name = "world_joint";
     wj.type = JointType::Hard;
-    world.articulation.links.push_back(std::move(wl));
-    world.articulation.joints.push_back(std::move(wj));
-    model_.bots.push_back(std::move(world));
-    filters_.emplace_back(1);
-    link_mass_.emplace_back(1, Mass{});
-    default_pose_.emplace_back();
-    body_link_["world"] = {0, 0};
+    body_link_["world"] = {world, add_link(world, std::move(wl), std::move(wj))};
     for (const XMLElement* wb = root->FirstChildElement("worldbody"); wb; wb = wb->NextSiblingElement("worldbody")) visit_world(wb);
     read_contact();
     note_unsupported();
@@ -278,19 +291,37 @@ class MjcfImporter {
     }
   }
 
+  // The geoms found in a body with their shapes.
+  std::vector<Geom> shapes_of(const std::vector<Placed>& placed) const {
+    std::vector<Geom> out;
+    for (const Placed& g : placed) out.push_back({g, geom_shape(g)});
+    return out;
+  }
+
   void visit_world(const XMLElement* wb) {
     std::vector<Placed> geoms, bodies;
     const std::string cls = doc_.child_class(wb, "");
     collect(wb, Eigen::Isometry3d::Identity(), cls, geoms, bodies);
-    add_geoms({0, 0}, geoms, /*moving=*/false);
+    add_geoms({0, 0}, shapes_of(geoms), /*moving=*/false);
     for (const Placed& b : bodies) visit_body(b.element, {0, 0}, b.X_BF * doc_.pose(b.element, b.cls), b.cls, true, true);
   }
 
   std::string unique_link_name(int bot, const std::string& base) {
     std::string name = base;
-    for (int n = 1; link_names_[bot].count(name); ++n) name = base + "_" + std::to_string(n);
-    link_names_[bot].insert(name);
+    auto& names = builds_[bot].link_names;
+    for (int n = 1; names.count(name); ++n) name = base + "_" + std::to_string(n);
+    names.insert(name);
     return name;
+  }
+
+  // Adds an empty bot placed at X_WR; returns its index.
+  int new_bot(const std::string& name, const Transform& X_WR) {
+    BotPrefab bot;
+    bot.articulation.name = name;
+    bot.articulation.world_from_root = X_WR;
+    model_.bots.push_back(std::move(bot));
+    builds_.emplace_back();
+    return static_cast<int>(model_.bots.size()) - 1;
   }
 
   // Adds a link to `bot` on joint `J`; returns its index.
@@ -298,8 +329,8 @@ class MjcfImporter {
     auto& art = model_.bots[bot].articulation;
     art.links.push_back(std::move(L));
     art.joints.push_back(std::move(J));
-    filters_[bot].emplace_back();
-    link_mass_[bot].push_back(Mass{});
+    builds_[bot].filters.emplace_back();
+    builds_[bot].masses.push_back(Mass{});
     return static_cast<int>(art.links.size()) - 1;
   }
 
@@ -327,19 +358,12 @@ class MjcfImporter {
       const int joint_id = joint_count_++;
       const char* jn = je->Attribute("name");
       const std::string jname = jn && *jn ? jn : "joint" + std::to_string(joint_id);
-      const std::string type = std::string(je->Name()) == "freejoint" ? "free" : (doc_.attr(je, "type", cls) ? doc_.attr(je, "type", cls) : "hinge");
+      const char* given = doc_.attr(je, "type", cls);
+      const std::string type = std::string(je->Name()) == "freejoint" ? "free" : (given ? given : "hinge");
       if (type == "free") {
         if (!top || joints.size() > 1 || parent.bot != 0 || parent.link != 0)
           doc_.fail(je, "a free joint must be the only joint of a body that is a child of the world");
-        BotPrefab bot;
-        bot.articulation.name = name;
-        bot.articulation.world_from_root = to_transform(X_PB);
-        model_.bots.push_back(std::move(bot));
-        filters_.emplace_back();
-        link_mass_.emplace_back();
-        default_pose_.emplace_back();
-        link_names_.emplace_back();
-        const int bi = static_cast<int>(model_.bots.size()) - 1;
+        const int bi = new_bot(name, to_transform(X_PB));
         LinkDesc L;
         L.name = unique_link_name(bi, name);
         JointDesc J;
@@ -365,7 +389,7 @@ class MjcfImporter {
       L.name = unique_link_name(at.bot, last ? name : name + "/" + jname);
       L.parent_link = at.link;
       L.joint_from_link = (-pos).cast<real>();
-      auto& pose = default_pose_[at.bot];
+      auto& pose = builds_[at.bot].default_pose;
       if (J.type == JointType::Spherical) pose.insert(pose.end(), 3, real(0));
       else pose.push_back(real(ref_q));
       at.link = add_link(at.bot, std::move(L), std::move(J));
@@ -383,9 +407,10 @@ class MjcfImporter {
       at.link = add_link(at.bot, std::move(L), std::move(J));
     }
     body_link_[name] = at;
-    body_mass(b, cls, geoms, at);
+    const std::vector<Geom> shaped = shapes_of(geoms);
+    body_mass(b, cls, shaped, at);
     const bool is_static = parent_static && joints.empty();
-    add_geoms(at, geoms, !is_static);
+    add_geoms(at, shaped, !is_static);
     for (const Placed& c : bodies) visit_body(c.element, at, c.X_BF * doc_.pose(c.element, c.cls), c.cls, false, is_static);
   }
 
@@ -438,8 +463,8 @@ class MjcfImporter {
 
   // The smallest body mass and principal moment of the model (1 kg and 1 kg m^2 when none has mass).
   void find_smallest_mass() {
-    for (const auto& bot : link_mass_)
-      for (const Mass& m : bot) {
+    for (const BotBuild& b : builds_)
+      for (const Mass& m : b.masses) {
         if (m.mass <= 0) continue;
         smallest_mass_ = std::min(smallest_mass_, m.mass);
         const double moment = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.inertia).eigenvalues().minCoeff();
@@ -450,12 +475,13 @@ class MjcfImporter {
   }
 
   // The mass properties of geom `g` (in the body frame), or nullopt when it gives none.
-  std::optional<Mass> geom_mass(const Placed& g) {
+  std::optional<Mass> geom_mass(const Geom& geom) {
+    const Placed& g = geom.placed;
+    const GeomShape& s = geom.shape;
     const XMLElement* e = g.element;
     const int group = static_cast<int>(doc_.number_or(e, "group", g.cls, 0));
     const auto& c = doc_.compiler();
     if (group < c.inertia_group_min || group > c.inertia_group_max) return std::nullopt;
-    const GeomShape s = geom_shape(g);
     if (s.type == "plane" || s.type == "hfield" || s.type == "sdf") return std::nullopt;
     double volume = 0;
     Eigen::Vector3d com = Eigen::Vector3d::Zero();
@@ -516,7 +542,7 @@ class MjcfImporter {
     return out;
   }
 
-  void body_mass(const XMLElement* b, const std::string& cls, const std::vector<Placed>& geoms, LinkRef at) {
+  void body_mass(const XMLElement* b, const std::string& cls, const std::vector<Geom>& geoms, LinkRef at) {
     const std::string& mode = doc_.compiler().inertiafromgeom;
     const XMLElement* in = b->FirstChildElement("inertial");
     Mass m;
@@ -536,7 +562,7 @@ class MjcfImporter {
       m.inertia = X.linear() * I * X.linear().transpose();
     } else if (mode != "false") {
       std::vector<Mass> parts;
-      for (const Placed& g : geoms)
+      for (const Geom& g : geoms)
         if (auto gm = geom_mass(g)) parts.push_back(*gm);
       m = combine(parts);
     }
@@ -558,7 +584,7 @@ class MjcfImporter {
         m.inertia = physics::nearest_physical_inertia(m.inertia.cast<real>()).cast<double>();
       }
     }
-    link_mass_[at.bot][at.link] = m;
+    builds_[at.bot].masses[at.link] = m;
   }
 
   // compiler settotalmass: every mass and inertia scaled by one factor
@@ -566,21 +592,15 @@ class MjcfImporter {
     const auto& target = doc_.compiler().settotalmass;
     if (!target) return;
     double total = 0;
-    for (const auto& bot : link_mass_)
-      for (const Mass& m : bot) total += m.mass;
+    for (const BotBuild& b : builds_)
+      for (const Mass& m : b.masses) total += m.mass;
     if (total <= 0) return;
     const double s = *target / total;
-    for (auto& bot : link_mass_)
-      for (Mass& m : bot) m.mass *= s, m.inertia *= s;
+    for (BotBuild& b : builds_)
+      for (Mass& m : b.masses) m.mass *= s, m.inertia *= s;
   }
 
   // ------------------------------------------------------------------ geoms
-
-  struct GeomShape {
-    std::string type, mesh;
-    Eigen::Vector3d size = Eigen::Vector3d::Zero();
-    Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();
-  };
 
   // A geom's type, sizes and pose in the body frame (fromto resolved).
   GeomShape geom_shape(const Placed& g) const {
@@ -625,7 +645,7 @@ class MjcfImporter {
     if (s.type == "capsule") return physics::CapsuleShape{real(z[0]), real(z[1])};
     if (s.type == "box") return physics::BoxShape{z.cast<real>()};
     if (s.type == "plane") return physics::PlaneShape{};
-    if (s.type == "cylinder") return physics::make_mesh_shape(cylinder_mesh(z[0], 2 * z[1], kCylinderSegments), where + " (cylinder)");
+    if (s.type == "cylinder") return physics::make_mesh_shape(cylinder_mesh(z[0], 2 * z[1]), where + " (cylinder)");
     if (s.type == "ellipsoid") return physics::make_mesh_shape(ellipsoid_mesh(z.cast<real>()), where + " (ellipsoid)");
     if (s.type == "mesh") {
       MeshAsset& a = mesh_asset(g.element, s.mesh);
@@ -641,10 +661,11 @@ class MjcfImporter {
     return std::nullopt;
   }
 
-  void add_geoms(LinkRef at, const std::vector<Placed>& geoms, bool moving) {
+  void add_geoms(LinkRef at, const std::vector<Geom>& geoms, bool moving) {
     LinkDesc& L = model_.bots[at.bot].articulation.links[at.link];
-    for (const Placed& g : geoms) {
-      const GeomShape s = geom_shape(g);
+    for (const Geom& geom : geoms) {
+      const Placed& g = geom.placed;
+      const GeomShape& s = geom.shape;
       Filter f;
       f.contype = static_cast<int>(doc_.number_or(g.element, "contype", g.cls, 1));
       f.conaffinity = static_cast<int>(doc_.number_or(g.element, "conaffinity", g.cls, 1));
@@ -663,7 +684,7 @@ class MjcfImporter {
       } else {
         L.extra_shapes.push_back({std::move(*shape), X_LS, file});
       }
-      filters_[at.bot][at.link].push_back(f);
+      builds_[at.bot].filters[at.link].push_back(f);
     }
   }
 
@@ -701,7 +722,7 @@ class MjcfImporter {
     for (const auto& [section, what] : kSections)
       for (const XMLElement* s = root->FirstChildElement(section); s; s = s->NextSiblingElement(section))
         for (const XMLElement* e = s->FirstChildElement(); e; e = e->NextSiblingElement())
-          notes_[what].push_back(e->Attribute("name") ? e->Attribute("name") : unnamed(e));
+          notes_[what].push_back(name_or_kind(e));
   }
 
   // ------------------------------------------------------------------ actuators
@@ -717,8 +738,7 @@ class MjcfImporter {
     for (const XMLElement* sec = doc_.root()->FirstChildElement("actuator"); sec; sec = sec->NextSiblingElement("actuator"))
       for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
         const std::string kind = e->Name();
-        const char* n = e->Attribute("name");
-        const std::string label = n && *n ? n : unnamed(e);
+        const std::string label = name_or_kind(e);
         const char* joint = doc_.attr(e, "joint", "");
         if (!joint) {
           notes_["actuators on tendons, sites and bodies are not imported"].push_back(label);
@@ -745,7 +765,8 @@ class MjcfImporter {
           const char* bias = doc_.attr(e, "biastype", "");
           const auto gain = doc_.numbers(e, "gainprm", "", 0);
           const auto bp = doc_.numbers(e, "biasprm", "", 0);
-          const std::string gaintype = doc_.attr(e, "gaintype", "") ? doc_.attr(e, "gaintype", "") : "fixed";
+          const char* gain_kind = doc_.attr(e, "gaintype", "");
+          const std::string gaintype = gain_kind ? gain_kind : "fixed";
           const double g0 = gain ? (*gain)[0] : 1;
           auto b = [&](size_t k) { return bp && bp->size() > k ? (*bp)[k] : 0.0; };
           if (gaintype != "fixed") {
@@ -781,8 +802,9 @@ class MjcfImporter {
         ComponentDecl d;
         d.type = "IDEAL_PD";
         d.name = label;
-        for (int k = 1; actuator_names_[at.bot].count(d.name); ++k) d.name = label + "_" + std::to_string(k);
-        actuator_names_[at.bot].insert(d.name);
+        auto& names = builds_[at.bot].actuator_names;
+        for (int k = 1; names.count(d.name); ++k) d.name = label + "_" + std::to_string(k);
+        names.insert(d.name);
         d.params = params.str();
         bot.actuators[at.link].push_back(std::move(d));
       }
@@ -793,8 +815,7 @@ class MjcfImporter {
   void read_equalities() {
     for (const XMLElement* sec = doc_.root()->FirstChildElement("equality"); sec; sec = sec->NextSiblingElement("equality"))
       for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
-        const char* n = e->Attribute("name");
-        const std::string label = n && *n ? n : unnamed(e);
+        const std::string label = name_or_kind(e);
         const std::string kind = e->Name();
         if (const auto active = doc_.boolean(e, "active", ""); active && !*active) continue;
         if (kind != "joint") {
@@ -830,8 +851,9 @@ class MjcfImporter {
       }
   }
 
-  // "<motor joint='hip'>": an unnamed element by its kind and what it acts on
-  static std::string unnamed(const XMLElement* e) {
+  // An element's name, or for an unnamed one its kind and what it acts on: "<motor joint='hip'>"
+  static std::string name_or_kind(const XMLElement* e) {
+    if (const char* n = e->Attribute("name"); n && *n) return n;
     std::string out = std::string("<") + e->Name();
     for (const char* key : {"joint", "tendon", "site", "body", "body1", "joint1", "geom1"})
       if (const char* v = e->Attribute(key)) {
@@ -853,27 +875,33 @@ class MjcfImporter {
     auto& art = p.articulation;
     p.source = doc_.path();
     p.base_dir = doc_.dir().string();
-    for (size_t l = 0; l < art.links.size(); ++l) set_mass(art.links[l], link_mass_[bot][l]);
-    const auto& pose = default_pose_[bot];
+    const BotBuild& build = builds_[bot];
+    for (size_t l = 0; l < art.links.size(); ++l) set_mass(art.links[l], build.masses[l]);
+    const auto& pose = build.default_pose;
     if (std::any_of(pose.begin(), pose.end(), [](real q) { return q != 0; })) art.default_pose = pose;
     const int n = static_cast<int>(art.links.size());
     // the rigid body (welded group) each link belongs to: its nearest ancestor on a moving joint
     std::vector<int> weld(n);
     for (int l = 0; l < n; ++l) weld[l] = (l == 0 || art.joints[l].type != JointType::Hard) ? l : weld[art.links[l].parent_link];
+    // links whose rigid body hangs by a joint from the world's (the world bot's link 0 and what
+    // is welded to it)
+    std::vector<bool> hangs_from_world(n, false);
+    for (int l = 0; l < n; ++l) {
+      const int p = art.links[weld[l]].parent_link;
+      hangs_from_world[l] = bot == 0 && p >= 0 && weld[p] == 0;
+    }
     for (int a = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b) {
-        if (filters_[bot][a].empty() || filters_[bot][b].empty() || weld[a] == weld[b]) continue;
+        if (build.filters[a].empty() || build.filters[b].empty() || weld[a] == weld[b]) continue;
         const std::string &na = art.links[a].name, &nb = art.links[b].name;
         const bool excluded = excluded_.count({bot, na, nb}) || excluded_.count({bot, nb, na});
-        const bool pass = !excluded && filters_pass(filters_[bot][a], filters_[bot][b]);
+        const bool pass = !excluded && filters_pass(build.filters[a], build.filters[b]);
         // pairs the default leaves on unless filtered; bodies hanging by a joint from the
         // world's rigid body (which the default switches off) collide with it, as in MuJoCo
-        const int pa = art.links[weld[b]].parent_link;
-        const bool world_child = bot == 0 && weld[a] == 0 && pa >= 0 && weld[pa] == 0;
         if (!pass) art.contact_overrides.push_back({na, nb, false});
-        else if (world_child) art.contact_overrides.push_back({na, nb, true});
+        else if (weld[a] == 0 && hangs_from_world[b]) art.contact_overrides.push_back({na, nb, true});
       }
-    exclude_overlaps(bot, weld);
+    exclude_overlaps(bot, weld, hangs_from_world);
     p.sensors.resize(art.links.size());
     p.actuators.resize(art.links.size());
   }
@@ -883,16 +911,12 @@ class MjcfImporter {
   // from the first step, at a point their joint cannot move: they are switched off, named in one
   // warning. A link's contact with the world's rigid body is kept unless it hangs from it by a
   // joint: a foot that starts in the floor must still stand on it.
-  void exclude_overlaps(int bot, const std::vector<int>& weld) {
+  void exclude_overlaps(int bot, const std::vector<int>& weld, const std::vector<bool>& hangs_from_world) {
     auto& art = model_.bots[bot].articulation;
     const auto overlaps = physics::overlapping_link_pairs(art, 0, doc_.path());
-    auto world_child = [&](int l) {
-      const int p = art.links[weld[l]].parent_link;
-      return p >= 0 && weld[p] == 0;
-    };
     for (const auto& o : overlaps) {
       const int a = o.link_a, b = o.link_b;
-      if (bot == 0 && ((weld[a] == 0 && !world_child(b)) || (weld[b] == 0 && !world_child(a)))) continue;
+      if (bot == 0 && ((weld[a] == 0 && !hangs_from_world[b]) || (weld[b] == 0 && !hangs_from_world[a]))) continue;
       const std::string &na = art.links[a].name, &nb = art.links[b].name;
       bool found = false;
       for (auto& ov : art.contact_overrides)
@@ -907,13 +931,7 @@ class MjcfImporter {
   MjcfModel model_;
   std::map<std::string, MeshAsset> meshes_;
   std::map<std::string, LinkRef> body_link_, joint_link_;
-  std::map<int, std::set<std::string>> actuator_names_;  // per bot
-  // per bot, per link: the contact filters of its collision geoms, and its mass
-  std::vector<std::vector<std::vector<Filter>>> filters_;
-  std::vector<std::vector<Mass>> link_mass_;
-  // per bot: MuJoCo's qpos0 in DOF order, the root's DOFs excluded
-  std::vector<std::vector<real>> default_pose_;
-  std::vector<std::set<std::string>> link_names_{std::set<std::string>{"world"}};
+  std::vector<BotBuild> builds_;  // per bot
   std::set<std::tuple<int, std::string, std::string>> excluded_;
   std::map<std::string, std::vector<std::string>> notes_;
   int body_count_ = 0, joint_count_ = 0;
