@@ -3,15 +3,17 @@
 /// M is symmetric positive definite, equals the columns of inverse dynamics and the sum of
 /// per-link J^T M_link J (and so does a single free body's, computed in closed form); gravity forces equal -sum J_com^T m g; the rate of change of
 /// energy equals the power tau . v; forward dynamics satisfies M a + c = tau and the
-/// pendulum's analytic acceleration.
+/// pendulum's analytic acceleration; welded links add their inertia, massless welded frames nothing.
 
 #include <Eigen/Eigenvalues>
+#include <string>
 #include <vector>
 
 #include "multibody/articulation_model.h"
 #include "multibody/dynamics.h"
 #include "multibody/kinematics.h"
 #include "core/spatial.h"
+#include "superdex/physics/error.h"
 #include "test_helpers.h"
 
 namespace superdex::physics::test {
@@ -259,6 +261,44 @@ TEST_F(DynamicsTest, WeldedLinkAddsItsInertiaAndOnlyItsOwnWeight) {
     EXPECT_NEAR(scene.bias_forces(p)[0], weight_torque, 1e-12) << "tip gravity " << tip_gravity;
     EXPECT_NEAR(scene.forward_dynamics(p, VecX::Constant(1, tau))[0], (tau - weight_torque) / inertia, 1e-12)
         << "tip gravity " << tip_gravity;
+  }
+}
+
+TEST_F(DynamicsTest, MasslessWeldedFrameAddsNothing) {
+  // a massless frame welded below a pendulum (a fingertip, a flange): the pendulum's analytic
+  // inertia and weight torque are unchanged, and the frame's pose is the weld's
+  const double m = 1.5, L = 0.8, i_com = 0.02, theta = 0.4;
+  ArticulationDesc desc = one_dof_desc(JointType::Revolute, Vec3::UnitY(), m, Vec3(0, 0, -L), Vec3::Constant(i_com));
+  LinkDesc frame;
+  frame.name = "tip_frame";
+  frame.parent_link = 1;
+  frame.mass = 0;
+  desc.links.push_back(frame);
+  desc.joints.push_back(make_joint("tip_weld", JointType::Hard, Vec3::UnitZ(), Transform{Quat::Identity(), Vec3(0, 0, -1.0)}));
+  Scene scene = z_up_scene("massless_frame");
+  const ActorHandle p = scene.create_articulated_actor(desc, "pendulum");
+  scene.set_pose(p, VecX::Constant(1, theta));
+  EXPECT_NEAR(scene.mass_matrix(p)(0, 0), i_com + m * L * L, 1e-12);
+  EXPECT_NEAR(scene.bias_forces(p)[0], m * L * kG * std::sin(theta), 1e-12);
+  // the frame's origin: 1 m from the pivot along the pendulum, turned by theta about y
+  const auto links = scene.nested_link_actors(p);
+  const Vec3 pivot = scene.root_transform(links[1]).translation;
+  const Vec3 expected = pivot + Vec3(-std::sin(theta), 0, -std::cos(theta));
+  EXPECT_LT((scene.root_transform(links[2]).translation - expected).norm(), 1e-12);
+}
+
+TEST_F(DynamicsTest, MasslessLinkOnAMovingJointIsAnError) {
+  ArticulationDesc desc = one_dof_desc(JointType::Revolute, Vec3::UnitY(), 1.0, Vec3(0, 0, -0.5), Vec3::Constant(0.01));
+  desc.links[1].mass = 0;
+  desc.links[1].moment_of_inertia.reset();
+  Scene scene = z_up_scene("massless_moving");
+  try {
+    scene.create_articulated_actor(desc, "pendulum");
+    ADD_FAILURE() << "a massless link on a revolute joint was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("links[1].mass: must be a positive finite number, got 0 (a massless link must hang from a Hard joint"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -236,8 +236,20 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       return mp;
     };
     SpatialInertia& I = m.inertia[i];
-    if (L.mass) {
-      if (!std::isfinite(*L.mass) || *L.mass <= 0) r.fail(at("links", i, "mass"), "must be a positive finite number, got " + num(*L.mass));
+    // a massless link welded below another (a frame such as a fingertip or a flange) adds
+    // nothing to the body it is merged into; moving links need mass
+    const bool massless_weld = L.mass && *L.mass == 0 && i > 0 && desc.joints[i].type == JointType::Hard;
+    if (massless_weld) {
+      if (L.moment_of_inertia)
+        for (real c : *L.moment_of_inertia)
+          if (c != 0) r.fail(at("links", i, "momentOfInertia"), "must be zero on a massless link (mass 0), got " + num(c));
+      I.mass = 0;
+      I.com = L.center_of_mass.value_or(Vec3::Zero());
+      I.inertia_com.setZero();
+    } else if (L.mass) {
+      if (!std::isfinite(*L.mass) || *L.mass <= 0)
+        r.fail(at("links", i, "mass"), "must be a positive finite number, got " + num(*L.mass) +
+                                           (*L.mass == 0 ? " (a massless link must hang from a Hard joint, which merges it into its parent)" : ""));
       I.mass = *L.mass;
       if (L.moment_of_inertia) {
         const auto& c = *L.moment_of_inertia;
@@ -261,7 +273,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
       I.com = L.center_of_mass.value_or(mp.center_of_mass);
       I.inertia_com = mp.inertia_about_com;
     }
-    check_inertia(I.inertia_com, r, at("links", i, "momentOfInertia"));
+    if (!massless_weld) check_inertia(I.inertia_com, r, at("links", i, "momentOfInertia"));
     m.has_gravity[i] = L.has_gravity;
     // contact surface
     if (L.layer < 0 || L.layer > 63) r.fail(at("links", i, "layer"), "must be between 0 and 63, got " + std::to_string(L.layer));
@@ -326,6 +338,10 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
   }
   m.desc = desc;
   merge_welded_links(m);
+  // every body that moves carries mass once welded links are merged into it
+  for (int i : m.dynamics_order)
+    if (m.joints[i].nv > 0 && !(m.dynamics_inertia[i].mass > 0))
+      r.fail(at("links", i, "mass"), "the body of link '" + m.link_names[i] + "' (with the links welded to it) has no mass, but its joint moves");
   m.rigid_body.assign(n, 0);
   for (int i : m.order) m.rigid_body[i] = m.parent[i] >= 0 && m.joints[i].nv == 0 ? m.rigid_body[m.parent[i]] : i;
   return m;
