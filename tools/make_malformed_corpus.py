@@ -104,6 +104,14 @@ def bot_cases():
     case(B, "links_not_array" + e, bot(links={"base": {}}), r"links: expected an array, got an object")
     case(B, "no_links" + e, bot(links=[], joints=[], defaultPose=[]), r"links: an articulation needs at least one link")
     case(B, "link_not_object" + e, bot_edit(lambda d: d["links"].__setitem__(1, 3)), r"links\[1\]: expected an object, got a number")
+    case(B, "massless_link_with_inertia" + e, bot_edit(lambda d: (d["joints"][2].update(type="Hard"), d["links"][2].update(mass=0),
+                                                                    d.update(defaultPose=[0.1]))),
+         r"links\[2\]\.momentOfInertia: must be zero on a massless link \(mass 0\)")
+    case(B, "mod_bot_base_missing" + e, {"base": "nothing.superdex_bot", "modifications": []},
+         r"base: 'nothing\.superdex_bot' resolves to '.*nothing\.superdex_bot', which does not exist")
+    case(B, "mod_bot_base_not_string" + e, {"base": 5}, r"base: expected the path of the bot to build on")
+    case(B, "mod_bot_includes_itself" + e, {"base": "mod_bot_includes_itself.superdex_bot"}, r"the bot includes itself")
+    case(B, "mod_bot_root_without_marker" + e, {"base": "//arms/arm.superdex_bot"}, r"base: .* no \.superdex_root marker is in")
     case(B, "negative_mass" + e, bot_edit(link(1, mass=-0.5)), r"links\[1\]\.mass: must be a positive finite number, got -0\.5")
     case(B, "zero_mass" + e, bot_edit(link(2, mass=0)), r"links\[2\]\.mass: must be a positive finite number, got 0")
     case(B, "infinite_mass" + e, '{"name": "a", "links": [{"name": "b", "mass": 1e999}], "joints": [{"name": "j", "type": "Hard"}]}',

@@ -1,11 +1,14 @@
 // Reading `.superdex_bot` files: the articulation fields (shared with the physics JSON reader),
-// the sensors and actuators declared on links, and mesh shapes named by links.
+// the sensors and actuators declared on links, and mesh shapes named by links. Mod-bots (a base
+// bot plus modifications) are built in bot_mods.cpp.
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "bot_files.h"
 #include "superdex/physics/articulation_json.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/prefab.h"
@@ -32,12 +35,32 @@ std::string string_field(const json& j, const char* key, const std::string& sour
   return j.at(key).get<std::string>();
 }
 
-// Sensors or actuators of one link; names must be unique among the bot's components of a kind.
-std::vector<ComponentDecl> read_components(const json& link, const char* key, const std::string& source,
-                                           const std::string& link_path, std::set<std::string>& names,
-                                           std::vector<std::string>* warnings) {
+// A flat bot file: links and joints.
+BotPrefab load_flat_bot(const json& doc, const std::string& path, std::vector<std::string>* warnings) {
+  BotPrefab prefab;
+  prefab.source = path;
+  prefab.base_dir = fs::absolute(fs::path(path)).parent_path().string();
+  prefab.articulation = physics::articulation_desc_from_json(doc, path, warnings);
+  if (prefab.articulation.name.empty()) fail(path, "name", "required: the bot's name");
+  const json& links = doc.at("links");
+  std::set<std::string> sensor_names, actuator_names;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const std::string link_path = "links[" + std::to_string(i) + "]";
+    prefab.sensors.push_back(read_link_components(links[i], "sensors", path, link_path, sensor_names, warnings));
+    prefab.actuators.push_back(read_link_components(links[i], "actuators", path, link_path, actuator_names, warnings));
+  }
+  // mesh or .mochi.h5 shapes, relative to the bot file, with each link's shapeScale baked in
+  physics::load_link_shape_files(prefab.articulation, prefab.base_dir, path);
+  return prefab;
+}
+
+}  // namespace
+
+std::vector<ComponentDecl> read_link_components(const json& link, const char* key, const std::string& source,
+                                                const std::string& link_path, std::set<std::string>& names,
+                                                std::vector<std::string>* warnings) {
   std::vector<ComponentDecl> out;
-  if (!link.contains(key) || link.at(key).is_null()) return out;
+  if (!link.is_object() || !link.contains(key) || link.at(key).is_null()) return out;
   const json& list = link.at(key);
   const std::string list_path = link_path + "." + key;
   if (!list.is_array()) fail(source, list_path, "expected an array of objects");
@@ -66,25 +89,23 @@ std::vector<ComponentDecl> read_components(const json& link, const char* key, co
   return out;
 }
 
-}  // namespace
+BotPrefab load_bot_file(const std::string& path, std::vector<std::string>* warnings, std::vector<std::string>& chain) {
+  const std::string key = fs::absolute(fs::path(path)).lexically_normal().string();
+  if (std::find(chain.begin(), chain.end(), key) != chain.end()) {
+    std::string cycle;
+    for (const std::string& f : chain) cycle += f + " -> ";
+    throw Error(path + ": the bot includes itself (" + cycle + key + ")");
+  }
+  const json doc = physics::read_json_file(path, "bot");
+  chain.push_back(key);
+  BotPrefab prefab = doc.is_object() && doc.contains("base") ? build_mod_bot(doc, path, warnings, chain) : load_flat_bot(doc, path, warnings);
+  chain.pop_back();
+  return prefab;
+}
 
 BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings) {
-  const json doc = physics::read_json_file(path, "bot");
-  BotPrefab prefab;
-  prefab.source = path;
-  prefab.base_dir = fs::absolute(fs::path(path)).parent_path().string();
-  prefab.articulation = physics::articulation_desc_from_json(doc, path, warnings);
-  if (prefab.articulation.name.empty()) fail(path, "name", "required: the bot's name");
-  const json& links = doc.at("links");
-  std::set<std::string> sensor_names, actuator_names;
-  for (size_t i = 0; i < links.size(); ++i) {
-    const std::string link_path = "links[" + std::to_string(i) + "]";
-    prefab.sensors.push_back(read_components(links[i], "sensors", path, link_path, sensor_names, warnings));
-    prefab.actuators.push_back(read_components(links[i], "actuators", path, link_path, actuator_names, warnings));
-  }
-  // mesh or .mochi.h5 shapes, relative to the bot file, with each link's shapeScale baked in
-  physics::load_link_shape_files(prefab.articulation, prefab.base_dir, path);
-  return prefab;
+  std::vector<std::string> chain;
+  return load_bot_file(path, warnings, chain);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

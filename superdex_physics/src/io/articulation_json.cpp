@@ -186,7 +186,7 @@ LinkDesc link_from(const Reader& r, const std::vector<std::string>& extra) {
   if (r.has("hasGravity")) L.has_gravity = r.boolean("hasGravity");
   r.check_unknown({"name", "parentLink", "mass", "centerOfMass", "momentOfInertia", "density", "shape", "shapeScale",
                    "shapeRotation", "shapeTranslation", "jointFromLink", "colliderType", "renderModel", "renderModelScale", "contact", "layer", "hasGravity", "sensors",
-                   "actuators"},
+                   "actuators", "boundaryElementType"},
                   extra);
   return L;
 }
@@ -444,6 +444,14 @@ void read_linear_transmissions(const Reader& top, ArticulationDesc& d, const std
 
 }  // namespace
 
+LinkDesc link_desc_from_json(const json& j, const std::string& source, const std::string& path, std::vector<std::string>* warnings) {
+  return with_source(source, [&] { return link_from(Reader(j, source, path, warnings), {}); });
+}
+
+JointDesc joint_desc_from_json(const json& j, const std::string& source, const std::string& path, std::vector<std::string>* warnings) {
+  return with_source(source, [&] { return joint_from(Reader(j, source, path, warnings), {}); });
+}
+
 ArticulationDesc articulation_desc_from_json(const json& doc, const std::string& source, std::vector<std::string>* warnings,
                                              const std::vector<std::string>& extra) {
   return with_source(source, [&] {
@@ -456,6 +464,20 @@ ArticulationDesc articulation_desc_from_json(const json& doc, const std::string&
     }
     const json& links = top.at("links");
     for (size_t i = 0; i < links.size(); ++i) d.links.push_back(link_from(Reader(links[i], source, index_path("links", i), warnings), extra));
+    // SuperDex's surface quadrature per link: checked, then named once (this engine samples
+    // rigid surfaces its own way)
+    std::vector<size_t> quadrature;
+    for (size_t i = 0; i < links.size(); ++i) {
+      if (!links[i].is_object() || !links[i].contains("boundaryElementType")) continue;
+      const json& v = links[i].at("boundaryElementType");
+      static const char* const kTypes[] = {"P1Q1", "P1Q3", "P1Q6", "EXPERIMENTAL_P1Q7", "EXPERIMENTAL_P1Q12", "EXPERIMENTAL_P1Q16"};
+      if (!v.is_string() || std::find_if(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return v.get<std::string>() == t; }) == std::end(kTypes))
+        top.fail(index_path("links", i) + ".boundaryElementType", "expected one of P1Q1, P1Q3, P1Q6, EXPERIMENTAL_P1Q7, EXPERIMENTAL_P1Q12, EXPERIMENTAL_P1Q16, got " + v.dump());
+      quadrature.push_back(i);
+    }
+    if (warnings && !quadrature.empty())
+      warnings->push_back(source + ": links[].boundaryElementType (" + std::to_string(quadrature.size()) +
+                          " links): rigid links' contact surfaces are sampled by this engine's own rule; ignored");
     const json& joints = top.at("joints");
     for (size_t i = 0; i < joints.size(); ++i) d.joints.push_back(joint_from(Reader(joints[i], source, index_path("joints", i), warnings), extra));
     // a bot is fixed to the world or floating: its root joint is Hard or Free

@@ -26,6 +26,15 @@ ArticulationDesc articulation_desc_from_json(const nlohmann::json& doc, const st
                                              std::vector<std::string>* warnings,
                                              const std::vector<std::string>& extra_known_fields = {});
 
+/// Parses one link object of a `.superdex_bot` file's `links` (its `sensors` and `actuators`
+/// are left to the robotics layer), naming `path` in errors.
+LinkDesc link_desc_from_json(const nlohmann::json& j, const std::string& source, const std::string& path,
+                             std::vector<std::string>* warnings);
+
+/// Parses one joint object of a `.superdex_bot` file's `joints`, naming `path` in errors.
+JointDesc joint_desc_from_json(const nlohmann::json& j, const std::string& source, const std::string& path,
+                               std::vector<std::string>* warnings);
+
 /// Parses `{rotation: [x, y, z, w], translation: [x, y, z]}` (both optional) at `path`.
 Transform transform_from_json(const nlohmann::json& j, const std::string& source, const std::string& path);
 
