@@ -27,6 +27,7 @@ void register_builtin_components(Context& ctx) {
   ctx.register_type(K::Sensor, "FORCE_TORQUE", make_force_torque_sensor);
   ctx.register_type(K::Sensor, "IMU", make_imu_sensor);
   ctx.register_type(K::Sensor, CameraSensor::kTypeName, make_camera_sensor);
+  ctx.register_type(K::Sensor, "TACTILE_PAD", make_tactile_pad_sensor);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

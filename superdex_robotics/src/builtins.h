@@ -28,6 +28,7 @@ std::unique_ptr<Component> make_joint_state_sensor(const ComponentArgs& args);
 std::unique_ptr<Component> make_force_torque_sensor(const ComponentArgs& args);
 std::unique_ptr<Component> make_imu_sensor(const ComponentArgs& args);
 std::unique_ptr<Component> make_camera_sensor(const ComponentArgs& args);
+std::unique_ptr<Component> make_tactile_pad_sensor(const ComponentArgs& args);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::robotics
