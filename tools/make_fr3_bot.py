@@ -1,4 +1,7 @@
-"""Writes assets/bots/arms/fr3/fr3.superdex_bot: an FR3-like 7-DOF arm in the .superdex_bot format.
+"""Writes assets/bots/arms/fr3/fr3.superdex_bot and assets/bots/arms/fr3_v2/fr3_v2.superdex_bot:
+an FR3-like 7-DOF arm in the .superdex_bot format. The v2 file adds the flange as a massless link,
+fr3_link8, welded 0.107 m along link 7's z axis: the link that hands and tools attach to (mod-bots
+such as bots/arm_hand_combos/fr3_v2_revo2/ name it as their parent link).
 
 Kinematics, joint limits, efforts and link inertials are Franka Robotics' published FR3 values
 (see assets/bots/arms/fr3/README.md); the collision shapes are capsules of our own that join each
@@ -11,7 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-OUT = Path(__file__).resolve().parents[1] / "assets" / "bots" / "arms" / "fr3" / "fr3.superdex_bot"
+ARMS = Path(__file__).resolve().parents[1] / "assets" / "bots" / "arms"
+OUT = ARMS / "fr3" / "fr3.superdex_bot"
+OUT_V2 = ARMS / "fr3_v2" / "fr3_v2.superdex_bot"
 
 HALF_PI = math.pi / 2
 
@@ -108,7 +113,8 @@ def segment_shape(end, radius):
                         "rotation": quat_between([0, 0, 1], end / length)}}
 
 
-def main():
+def arm(name, flange_link):
+    """The arm's bot document; with `flange_link`, the massless flange link fr3_link8 on a weld."""
     links, joints = [], []
     for i, (mass, com, inertia) in enumerate(INERTIALS):
         check_inertia(i, inertia)
@@ -130,11 +136,20 @@ def main():
         })
     overrides = [{"linkA": links[a]["name"], "linkB": links[b]["name"], "enable": False}
                  for a in range(len(links)) for b in range(a + 2, min(a + NO_CONTACT_HOPS, len(links) - 1) + 1)]
-    bot = {"name": "fr3", "links": links, "joints": joints, "defaultPose": [round(q, 9) for q in READY],
-           "contactOverrides": overrides}
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text(json.dumps(bot, indent=2) + "\n")
-    print(f"wrote {OUT}")
+    if flange_link:
+        # a frame, no body: merged into link 7 by the weld
+        links.append({"name": "fr3_link8", "parentLink": len(links) - 1, "mass": 0.0, "centerOfMass": [0.0, 0.0, 0.0],
+                      "momentOfInertia": [0.0] * 6})
+        joints.append({"name": "fr3_joint8", "type": "Hard", "parentLinkFromJoint": {"translation": FLANGE}})
+    return {"name": name, "links": links, "joints": joints, "defaultPose": [round(q, 9) for q in READY],
+            "contactOverrides": overrides}
+
+
+def main():
+    for out, bot in ((OUT, arm("fr3", False)), (OUT_V2, arm("fr3_v2", True))):
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(json.dumps(bot, indent=2) + "\n")
+        print(f"wrote {out}")
 
 
 if __name__ == "__main__":

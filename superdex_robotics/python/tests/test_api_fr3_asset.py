@@ -14,6 +14,7 @@ from superdex.physics.paths import resolve_asset
 
 REPO = Path(__file__).resolve().parents[3]
 ASSET = "bots/arms/fr3/fr3.superdex_bot"
+ASSET_V2 = "bots/arms/fr3_v2/fr3_v2.superdex_bot"
 
 
 def _generator():
@@ -35,8 +36,10 @@ def scene():
 def test_the_asset_is_what_the_generator_writes(tmp_path, monkeypatch):
     gen = _generator()
     monkeypatch.setattr(gen, "OUT", tmp_path / "fr3.superdex_bot")
+    monkeypatch.setattr(gen, "OUT_V2", tmp_path / "fr3_v2.superdex_bot")
     gen.main()
     assert (tmp_path / "fr3.superdex_bot").read_text() == Path(resolve_asset(ASSET)).read_text()
+    assert (tmp_path / "fr3_v2.superdex_bot").read_text() == Path(resolve_asset(ASSET_V2)).read_text()
 
 
 def test_published_parameters_reach_the_prefab():
