@@ -341,15 +341,17 @@ void export_robotics(nb::module_& parent) {
   m.def("create_context", [] { return new PyContext(); }, nb::rv_policy::take_ownership,
         "A new robotics context. Not thread-safe: a context, its bots and components are used by one\n"
         "thread at a time (give each thread that steps its own scene its own context).");
-  m.def("load_bot_prefab_from_file", [](const std::string& path) {
+  m.def("load_bot_prefab_from_file", [](nb::handle path_arg) {
         std::vector<std::string> warnings;
+        const std::string path = nb::cast<std::string>(nb::module_::import_("os").attr("fspath")(path_arg));
         BotPrefab p = robotics::load_bot_prefab(path, &warnings);
         emit(warnings);
         return p;
       }, "path"_a, "Reads a .superdex_bot file.");
-  m.def("load_bot_prefab_from_urdf_file", [](const std::string& path, bool fixed_base, bool exclude_overlapping_links,
+  m.def("load_bot_prefab_from_urdf_file", [](nb::handle path_arg, bool fixed_base, bool exclude_overlapping_links,
                                               const std::string& mesh_collision) {
         std::vector<std::string> warnings;
+        const std::string path = nb::cast<std::string>(nb::module_::import_("os").attr("fspath")(path_arg));
         robotics::UrdfImportOptions options;
         options.fixed_base = fixed_base;
         options.exclude_overlapping_links = exclude_overlapping_links;
@@ -365,6 +367,22 @@ void export_robotics(nb::module_& parent) {
       "shapes already overlap with every joint at zero do not collide with each other (one warning names them) "
       "unless exclude_overlapping_links=False. Mesh colliders are the meshes' convex hulls (mesh_collision='convex_hull'), "
       "or the triangle meshes themselves with mesh_collision='mesh'.");
+  m.def("save_to_urdf_string", [](const BotPrefab& prefab) {
+        std::vector<std::string> warnings;
+        std::string xml = robotics::save_to_urdf_string(prefab, &warnings);
+        emit(warnings);
+        return xml;
+      }, "bot_prefab"_a,
+      "The bot as URDF XML: links with inertials and primitive collision shapes, joints with frames, axes, limits, "
+      "friction and <mimic> couplings; the root joint is left out. Mesh shapes and rotor inertias are left out (a "
+      "warning names them).");
+  m.def("save_to_urdf_file", [](const BotPrefab& prefab, nb::handle path) {
+        std::vector<std::string> warnings;
+        robotics::save_to_urdf_file(prefab, nb::cast<std::string>(nb::module_::import_("os").attr("fspath")(path)), &warnings);
+        emit(warnings);
+      }, "bot_prefab"_a, "path"_a,
+      "Writes the bot as a URDF file (save_to_urdf_string), its mesh collision shapes as OBJ files in <stem>_meshes/ "
+      "beside it.");
   nb::class_<robotics::MjcfModel>(m, "MjcfModel", "An MJCF model as bots (load_mjcf_file).")
       .def_ro("name", &robotics::MjcfModel::name, "<mujoco model>, else the file's stem.")
       .def_ro("bots", &robotics::MjcfModel::bots,

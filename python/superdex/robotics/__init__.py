@@ -93,6 +93,8 @@ def load_bot_prefab_from_file(path):
 
 load_bot_prefab_from_urdf_file = _r.load_bot_prefab_from_urdf_file
 load_mjcf_file = _r.load_mjcf_file
+save_to_urdf_string = _r.save_to_urdf_string
+save_to_urdf_file = _r.save_to_urdf_file
 MjcfModel = _r.MjcfModel
 create_bot = _r.create_bot
 destroy_bot = _r.destroy_bot

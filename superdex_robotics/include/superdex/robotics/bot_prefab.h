@@ -68,6 +68,19 @@ void add_link(BotPrefab& prefab, const BotLinkPrefab& link, const physics::Joint
 /// what was expected; unknown fields are appended to `warnings`.
 BotPrefab load_bot_prefab(const std::string& path, std::vector<std::string>* warnings);
 
+/// Writes `prefab` as URDF XML (urdf_export.cpp): links with inertials and collision shapes
+/// (boxes, spheres; a capsule as a cylinder and two spheres), joints (Hard: fixed, Revolute:
+/// revolute, or continuous without limits, Prismatic: prismatic) with frames, axes, limits,
+/// friction (<dynamics>) and couplings (<mimic>). The root joint is left out: the URDF's root link
+/// is link 0, fixed or floating as its reader chooses. Mesh shapes are left out of the string;
+/// rotor inertias (armature), which URDF cannot hold, are named in `warnings`. Throws
+/// superdex::Error for a joint URDF has no type for (Spherical below the root).
+std::string save_to_urdf_string(const BotPrefab& prefab, std::vector<std::string>* warnings);
+
+/// save_to_urdf_string written to `path`, with mesh shapes as OBJ files (the triangles the engine
+/// collides with) in `<stem>_meshes/` beside it.
+void save_to_urdf_file(const BotPrefab& prefab, const std::string& path, std::vector<std::string>* warnings);
+
 /// What collides for a URDF <mesh> (a .obj, .stl or .ply file; a .mochi.h5 shape is used as it is).
 enum class MeshCollision {
   /// Its convex hull, as MuJoCo does: closed and convex whatever the file holds (open shells,
