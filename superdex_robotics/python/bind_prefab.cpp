@@ -15,6 +15,7 @@ NB_MAKE_OPAQUE(std::vector<std::vector<superdex::robotics::ComponentDecl>>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotSensorPrefab>)
 NB_MAKE_OPAQUE(std::vector<superdex::robotics::BotActuatorPrefab>)
 NB_MAKE_OPAQUE(std::vector<superdex::physics::JointCoupling>)
+NB_MAKE_OPAQUE(std::vector<superdex::physics::LinearTransmission>)
 
 
 #include "bind_common.h"
@@ -107,6 +108,20 @@ void export_prefab(nb::module_& m) {
       .field("offset", &physics::JointCoupling::offset, "rad or m")
       .done();
   nb::bind_vector<std::vector<physics::JointCoupling>, nb::rv_policy::reference_internal>(m, "DynamicArrayJointCoupling");
+  StructBinder<physics::LinearTransmission>(m, "BotLinearTransmissionPrefab",
+                                            "A linear transmission between joints (BotPrefab.linear_transmissions): sum_k c_k q_k driven "
+                                            "towards target_displacement. One of two joints is held as a rigid coupling (the second joint "
+                                            "follows the first by -c_0 / c_1); its spring and damper are not modelled yet.")
+      .field("name", &physics::LinearTransmission::name, "a label")
+      .span_field("joint_indices", &physics::LinearTransmission::joint_indices, "indices into BotPrefab.joints")
+      .span_field("joint_coefficients", &physics::LinearTransmission::joint_coefficients, "c_k per joint")
+      .span_field("joint_axis_disps", &physics::LinearTransmission::joint_axis_disps, "attachment offsets along the joint axes (m)")
+      .field("target_displacement", &physics::LinearTransmission::target_displacement, "m (or joint units for a gearbox)")
+      .field("stiffness", &physics::LinearTransmission::stiffness, "N/m (not modelled yet)")
+      .field("damping", &physics::LinearTransmission::damping, "N s/m (not modelled yet)")
+      .field("allow_compressive_force", &physics::LinearTransmission::allow_compressive_force)
+      .done();
+  nb::bind_vector<std::vector<physics::LinearTransmission>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotLinearTransmissionPrefab");
   nb::bind_vector<std::vector<BotSensorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotSensorPrefab");
   nb::bind_vector<std::vector<BotActuatorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotActuatorPrefab");
   nb::bind_vector<std::vector<std::vector<ComponentDecl>>, nb::rv_policy::reference_internal>(m, "ComponentDeclLists");
@@ -207,6 +222,10 @@ void export_prefab(nb::module_& m) {
       .def_prop_rw("couplings", [](BotPrefab& p) -> std::vector<physics::JointCoupling>& { return p.articulation.couplings; },
                    [](BotPrefab& p, std::vector<physics::JointCoupling> c) { p.articulation.couplings = std::move(c); },
                    nb::rv_policy::reference_internal, "joints that follow others (URDF <mimic>, MJCF joint equalities)")
+      .def_prop_rw("linear_transmissions",
+                   [](BotPrefab& p) -> std::vector<physics::LinearTransmission>& { return p.articulation.linear_transmissions; },
+                   [](BotPrefab& p, std::vector<physics::LinearTransmission> t) { p.articulation.linear_transmissions = std::move(t); },
+                   nb::rv_policy::reference_internal, "the bot file's linearTransmissions (two-joint ones hold their joints coupled)")
       .def_prop_ro("sensors", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.sensors; },
                    nb::rv_policy::reference_internal, "per link: the sensors declared on it")
       .def_prop_ro("actuators", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.actuators; },

@@ -134,6 +134,11 @@ void apply_attach_bot(const ModContext& c, BotPrefab& bot, const json& mod, cons
   auto& a = bot.articulation;
   a.couplings.insert(a.couplings.end(), child.articulation.couplings.begin(), child.articulation.couplings.end());
   a.contact_overrides.insert(a.contact_overrides.end(), child.articulation.contact_overrides.begin(), child.articulation.contact_overrides.end());
+  // the child's transmissions name its joints by index: now `offset` further on
+  for (physics::LinearTransmission t : child.articulation.linear_transmissions) {
+    for (int& j : t.joint_indices) j += offset;
+    a.linear_transmissions.push_back(std::move(t));
+  }
 }
 
 }  // namespace

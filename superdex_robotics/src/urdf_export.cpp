@@ -204,7 +204,11 @@ struct Writer {
         dyn->SetAttribute("friction", num(J.coulomb_friction).c_str());
       }
       if (J.armature > 0) no_armature.push_back(joint_name[i]);
-      for (const physics::JointCoupling& c : a.couplings)
+      std::vector<physics::JointCoupling> couplings = a.couplings;
+      for (size_t k = 0; k < a.linear_transmissions.size(); ++k)
+        if (a.linear_transmissions[k].joint_indices.size() == 2)
+          couplings.push_back(physics::coupling_of(a.linear_transmissions[k], a.joints, "save_to_urdf: linearTransmissions[" + std::to_string(k) + "]"));
+      for (const physics::JointCoupling& c : couplings)
         if (c.joint == J.name) {
           auto* mimic = joint->InsertNewChildElement("mimic");
           mimic->SetAttribute("joint", c.leader.c_str());

@@ -19,6 +19,8 @@ BotJointPrefab = JointDesc
 BotLinkPrefab = _r.BotLinkPrefab
 BotSensorPrefab = _r.BotSensorPrefab
 BotActuatorPrefab = _r.BotActuatorPrefab
+BotLinearTransmissionPrefab = _r.BotLinearTransmissionPrefab
+JointCoupling = _r.JointCoupling
 ComponentDecl = _r.ComponentDecl
 # handles: 0 (a default-constructed handle) is invalid
 RoboticsHandle = _r.RoboticsHandle

@@ -385,11 +385,9 @@ SoftMaterial soft_material_from_json(const json& j, const std::string& source, c
 
 namespace {
 
-// "linearTransmissions": SuperDex's transmissions, sum_i c_i q_i driven towards a target
-// displacement by a spring. One that joins two joints is a coupling that holds the relation
-// c_0 q_0 + c_1 q_1 = target rigidly: the second joint follows the first, ratio -c_0 / c_1,
-// offset target / c_1 (the mimic joints of hands such as the Revo2). Its stiffness and damping
-// are not modelled (a warning says so); one of more joints is ignored with a warning.
+// "linearTransmissions": SuperDex's transmissions, kept as they are written. Building the bot holds
+// one of two joints as a coupling (coupling_of); the spring and damper and transmissions of more
+// joints are named in warnings here.
 void read_linear_transmissions(const Reader& top, ArticulationDesc& d, const std::string& source, std::vector<std::string>* warnings) {
   const json& list = top.at("linearTransmissions");
   if (!list.is_array()) top.fail("linearTransmissions", std::string("expected an array, got ") + type_name(list));
@@ -407,38 +405,52 @@ void read_linear_transmissions(const Reader& top, ArticulationDesc& d, const std
       }
       return out;
     };
-    const std::vector<real> index = numbers("jointIndices"), coef = numbers("jointCoefficients");
-    if (coef.size() != index.size())
+    LinearTransmission lt;
+    if (t.has("name")) lt.name = t.string("name");
+    const std::vector<real> index = numbers("jointIndices");
+    lt.joint_coefficients = numbers("jointCoefficients");
+    if (lt.joint_coefficients.size() != index.size())
       t.fail(t.field_path("jointCoefficients"), "expected " + std::to_string(index.size()) + " coefficients (one per joint index), got " +
-                                                    std::to_string(coef.size()));
-    for (size_t k = 0; k < index.size(); ++k)
+                                                    std::to_string(lt.joint_coefficients.size()));
+    for (size_t k = 0; k < index.size(); ++k) {
       if (index[k] != std::floor(index[k]) || index[k] < 0 || index[k] >= static_cast<real>(d.joints.size()))
         t.fail(t.field_path("jointIndices") + "[" + std::to_string(k) + "]", "expected the index of a joint (0 to " +
                                                                              std::to_string(d.joints.size() - 1) + ")");
-    const real target = t.opt_number("targetDisplacement").value_or(0);
-    if (t.has("jointAxisDisps"))
-      for (real x : numbers("jointAxisDisps"))
+      lt.joint_indices.push_back(static_cast<int>(index[k]));
+    }
+    if (t.has("jointAxisDisps")) {
+      lt.joint_axis_disps = numbers("jointAxisDisps");
+      if (lt.joint_axis_disps.size() != index.size())
+        t.fail(t.field_path("jointAxisDisps"), "expected " + std::to_string(index.size()) + " values (one per joint index), got " +
+                                                   std::to_string(lt.joint_axis_disps.size()));
+      for (real x : lt.joint_axis_disps)
         if (x != 0 && warnings) {
           warnings->push_back(source + ": " + t.field_path("jointAxisDisps") + ": non-zero joint axis displacements are not modelled");
           break;
         }
+    }
+    lt.target_displacement = t.opt_number("targetDisplacement").value_or(0);
+    lt.stiffness = t.opt_number("stiffness").value_or(0);
+    lt.damping = t.opt_number("damping").value_or(0);
+    if (t.has("allowCompressiveForce")) lt.allow_compressive_force = t.boolean("allowCompressiveForce");
     t.check_unknown({"name", "jointIndices", "jointCoefficients", "jointAxisDisps", "targetDisplacement", "stiffness", "damping",
                      "allowCompressiveForce"}, {});
-    if (index.size() != 2) {
-      if (warnings) warnings->push_back(source + ": " + path + ": a transmission of " + std::to_string(index.size()) +
+    if (lt.joint_indices.size() != 2) {
+      if (warnings) warnings->push_back(source + ": " + path + ": a transmission of " + std::to_string(lt.joint_indices.size()) +
                                         " joints is not modelled yet (two joints become a coupling); ignored");
-      continue;
+    } else {
+      // the coupling it makes, checked now so that the error names the file
+      try {
+        const JointCoupling c = coupling_of(lt, d.joints, path);
+        if (warnings && (t.has("stiffness") || t.has("damping")))
+          warnings->push_back(source + ": " + path + ": held as a rigid coupling of joints '" + c.leader + "' and '" + c.joint +
+                              "'; its stiffness and damping are not modelled yet");
+      } catch (const Error& e) {
+        const std::string what = e.what();
+        t.fail(path + ".jointCoefficients[1]", what.substr(what.rfind(": ") + 2));
+      }
     }
-    if (coef[1] == 0) t.fail(t.field_path("jointCoefficients") + "[1]", "must not be zero (the second joint follows the first)");
-    JointCoupling c;
-    c.leader = d.joints[static_cast<size_t>(index[0])].name;
-    c.joint = d.joints[static_cast<size_t>(index[1])].name;
-    c.ratio = -coef[0] / coef[1];
-    c.offset = target / coef[1];
-    if (warnings && (t.has("stiffness") || t.has("damping")))
-      warnings->push_back(source + ": " + path + ": held as a rigid coupling of joints '" + c.leader + "' and '" + c.joint +
-                          "'; its stiffness and damping are not modelled yet");
-    d.couplings.push_back(std::move(c));
+    d.linear_transmissions.push_back(std::move(lt));
   }
 }
 

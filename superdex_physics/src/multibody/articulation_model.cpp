@@ -90,6 +90,22 @@ void check_nonnegative(real x, const Reporter& r, const std::string& path) {
 
 }  // namespace
 
+JointCoupling coupling_of(const LinearTransmission& t, const std::vector<JointDesc>& joints, const std::string& where) {
+  if (t.joint_indices.size() != 2 || t.joint_coefficients.size() != 2)
+    throw Error(where + ".jointIndices: a coupling joins two joints, got " + std::to_string(t.joint_indices.size()));
+  for (size_t k = 0; k < 2; ++k)
+    if (t.joint_indices[k] < 0 || t.joint_indices[k] >= static_cast<int>(joints.size()))
+      throw Error(where + ".jointIndices[" + std::to_string(k) + "]: expected the index of a joint (0 to " + std::to_string(joints.size()) +
+                  " - 1), got " + std::to_string(t.joint_indices[k]));
+  if (t.joint_coefficients[1] == 0) throw Error(where + ".jointCoefficients[1]: must not be zero (the second joint follows the first)");
+  JointCoupling c;
+  c.leader = joints[static_cast<size_t>(t.joint_indices[0])].name;
+  c.joint = joints[static_cast<size_t>(t.joint_indices[1])].name;
+  c.ratio = -t.joint_coefficients[0] / t.joint_coefficients[1];
+  c.offset = t.target_displacement / t.joint_coefficients[1];
+  return c;
+}
+
 ArticulationModel build_articulation_model(const ArticulationDesc& desc, const std::string& source) {
   const Reporter r{source};
   const int n = static_cast<int>(desc.links.size());
@@ -319,22 +335,29 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
                               std::to_string(desc.default_pose.size()));
   for (size_t k = 0; k < desc.default_pose.size(); ++k)
     if (!std::isfinite(desc.default_pose[k])) r.fail(at("defaultPose", k), "must be finite");
-  for (size_t k = 0; k < desc.couplings.size(); ++k) {
-    const JointCoupling& c = desc.couplings[k];
+  // couplings, then the two-joint linear transmissions as couplings
+  auto add_coupling = [&](const JointCoupling& c, const std::string& list, size_t k) {
     auto one_dof_joint = [&](const std::string& name, const char* field) {
       for (int i = 0; i < n; ++i)
         if (m.joint_names[i] == name) {
           if (m.joints[i].type != JointType::Revolute && m.joints[i].type != JointType::Prismatic)
-            r.fail(at("couplings", k, field), "joint '" + name + "' is " + joint_type_name(m.joints[i].type) +
-                                                   "; couplings join revolute and prismatic joints");
+            r.fail(at(list.c_str(), k, field), "joint '" + name + "' is " + joint_type_name(m.joints[i].type) +
+                                                    "; couplings join revolute and prismatic joints");
           return i;
         }
-      r.fail(at("couplings", k, field), "no joint named '" + name + "'");
+      r.fail(at(list.c_str(), k, field), "no joint named '" + name + "'");
     };
     const int f = one_dof_joint(c.joint, "joint"), l = one_dof_joint(c.leader, "leader");
-    if (f == l) r.fail(at("couplings", k, "leader"), "a joint cannot follow itself");
-    if (!std::isfinite(c.ratio) || !std::isfinite(c.offset)) r.fail(at("couplings", k, "ratio"), "ratio and offset must be finite");
+    if (f == l) r.fail(at(list.c_str(), k, "leader"), "a joint cannot follow itself");
+    if (!std::isfinite(c.ratio) || !std::isfinite(c.offset)) r.fail(at(list.c_str(), k, "ratio"), "ratio and offset must be finite");
     m.couplings.push_back({m.joints[f].v_offset, m.joints[l].v_offset, m.joints[f].q_offset, m.joints[l].q_offset, c.ratio, c.offset});
+  };
+  for (size_t k = 0; k < desc.couplings.size(); ++k) add_coupling(desc.couplings[k], "couplings", k);
+  for (size_t k = 0; k < desc.linear_transmissions.size(); ++k) {
+    const LinearTransmission& t = desc.linear_transmissions[k];
+    if (t.joint_indices.size() != 2) continue;  // not built yet (the file's reader warned)
+    const std::string where = source + ": linearTransmissions[" + std::to_string(k) + "]";
+    add_coupling(coupling_of(t, desc.joints, where), "linearTransmissions", k);
   }
   m.desc = desc;
   merge_welded_links(m);

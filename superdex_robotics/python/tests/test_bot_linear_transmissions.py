@@ -1,5 +1,5 @@
-"""SuperDex's `linearTransmissions` in .superdex_bot files: one that joins two joints,
-c0 q0 + c1 q1 = targetDisplacement, is held as a coupling (the mimic fingers of hands such as the
+"""SuperDex's `linearTransmissions` in .superdex_bot files, kept in BotPrefab.linear_transmissions:
+one that joins two joints, c0 q0 + c1 q1 = targetDisplacement, is held as a coupling (the mimic fingers of hands such as the
 Revo2): the second joint follows the first by -c0 / c1 within 1 % while the first is driven, and
 the stiffness and damping it cannot model yet are named in a warning. A bad joint index is an
 error naming the field.
@@ -49,8 +49,11 @@ def test_two_joint_transmission_couples_the_distal_joint(scene, tmp_path):  # no
     with pytest.warns(UserWarning, match=r"linearTransmissions\[0\]: held as a rigid coupling of joints 'proximal_joint' and "
                                          r"'distal_joint'; its stiffness and damping are not modelled yet"):
         prefab = sdr.load_bot_prefab_from_file(write(tmp_path, finger_bot(transmission)))
-    assert [(c.joint, c.leader) for c in prefab.couplings] == [("distal_joint", "proximal_joint")]
-    assert prefab.couplings[0].ratio == pytest.approx(1.13)
+    # kept as written (SuperDex's BotPrefab.linear_transmissions); building couples the joints
+    (t,) = prefab.linear_transmissions
+    assert (t.name, list(t.joint_indices), list(t.joint_coefficients)) == ("distal_mimic", [1, 2], [pytest.approx(1.13), -1.0])
+    assert (t.stiffness, t.damping, t.allow_compressive_force) == (1000.0, 1.0, True)
+    assert len(prefab.couplings) == 0
     finger = sdr.create_bot(scene, prefab, sdr.create_context()).get_articulated_actor()
     finger.set_joint_drive(0, stiffness=5.0, damping=0.1, target_position=0.9)
     worst = 0.0
@@ -68,3 +71,19 @@ def test_bad_joint_index_names_the_field(tmp_path):
     transmission = {"jointIndices": [1, 7], "jointCoefficients": [1.0, -1.0]}
     with pytest.raises(sdp.Error, match=r"finger.superdex_bot: linearTransmissions\[0\].jointIndices\[1\]: expected the index of a joint \(0 to 2\)"):
         sdr.load_bot_prefab_from_file(write(tmp_path, finger_bot(transmission)))
+
+
+def test_transmissions_set_in_code_couple_the_joints(scene, tmp_path):  # noqa: F811
+    # a BotLinearTransmissionPrefab added in Python: distal = 0.5 proximal + 0.1
+    prefab = sdr.load_bot_prefab_from_file(write(tmp_path, {k: v for k, v in finger_bot({}).items() if k != "linearTransmissions"}))
+    prefab.linear_transmissions = [sdr.BotLinearTransmissionPrefab(joint_indices=[1, 2], joint_coefficients=[0.5, -1.0],
+                                                                   target_displacement=-0.1)]
+    finger = sdr.create_bot(scene, prefab, sdr.create_context()).get_articulated_actor()
+    finger.set_joint_drive(0, stiffness=5.0, damping=0.1, target_position=0.8)
+    for _ in range(500):
+        scene.step(0.002)
+    q = np.asarray(finger.get_articulated_pose(), dtype=float)
+    assert q[0] > 0.5 and q[1] == pytest.approx(0.5 * q[0] + 0.1, abs=0.01 * (0.5 * q[0] + 0.1))
+    prefab.linear_transmissions = [sdr.BotLinearTransmissionPrefab(joint_indices=[1, 2], joint_coefficients=[0.5, 0.0])]
+    with pytest.raises(sdp.Error, match=r"linearTransmissions\[0\]\.jointCoefficients\[1\]: must not be zero"):
+        sdr.create_bot(scene, prefab, sdr.create_context())

@@ -79,10 +79,8 @@ def test_revo2_loads_with_its_massless_tips_merged_and_couplings(scene, side):  
     prefab = load(HANDS[side])
     assert [l.name for l in prefab.links] == [l["name"] for l in doc["links"]]
     assert len(prefab.default_pose) == 11
-    ratios = {c.joint: (c.leader, c.ratio) for c in prefab.couplings}
-    for t in doc["linearTransmissions"]:
-        leader, follower = (doc["joints"][i]["name"] for i in t["jointIndices"])
-        assert ratios[follower] == (leader, pytest.approx(-t["jointCoefficients"][0] / t["jointCoefficients"][1]))
+    assert [(list(t.joint_indices), list(t.joint_coefficients)) for t in prefab.linear_transmissions] == [
+        (t["jointIndices"], [pytest.approx(c) for c in t["jointCoefficients"]]) for t in doc["linearTransmissions"]]
     hand = create(scene, prefab)
     # the massless tip links are frames on their distal links: where the file's joints put them
     base = link_pose(hand, scene, 0)
@@ -129,7 +127,10 @@ def test_fr3_v2_revo2_mod_bot_builds_the_arm_the_mount_and_the_hand(scene, side)
     assert names == [l["name"] for l in arm_doc["links"]] + ["fr3_revo2_mount"] + [l["name"] for l in hand_doc["links"]]
     # the arm's ready pose, then the hand's (the welds add no DOF); the hand's couplings come along
     np.testing.assert_allclose(prefab.default_pose, arm_doc["defaultPose"] + hand_doc["defaultPose"])
-    assert len(prefab.couplings) == 5
+    # the hand's transmissions come along, their joint indices moved past the arm's and the mount's
+    hand_offset = len(arm_doc["joints"]) + 1
+    assert [list(t.joint_indices) for t in prefab.linear_transmissions] == [
+        [i + hand_offset for i in t["jointIndices"]] for t in hand_doc["linearTransmissions"]]
     robot = create(scene, prefab)
     robot.set_articulated_pose_from_joints([0.0] * 18)
     # mount: flange link 8, turned by the AttachLink joint; hand base: 15 mm above the mount
@@ -151,10 +152,11 @@ def test_fr3_v2_revo2_mod_bot_builds_the_arm_the_mount_and_the_hand(scene, side)
         scene.step(0.002)
     q = np.asarray(robot.get_articulated_pose(), float)
     assert np.all(np.isfinite(q)) and np.max(np.abs(q[:7] - ready)) < 0.01
-    for c in prefab.couplings:
-        follow, lead = names.index(c.joint.replace("_joint", "_link")), names.index(c.leader.replace("_joint", "_link"))
-        dofs = {n: i for i, n in enumerate(n for n, j in zip(names, prefab.joints) if j.type == sdp.ArticulatedJointType.REVOLUTE)}
-        assert abs(q[dofs[names[follow]]] - c.ratio * q[dofs[names[lead]]]) <= 1e-3
+    dof = {i: k for k, i in enumerate(i for i, j in enumerate(prefab.joints) if j.type == sdp.ArticulatedJointType.REVOLUTE)}
+    for t in prefab.linear_transmissions:
+        lead, follow = t.joint_indices
+        ratio = -t.joint_coefficients[0] / t.joint_coefficients[1]
+        assert abs(q[dof[follow]] - ratio * q[dof[lead]]) <= 1e-3
 
 
 def test_googly_eye_swings_as_its_inertials_say(scene):  # noqa: F811

@@ -142,6 +142,23 @@ struct JointCoupling {
   real offset = 0;     ///< rad or m
 };
 
+/// SuperDex's linear transmission: sum_k c_k q_k driven towards target_displacement by a spring
+/// (`.superdex_bot` "linearTransmissions"). One of two joints is held as a rigid coupling,
+/// c_0 q_0 + c_1 q_1 = target_displacement (the second joint follows the first by -c_0 / c_1, as
+/// the mimic fingers of the Revo2 hands do); its spring and damper are not modelled yet and
+/// transmissions of more joints are not built (the bot file's reader names both in warnings).
+struct LinearTransmission {
+  std::string name;
+  std::vector<int> joint_indices;        ///< indices into ArticulationDesc::joints
+  std::vector<real> joint_coefficients;  ///< c_k, per joint (m per joint unit, or dimensionless)
+  std::vector<real> joint_axis_disps;    ///< attachment offsets along each joint's axis (m)
+  real target_displacement = 0;          ///< m (or the joints' unit for a gearbox)
+  real stiffness = 0;                    ///< N/m
+  real damping = 0;                      ///< N s/m
+  bool allow_compressive_force = true;
+  bool operator==(const LinearTransmission&) const = default;
+};
+
 /// A whole articulation: links[i] is attached to its parent by joints[i].
 struct ArticulationDesc {
   std::string name;
@@ -155,7 +172,14 @@ struct ArticulationDesc {
   std::vector<ContactOverride> contact_overrides;
   /// Joints that follow others.
   std::vector<JointCoupling> couplings;
+  /// Linear transmissions between joints; two-joint ones are held as couplings.
+  std::vector<LinearTransmission> linear_transmissions;
 };
+
+/// The coupling a two-joint linear transmission holds: joint 1 follows joint 0 by -c_0 / c_1,
+/// offset target / c_1. Throws superdex::Error naming `where` for indices out of range, a
+/// transmission of another number of joints, or a zero c_1.
+JointCoupling coupling_of(const LinearTransmission& t, const std::vector<JointDesc>& joints, const std::string& where);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics
