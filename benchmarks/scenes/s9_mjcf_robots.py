@@ -47,9 +47,9 @@ KP, KD = 20.0, 0.5
 
 def model_path(package: str, relative: str) -> str:
     if package == "urdf":
-        from superdex.robot_files import example_robot_data_urdfs
+        from superdex.robot_files import example_robot_data_file
 
-        return str(next(p for p in example_robot_data_urdfs() if str(p).endswith(relative)))
+        return str(example_robot_data_file("robots/" + relative))
     spec = importlib.util.find_spec(package)
     return str(Path(next(iter(spec.submodule_search_locations))) / relative)
 

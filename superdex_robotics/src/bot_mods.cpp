@@ -10,6 +10,7 @@
 #include "superdex/physics/articulation_json.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/prefab.h"
+#include "superdex/robotics/context.h"
 
 namespace superdex::robotics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -67,12 +68,7 @@ std::vector<real> full_pose(const BotPrefab& bot) {
 // Component params naming a file stay valid once the component belongs to a bot read elsewhere.
 void absolutize_params(std::vector<std::vector<ComponentDecl>>& lists, const std::string& base_dir) {
   for (auto& list : lists)
-    for (ComponentDecl& d : list) {
-      const auto first = d.params.find_first_not_of(" \t\r\n");
-      if (first == std::string::npos || d.params[first] == '{') continue;
-      fs::path p(d.params.substr(first));
-      if (p.is_relative()) d.params = (fs::path(base_dir) / p).lexically_normal().string();
-    }
+    for (ComponentDecl& d : list) d.params = params_relative_to(d.params, base_dir);
 }
 
 // Adds `link` (with its components) below `parent` through `joint`, keeping names unique.

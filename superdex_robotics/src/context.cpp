@@ -29,13 +29,24 @@ const char* component_kind_name(ComponentKind kind) {
 
 namespace {
 int index(ComponentKind k) { return static_cast<int>(k); }
+
+// Inline JSON and empty params name no file.
+bool names_a_file(const std::string& params) {
+  const auto first = params.find_first_not_of(" \t\r\n");
+  return first != std::string::npos && params[first] != '{';
+}
 }  // namespace
 
-std::string resolve_params(const std::string& params, const std::string& base_dir, const std::string& where) {
-  const auto first = params.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos || params[first] == '{') return params;
-  fs::path p(params.substr(first));
+std::string params_relative_to(const std::string& params, const std::string& base_dir) {
+  if (!names_a_file(params)) return params;
+  fs::path p(params.substr(params.find_first_not_of(" \t\r\n")));
   if (p.is_relative() && !base_dir.empty()) p = fs::path(base_dir) / p;
+  return p.string();
+}
+
+std::string resolve_params(const std::string& params, const std::string& base_dir, const std::string& where) {
+  if (!names_a_file(params)) return params;
+  const fs::path p = params_relative_to(params, base_dir);
   if (!is_existing_file(p)) throw Error(where + ": params file '" + p.string() + "' does not exist");
   return fs::absolute(p).lexically_normal().string();
 }

@@ -71,12 +71,10 @@ class TactilePadSensor final : public SensorComponent {
   void update(const Tick&) override {
     taxels_.setZero();
     // the pad frame in the world: link, then sensor, then pad
-    const Transform X_WL = scene_.root_transform(link_);
-    const Quat R_WP = X_WL.rotation * X_LS_.rotation * X_SP_.rotation;
-    const Vec3 p_WP = X_WL.rotation * (X_LS_.rotation * X_SP_.translation + X_LS_.translation) + X_WL.translation;
+    const Transform X_PW = (scene_.root_transform(link_) * X_LS_ * X_SP_).inverse();
     for (const physics::ContactPoint& c : scene_.contact_points(link_)) {
-      const Vec3 p_P = R_WP.conjugate() * (Vec3(c.pos_a) - p_WP);
-      const Vec3 f_P = R_WP.conjugate() * Vec3(c.force);
+      const Vec3 p_P = X_PW * Vec3(c.pos_a);
+      const Vec3 f_P = X_PW.rotation * Vec3(c.force);
       if (std::abs(p_P.z()) > thickness_ || !(f_P.z() < 0)) continue;
       // the cell under the point: column along x, row along y
       const real u = (p_P.x() / size_[0] + real(0.5)) * cols_, v = (p_P.y() / size_[1] + real(0.5)) * rows_;

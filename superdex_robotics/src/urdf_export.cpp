@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <nlohmann/json.hpp>
 #include <tinyxml2.h>
 
 #include "superdex/physics/error.h"
@@ -28,18 +29,7 @@ using physics::Vec3;
 namespace {
 
 // Shortest text that reads back as the same double.
-std::string num(double x) {
-  std::ostringstream os;
-  os << std::setprecision(17) << x;
-  double back = 0;
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::ostringstream s;
-    s << std::setprecision(digits) << x;
-    std::istringstream(s.str()) >> back;
-    if (back == x) return s.str();
-  }
-  return os.str();
-}
+std::string num(double x) { return nlohmann::json(x).dump(); }
 
 std::string triple(const Vec3& v) { return num(v.x()) + " " + num(v.y()) + " " + num(v.z()); }
 

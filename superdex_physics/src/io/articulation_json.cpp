@@ -440,15 +440,10 @@ void read_linear_transmissions(const Reader& top, ArticulationDesc& d, const std
                                         " joints is not modelled yet (two joints become a coupling); ignored");
     } else {
       // the coupling it makes, checked now so that the error names the file
-      try {
-        const JointCoupling c = coupling_of(lt, d.joints, path);
-        if (warnings && (t.has("stiffness") || t.has("damping")))
-          warnings->push_back(source + ": " + path + ": held as a rigid coupling of joints '" + c.leader + "' and '" + c.joint +
-                              "'; its stiffness and damping are not modelled yet");
-      } catch (const Error& e) {
-        const std::string what = e.what();
-        t.fail(path + ".jointCoefficients[1]", what.substr(what.rfind(": ") + 2));
-      }
+      const JointCoupling c = coupling_of(lt, d.joints, source + ": " + path);
+      if (warnings && (t.has("stiffness") || t.has("damping")))
+        warnings->push_back(source + ": " + path + ": held as a rigid coupling of joints '" + c.leader + "' and '" + c.joint +
+                            "'; its stiffness and damping are not modelled yet");
     }
     d.linear_transmissions.push_back(std::move(lt));
   }
@@ -478,17 +473,17 @@ ArticulationDesc articulation_desc_from_json(const json& doc, const std::string&
     for (size_t i = 0; i < links.size(); ++i) d.links.push_back(link_from(Reader(links[i], source, index_path("links", i), warnings), extra));
     // SuperDex's surface quadrature per link: checked, then named once (this engine samples
     // rigid surfaces its own way)
-    std::vector<size_t> quadrature;
+    size_t quadrature = 0;
     for (size_t i = 0; i < links.size(); ++i) {
       if (!links[i].is_object() || !links[i].contains("boundaryElementType")) continue;
       const json& v = links[i].at("boundaryElementType");
       static const char* const kTypes[] = {"P1Q1", "P1Q3", "P1Q6", "EXPERIMENTAL_P1Q7", "EXPERIMENTAL_P1Q12", "EXPERIMENTAL_P1Q16"};
       if (!v.is_string() || std::find_if(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return v.get<std::string>() == t; }) == std::end(kTypes))
         top.fail(index_path("links", i) + ".boundaryElementType", "expected one of P1Q1, P1Q3, P1Q6, EXPERIMENTAL_P1Q7, EXPERIMENTAL_P1Q12, EXPERIMENTAL_P1Q16, got " + v.dump());
-      quadrature.push_back(i);
+      ++quadrature;
     }
-    if (warnings && !quadrature.empty())
-      warnings->push_back(source + ": links[].boundaryElementType (" + std::to_string(quadrature.size()) +
+    if (warnings && quadrature > 0)
+      warnings->push_back(source + ": links[].boundaryElementType (" + std::to_string(quadrature) +
                           " links): rigid links' contact surfaces are sampled by this engine's own rule; ignored");
     const json& joints = top.at("joints");
     for (size_t i = 0; i < joints.size(); ++i) d.joints.push_back(joint_from(Reader(joints[i], source, index_path("joints", i), warnings), extra));

@@ -21,21 +21,14 @@ import numpy as np
 
 import superdex.physics as physics
 import superdex.robotics as robotics
-from superdex.robot_files import example_robot_data_urdfs
+from superdex.robot_files import example_robot_data_file
 
-URDF_NAME = "allegro_hand_description/urdf/allegro_right_hand.urdf"
+URDF_NAME = "robots/allegro_hand_description/urdf/allegro_right_hand.urdf"
 PALM_SURFACE = 0.0111  # the palm's face along the palm link's +x (its normal), m
 CUBE_HALF, CUBE_MASS = 0.025, 0.1  # m, kg
 CUBE_ON_PALM = -0.045  # the cube's centre along the palm link's z (fingers point +z), m
 THUMB = {12: 1.3, 13: 0.3, 14: 0.5, 15: 0.5}  # rad: turned in against the cube's side
 KP, KD = 20.0, 0.5  # N m/rad, N m s/rad: above the joints' 5-10 N m friction
-
-
-def allegro_urdf() -> str:
-    for path in example_robot_data_urdfs():
-        if str(path).endswith(URDF_NAME):
-            return str(path)
-    raise FileNotFoundError(f"example-robot-data has no {URDF_NAME} (is the example-robot-data package installed?)")
 
 
 def run(seconds: float = 5.0, settle: float = 1.0, dt: float = 0.002, curl: float = 1.0, debugger: bool = False) -> dict:
@@ -45,7 +38,7 @@ def run(seconds: float = 5.0, settle: float = 1.0, dt: float = 0.002, curl: floa
     try:
         scene = physics.create_scene("Allegro holding a cube")
         scene.set_gravity([0, 0, -9.81])
-        prefab = robotics.load_bot_prefab_from_urdf_file(allegro_urdf(), fixed_base=True)
+        prefab = robotics.load_bot_prefab_from_urdf_file(example_robot_data_file(URDF_NAME), fixed_base=True)
         # palm up: the palm's normal (+x) turned onto the world's +z, the fingers towards -x
         prefab.world_from_root = physics.TransformRT(rotation=physics.Quaternion.from_axis_angle([0, 1, 0], -math.pi / 2))
         bot = robotics.create_bot(scene, prefab, robotics.create_context())

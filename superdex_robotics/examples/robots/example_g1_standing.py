@@ -21,18 +21,11 @@ import numpy as np
 
 import superdex.physics as physics
 import superdex.robotics as robotics
-from superdex.robot_files import example_robot_data_urdfs
+from superdex.robot_files import example_robot_data_file
 
-URDF_NAME = "g1_description/urdf/g1_29dof_rev_1_0.urdf"
+URDF_NAME = "robots/g1_description/urdf/g1_29dof_rev_1_0.urdf"
 FOOT_LINKS = ("left_ankle_roll_link", "right_ankle_roll_link")
 G = 9.81
-
-
-def g1_urdf() -> str:
-    for path in example_robot_data_urdfs():
-        if str(path).endswith(URDF_NAME):
-            return str(path)
-    raise FileNotFoundError(f"example-robot-data has no {URDF_NAME} (is the example-robot-data package installed?)")
 
 
 def run(seconds: float = 5.0, dt: float = 0.002, kp: float = 500.0, kd: float = 20.0, debugger: bool = False) -> dict:
@@ -43,7 +36,7 @@ def run(seconds: float = 5.0, dt: float = 0.002, kp: float = 500.0, kd: float = 
         scene = physics.create_scene("G1 standing")
         scene.set_gravity([0, 0, -G])
         scene.create_rigid_actor(name="ground", shape=physics.create_plane_shape([0, 0, 1], 0), is_static=True)
-        prefab = robotics.load_bot_prefab_from_urdf_file(g1_urdf())
+        prefab = robotics.load_bot_prefab_from_urdf_file(example_robot_data_file(URDF_NAME))
         bot = robotics.create_bot(scene, prefab, robotics.create_context())
         g1 = bot.get_articulated_actor()
         links = [scene.get_actor(h) for h in g1.get_nested_link_actors()]

@@ -23,7 +23,7 @@ except ImportError as exc:  # a declared dev dependency: missing means a broken 
 
 import superdex.physics as sdp
 import superdex.robotics as sdr
-from superdex.robot_files import example_robot_data_urdfs
+from superdex.robot_files import example_robot_data_file
 
 TOL = 1e-9 if sdp.uses_double_precision() else 1e-4
 # a file written from the float build carries float-rounded values
@@ -34,13 +34,6 @@ def quiet(fn, *args, **kwargs):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return fn(*args, **kwargs)
-
-
-def urdf_named(tail: str) -> Path:
-    for path in example_robot_data_urdfs():
-        if str(path).endswith(tail):
-            return path
-    pytest.skip(f"example-robot-data has no {tail}")
 
 
 def random_configuration(model, rng):
@@ -58,7 +51,7 @@ def random_configuration(model, rng):
 
 @pytest.mark.parametrize("tail", ["panda_description/urdf/panda.urdf", "ur_description/urdf/ur5_robot.urdf"])
 def test_a_urdf_written_back_is_the_same_robot_to_pinocchio(tail):
-    urdf = urdf_named(tail)
+    urdf = example_robot_data_file("robots/" + tail)
     prefab = quiet(sdr.load_bot_prefab_from_urdf_file, urdf, fixed_base=True)
     original = pin.buildModelFromUrdf(str(urdf))
     written = pin.buildModelFromXML(quiet(sdr.save_to_urdf_string, prefab))
@@ -161,7 +154,7 @@ def aabb_values(box):
 
 
 def test_meshes_are_written_beside_the_file(tmp_path):
-    urdf = urdf_named("ur_description/urdf/ur5_robot.urdf")
+    urdf = example_robot_data_file("robots/ur_description/urdf/ur5_robot.urdf")
     prefab = quiet(sdr.load_bot_prefab_from_urdf_file, urdf, fixed_base=True)
     sdr.save_to_urdf_file(prefab, tmp_path / "ur5.urdf")
     meshes = sorted((tmp_path / "ur5_meshes").glob("*.obj"))

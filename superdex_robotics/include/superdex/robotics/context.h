@@ -202,5 +202,9 @@ class Context {
 /// to exist (throws superdex::Error naming `where` otherwise).
 std::string resolve_params(const std::string& params, const std::string& base_dir, const std::string& where);
 
+/// `params` with a relative file path joined to `base_dir`, unchecked (inline JSON, empty strings
+/// and absolute paths as they are): the file resolve_params checks for.
+std::string params_relative_to(const std::string& params, const std::string& base_dir);
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::robotics
