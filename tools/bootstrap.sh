@@ -7,7 +7,7 @@ set -euo pipefail
 APT_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libhdf5-dev libtbb-dev
-  libsuitesparse-dev libopenblas-dev libspectra-dev libqhull-dev libassimp-dev
+  libsuitesparse-dev libopenblas-dev libspectra-dev libqhull-dev libassimp-dev libccd-dev
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
   # the fuzz targets (tools/fuzz.sh): clang and its libFuzzer and sanitizer runtimes
   clang libclang-rt-14-dev

@@ -4,6 +4,7 @@
 /// stable, monotone creep matching the overdamped analytic solution; a compliant limit of
 /// stiffness k deflects by torque / k under a static load.
 
+#include "solver/step_settings.h"
 #include "test_helpers.h"
 
 namespace superdex::physics::test {
@@ -39,6 +40,30 @@ TEST_F(JointLimitsTest, RigidLimitStopsFallingArmAtLargeStep) {
   EXPECT_NEAR(scene.pose(arm)[0], upper, 0.01);
   EXPECT_LT(std::abs(scene.joint_velocities(arm)[0]), 1e-6);
   EXPECT_EQ(scene.solver_stats().convergence_status, ConvergenceStatus::Converged);
+}
+
+TEST_F(JointLimitsTest, JointStartingBeyondItsLimitComesBackAtTheDepenetrationSpeed) {
+  // no gravity; the arm starts 0.8 rad past its upper limit: it returns at the bound (1 rad/s by
+  // default), not 0.8 rad in one 2 ms step (400 rad/s), and, nothing slowing it, goes on at that
+  // speed once back within its range
+  const double dt = 0.002, upper = 0.5;
+  ArticulationDesc desc = horizontal_arm();
+  desc.joints[1].max_limit = Vec3(0, upper, 0);
+  desc.default_pose = {upper + 0.8};
+  Scene scene = create_scene("beyond_limit");
+  scene.set_gravity(Vec3::Zero());
+  const ActorHandle arm = scene.create_articulated_actor(desc, "arm");
+  const double bound = StepSettings{}.max_depenetration_speed;
+  ASSERT_EQ(bound, 1.0);
+  double fastest = 0;
+  for (int n = 0; n < 500; ++n) {  // 1 s
+    scene.step(dt);
+    fastest = std::max(fastest, std::abs(scene.joint_velocities(arm)[0]));
+    if (n == 100) EXPECT_NEAR(scene.pose(arm)[0], upper + 0.8 - 101 * dt * bound, 1e-3);  // moving back at the bound
+  }
+  EXPECT_LE(fastest, bound * (1 + 1e-6));
+  EXPECT_NEAR(scene.pose(arm)[0], upper + 0.8 - 500 * dt * bound, 1e-3);
+  EXPECT_NEAR(scene.joint_velocities(arm)[0], -bound, 1e-6);
 }
 
 TEST_F(JointLimitsTest, StiffViscousFrictionIsStableAndMonotone) {

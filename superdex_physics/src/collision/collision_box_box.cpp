@@ -36,20 +36,6 @@ std::array<Vec3, 4> face_towards(const PosedBox& b, const Vec3& dir, int& axis, 
   return {fc + eu + ev, fc - eu + ev, fc - eu - ev, fc + eu - ev};
 }
 
-// Clips polygon `poly` by the half-space n . x <= d + tol. Points within `tol` outside count as
-// inside, so that faces flush with each other (stacked boxes) keep a stable set of corners.
-std::vector<Vec3> clip(const std::vector<Vec3>& poly, const Vec3& n, real d, real tol) {
-  std::vector<Vec3> out;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Vec3& p = poly[i];
-    const Vec3& q = poly[(i + 1) % poly.size()];
-    const real dp = n.dot(p) - d - tol, dq = n.dot(q) - d - tol;
-    if (dp <= 0) out.push_back(p);
-    if ((dp <= 0) != (dq <= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
-  }
-  return out;
-}
-
 // The support edge of `b` in direction `dir` parallel to axis k: its two ends.
 void support_edge(const PosedBox& b, int k, const Vec3& dir, Vec3& e0, Vec3& e1) {
   Vec3 p = b.c;
@@ -57,17 +43,6 @@ void support_edge(const PosedBox& b, int k, const Vec3& dir, Vec3& e0, Vec3& e1)
     if (j != k) p += (b.R.col(j).dot(dir) >= 0 ? 1 : -1) * b.h[j] * b.R.col(j);
   e0 = p - b.h[k] * b.R.col(k);
   e1 = p + b.h[k] * b.R.col(k);
-}
-
-void closest_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& cp, Vec3& cq) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const real a = d1.squaredNorm(), e = d2.squaredNorm(), b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
-  const real denom = a * e - b * b;
-  real s = denom > real(1e-12) * a * e ? std::clamp((b * f - c * e) / denom, real(0), real(1)) : real(0);
-  real t = std::clamp((b * s + f) / e, real(0), real(1));
-  s = std::clamp((b * t - c) / a, real(0), real(1));
-  cp = p0 + d1 * s;
-  cq = q0 + d2 * t;
 }
 
 }  // namespace
@@ -103,7 +78,7 @@ void collide_box_box(const BoxShape& sa, const SpatialTransform& X_WA, const Box
     Vec3 a0, a1, b0, b1, pa, pb;
     support_edge(A, edge_a, -n, a0, a1);
     support_edge(B, edge_b, n, b0, b1);
-    closest_points(a0, a1, b0, b1, pa, pb);
+    closest_segment_points(a0, a1, b0, b1, pa, pb);
     const real phi = n.dot(pa - pb);
     out.push_back({(pa + pb) / 2, n, phi});
     return;
@@ -119,15 +94,18 @@ void collide_box_box(const BoxShape& sa, const SpatialTransform& X_WA, const Box
   int inc_axis;
   real inc_sign;
   const auto inc_face = face_towards(inc, -n_ref, inc_axis, inc_sign);
-  std::vector<Vec3> poly(inc_face.begin(), inc_face.end());
+  std::vector<Vec3> poly(inc_face.begin(), inc_face.end()), clipped;
   // clip by the four side planes of the reference face
   const Vec3 ref_centre = (ref_face[0] + ref_face[2]) / 2;
   for (int k = 0; k < 3 && !poly.empty(); ++k) {
     if (k == ref_axis) continue;
     const Vec3 side = ref.R.col(k);
     const real tol = real(1e-5) * size;
-    poly = clip(poly, side, side.dot(ref.c) + ref.h[k], tol);
-    if (!poly.empty()) poly = clip(poly, -side, -side.dot(ref.c) + ref.h[k], tol);
+    clip_polygon(poly, side, side.dot(ref.c) + ref.h[k], tol, clipped);
+    poly.swap(clipped);
+    if (poly.empty()) break;
+    clip_polygon(poly, -side, -side.dot(ref.c) + ref.h[k], tol, clipped);
+    poly.swap(clipped);
   }
   for (const Vec3& p : poly) {
     const real phi = n_ref.dot(p - ref_centre);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/scene_data.h"
+#include "shape/convex_faces.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -89,6 +90,24 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
 // deepest; in their original order.
 constexpr size_t kMaxContactsPerPair = 32;
 void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points);
+// reduce_contacts on out[first, end).
+void keep_at_most(std::vector<ShapeContact>& out, size_t first, size_t max_points);
+
+// Contacts between two convex polyhedra (convex meshes, boxes) posed in the world
+// (collision_convex.cpp): the deepest point from GJK/EPA and, where the normal is a face normal,
+// the opposing face clipped against that face; at most kMaxConvexContacts (normal from b to a).
+constexpr size_t kMaxConvexContacts = 4;
+// The distance between two convex polyhedra posed in the world (gjk_distance.cpp), with the
+// closest points on each; `overlap` when they intersect (then nothing else is set).
+struct ConvexDistance {
+  bool overlap = false;
+  real distance = 0;  // m
+  Vec3 p_a = Vec3::Zero(), p_b = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();  // unit, from b towards a
+};
+ConvexDistance convex_distance(const ConvexFaces& a, const SpatialTransform& X_WA, const ConvexFaces& b, const SpatialTransform& X_WB);
+void collide_convex_convex(const ConvexFaces& a, const SpatialTransform& X_WA, const ConvexFaces& b,
+                           const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 
 // Box-box manifold (collision_box_box.cpp); boxes centred on their frames.
 void collide_box_box(const BoxShape& a, const SpatialTransform& X_WA, const BoxShape& b, const SpatialTransform& X_WB,

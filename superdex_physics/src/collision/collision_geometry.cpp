@@ -3,6 +3,8 @@
 
 #include "collision/collision_geometry.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace superdex::physics {
@@ -135,6 +137,42 @@ Bounds shape_local_aabb(const ShapeGeometry& shape) {
 std::pair<Vec3, Vec3> shape_bounds(const ShapeGeometry& shape) {
   const Bounds b = shape_local_aabb(shape);
   return {b.min, b.max};
+}
+
+void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& cp, Vec3& cq) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  real s = 0, t = 0;
+  const real eps = real(1e-12);
+  if (a <= eps && e <= eps) {
+    s = t = 0;
+  } else if (a <= eps) {
+    t = std::clamp(f / e, real(0), real(1));
+  } else {
+    const real c = d1.dot(r);
+    if (e <= eps) {
+      s = std::clamp(-c / a, real(0), real(1));
+    } else {
+      const real b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > eps ? std::clamp((b * f - c * e) / denom, real(0), real(1)) : real(0);
+      t = (b * s + f) / e;
+      if (t < 0) t = 0, s = std::clamp(-c / a, real(0), real(1));
+      else if (t > 1) t = 1, s = std::clamp((b - c) / a, real(0), real(1));
+    }
+  }
+  cp = p0 + d1 * s;
+  cq = q0 + d2 * t;
+}
+
+void clip_polygon(const std::vector<Vec3>& poly, const Vec3& n, real d, real tol, std::vector<Vec3>& out) {
+  out.clear();
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& p = poly[i];
+    const Vec3& q = poly[(i + 1) % poly.size()];
+    const real dp = n.dot(p) - d - tol, dq = n.dot(q) - d - tol;
+    if (dp <= 0) out.push_back(p);
+    if ((dp <= 0) != (dq <= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+  }
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -36,6 +36,13 @@ std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape);
 // Bounding box in the shape frame; infinite for planes.
 Bounds shape_local_aabb(const ShapeGeometry& shape);
 
+// The closest points cp on segment [p0, p1] and cq on segment [q0, q1].
+void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& cp, Vec3& cq);
+
+// Polygon `poly` clipped by the half-space n . x <= d + tol, into `out`. Points within `tol`
+// outside count as inside, so that faces flush with each other keep a stable set of corners.
+void clip_polygon(const std::vector<Vec3>& poly, const Vec3& n, real d, real tol, std::vector<Vec3>& out);
+
 // Mesh implementations (mesh_geometry.cpp).
 real mesh_signed_distance(const MeshShape& mesh, const Vec3& p_S, Vec3* grad_S);
 std::vector<Vec3> mesh_surface_samples(const MeshShape& mesh);

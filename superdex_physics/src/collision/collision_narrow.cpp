@@ -35,32 +35,6 @@ void ball_vs_ball(const Vec3& ca, real ra, const Vec3& cb, real rb, real margin,
   out.push_back({ca - n * (ra + phi / 2), n, phi});
 }
 
-// Closest points of segments [p0, p1] and [q0, q1] (parameters in [0, 1]).
-void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& cp, Vec3& cq) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  real s = 0, t = 0;
-  const real eps = real(1e-12);
-  if (a <= eps && e <= eps) {
-    s = t = 0;
-  } else if (a <= eps) {
-    t = std::clamp(f / e, real(0), real(1));
-  } else {
-    const real c = d1.dot(r);
-    if (e <= eps) {
-      s = std::clamp(-c / a, real(0), real(1));
-    } else {
-      const real b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > eps ? std::clamp((b * f - c * e) / denom, real(0), real(1)) : real(0);
-      t = (b * s + f) / e;
-      if (t < 0) t = 0, s = std::clamp(-c / a, real(0), real(1));
-      else if (t > 1) t = 1, s = std::clamp((b - c) / a, real(0), real(1));
-    }
-  }
-  cp = p0 + d1 * s;
-  cq = q0 + d2 * t;
-}
-
 // The balls that make a rounded shape, posed in the world: one for a sphere; for a capsule the
 // segment ends and interior balls no further apart than the radius (so that its side meets edges
 // and faces), at most 17. A centre is computed when asked for.
@@ -122,6 +96,21 @@ void balls_vs_field(const RoundedBalls& balls, const LinkCollider& field, const 
   }
 }
 
+// A convex shape's corners and faces: a convex mesh's own, a box's made here (per thread, per
+// side); null for other shapes.
+const ConvexFaces* convex_faces(const ShapeGeometry& shape) {
+  if (auto* m = std::get_if<MeshShape>(&shape)) return m->faces.get();
+  if (auto* box = std::get_if<BoxShape>(&shape)) {
+    thread_local ConvexFaces made[2];
+    thread_local int next = 0;
+    ConvexFaces& f = made[next];
+    next ^= 1;
+    box_convex_faces(box->half_extents, f);
+    return &f;
+  }
+  return nullptr;
+}
+
 bool has_field(const LinkCollider& c) {
   if (auto* m = std::get_if<MeshShape>(&c.shape)) return m->sdf != nullptr;
   return true;
@@ -181,8 +170,11 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
         add(X_WA.R * c + X_WA.p, 0);
       }
     } else if (const auto* mesh = std::get_if<MeshShape>(&a.shape); mesh && mesh->convex) {
-      // a convex mesh reaches deepest into a plane at its vertices: its contact polygon is theirs
+      // a convex mesh reaches deepest into a plane at its vertices: its contact polygon is theirs,
+      // kept to a few corners that span it
+      const size_t first = out.size();
       for (const Vec3& v : mesh->mesh->vertices) add(X_WA.R * v + X_WA.p, 0);
+      keep_at_most(out, first, kMaxConvexContacts);
     } else {
       for (const Vec3& s : a.samples_S) add(X_WA.R * s + X_WA.p, 0);
     }
@@ -216,7 +208,11 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
   }
   if (std::holds_alternative<BoxShape>(a.shape) && std::holds_alternative<BoxShape>(b.shape))
     return collide_box_box(std::get<BoxShape>(a.shape), X_WA, std::get<BoxShape>(b.shape), X_WB, margin, out);
-  // boxes and meshes: samples of each against the other's field
+  // convex polyhedra (convex meshes, boxes): GJK/EPA and face clipping
+  const ConvexFaces* faces_a = convex_faces(a.shape);
+  const ConvexFaces* faces_b = faces_a ? convex_faces(b.shape) : nullptr;
+  if (faces_a && faces_b) return collide_convex_convex(*faces_a, X_WA, *faces_b, X_WB, margin, out);
+  // other meshes: samples of each against the other's field
   points_vs_field(a, X_WA, b, X_WB, margin, out);
   points_vs_field(b, X_WB, a, X_WA, margin, tmp);
   flip_into(tmp, out);

@@ -59,7 +59,8 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
   std::vector<char> kept(n, 0);
   std::vector<size_t> chosen{first};
   kept[first] = 1;
-  while (chosen.size() + 1 < max_points) {
+  // the point not kept farthest from those kept (after the last one kept); false when none is apart
+  auto keep_farthest = [&] {
     const ShapeContact& last = points[chosen.back()];
     size_t best = n;
     for (size_t i = 0; i < n; ++i) {
@@ -67,11 +68,19 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
       nearest[i] = std::min(nearest[i], distance(points[i], last));
       if (best == n || nearest[i] > nearest[best]) best = i;
     }
-    if (best == n || !(nearest[best] > 0)) break;
+    if (best == n || !(nearest[best] > 0)) return false;
     kept[best] = 1;
     chosen.push_back(best);
+    return true;
+  };
+  while (chosen.size() + 1 < max_points && keep_farthest()) {
   }
-  if (!kept[deepest]) chosen.push_back(deepest);
+  // the deepest point takes the last place; when it is among those kept, one more spread point
+  if (!kept[deepest]) {
+    chosen.push_back(deepest);
+  } else if (chosen.size() < max_points) {
+    keep_farthest();
+  }
   // kept in their original order: the contact list stays deterministic and ordered
   std::sort(chosen.begin(), chosen.end());
   std::vector<ShapeContact> out;

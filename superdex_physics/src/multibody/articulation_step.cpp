@@ -2,6 +2,7 @@
 
 #include "multibody/articulation_step.h"
 
+#include <algorithm>
 #include <numbers>
 
 #include "multibody/dynamics.h"
@@ -42,7 +43,8 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
       b.kind = BlockKind::Unilateral;
       for (const real sign : {real(1), real(-1)}) {
         if (!(sign > 0 ? j.has_lower : j.has_upper)) continue;
-        b.vhat = -(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d);
+        // beyond the limit (vhat > 0): back no faster than the depenetration bound
+        b.vhat = std::min(-(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d), params.max_depenetration_speed);
         // acts once sign * v < vhat (< 0 inside the limit): far from it when the free motion
         // keeps sign * v above vhat / 2
         JointRow row{k, sign, b};

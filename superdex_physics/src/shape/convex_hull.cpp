@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <unordered_map>
 
@@ -54,16 +55,46 @@ struct Qhull {
 TriangleMesh convex_hull(const std::vector<Vec3>& points, const std::string& where) {
   if (points.size() < 4)
     throw Error(where + ": a convex hull needs at least 4 points spanning a volume, got " + std::to_string(points.size()));
+  for (const Vec3& p : points)
+    if (!p.allFinite()) throw Error(where + ": a convex hull needs finite points");
+  // points within 1e-4 of the extent of one another are one point: meshes exported from CAD
+  // carry near-duplicates microns apart, whose hull facets would be slivers without area
+  Eigen::AlignedBox<double, 3> extent;
+  for (const Vec3& p : points) extent.extend(p.cast<double>());
+  const double weld = 1e-4 * extent.diagonal().norm();
   std::vector<coordT> coords;
   coords.reserve(3 * points.size());
-  for (const Vec3& p : points) {
-    if (!p.allFinite()) throw Error(where + ": a convex hull needs finite points");
-    for (int a = 0; a < 3; ++a) coords.push_back(static_cast<coordT>(p[a]));
+  {
+    std::unordered_map<std::uint64_t, std::vector<int>> cells;  // grid cell (side `weld`) -> points kept in it
+    auto cell_key = [](long x, long y, long z) {
+      return (static_cast<std::uint64_t>(x) & 0x1fffff) | (static_cast<std::uint64_t>(y) & 0x1fffff) << 21 |
+             (static_cast<std::uint64_t>(z) & 0x1fffff) << 42;
+    };
+    int kept = 0;
+    for (const Vec3& point : points) {
+      const Eigen::Vector3d p = point.cast<double>();
+      const Eigen::Vector3d g = weld > 0 ? Eigen::Vector3d((p - extent.min()) / weld) : Eigen::Vector3d::Zero();
+      const long cx = static_cast<long>(std::floor(g.x())), cy = static_cast<long>(std::floor(g.y())), cz = static_cast<long>(std::floor(g.z()));
+      bool near = false;
+      for (long dx = -1; dx <= 1 && !near; ++dx)
+        for (long dy = -1; dy <= 1 && !near; ++dy)
+          for (long dz = -1; dz <= 1 && !near; ++dz) {
+            const auto it = cells.find(cell_key(cx + dx, cy + dy, cz + dz));
+            if (it == cells.end()) continue;
+            for (int k : it->second)
+              if ((Eigen::Vector3d(coords[3 * k], coords[3 * k + 1], coords[3 * k + 2]) - p).norm() <= weld) near = true;
+          }
+      if (near) continue;
+      cells[cell_key(cx, cy, cz)].push_back(kept++);
+      for (int a = 0; a < 3; ++a) coords.push_back(static_cast<coordT>(p[a]));
+    }
+    if (kept < 4)
+      throw Error(where + ": a convex hull needs at least 4 points spanning a volume, got " + std::to_string(kept) + " distinct points");
   }
   Qhull q;
   // "Qt" is not used: merged facets come back whole and are fanned here without slivers
   char flags[] = "qhull";
-  const int code = qh_new_qhull(q.qh, 3, static_cast<int>(points.size()), coords.data(), False, flags, nullptr, q.err);
+  const int code = qh_new_qhull(q.qh, 3, static_cast<int>(coords.size() / 3), coords.data(), False, flags, nullptr, q.err);
   if (code != 0)
     throw Error(where + ": no convex hull: the points span no volume (they lie on one plane or line): " + q.message());
 

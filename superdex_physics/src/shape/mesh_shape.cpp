@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "io/file_extension.h"
+#include "shape/convex_faces.h"
+#include "superdex/physics/convex_hull.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_validation.h"
@@ -17,7 +19,11 @@ bool ShapeBake::is_identity() const {
   return scale == Vec3::Ones() && translation.isZero() && rotation.angularDistance(Quat::Identity()) == 0;
 }
 
-MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options, std::shared_ptr<const SdfGrid> sdf) {
+namespace {
+
+// `convex`: the mesh is known to be convex (a hull); otherwise a closed mesh is tested.
+MeshShape mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options, std::shared_ptr<const SdfGrid> sdf,
+                     bool convex) {
   check_triangle_mesh(mesh, source);
   MeshShape shape;
   shape.source = source;
@@ -25,13 +31,24 @@ MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const Sd
     // inside-out meshes (clockwise seen from outside) are turned right side out
     if (signed_volume(mesh) < 0)
       for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-    shape.convex = is_convex(mesh);
+    shape.convex = convex || is_convex(mesh);
+    if (shape.convex) shape.faces = std::make_shared<const ConvexFaces>(convex_faces_of(mesh));
     shape.sdf = sdf ? std::move(sdf) : cached_sdf(mesh, options, source);
   } else {
     shape.sdf = std::move(sdf);
   }
   shape.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   return shape;
+}
+
+}  // namespace
+
+MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options, std::shared_ptr<const SdfGrid> sdf) {
+  return mesh_shape(std::move(mesh), source, options, std::move(sdf), false);
+}
+
+MeshShape make_convex_hull_shape(const std::vector<Vec3>& points, const std::string& source) {
+  return mesh_shape(convex_hull(points, source), source + " (convex hull)", {}, nullptr, true);
 }
 
 void check_bake(const ShapeBake& bake, const std::string& where) {

@@ -36,7 +36,8 @@ struct StepSettings {
   /// Pairs of shapes closer than this (m) produce contact candidates (speculative contact).
   real contact_margin = real(0.01);
   /// Fastest a rigid contact is pushed out of penetration (m/s): a robot spawned with its feet 8 cm
-  /// in the ground rises out of it over 0.08 s instead of being thrown at 0.08 m / dt.
+  /// in the ground rises out of it over 0.08 s instead of being thrown at 0.08 m / dt. Also the
+  /// fastest a joint that starts beyond one of its limits is brought back (rad/s or m/s).
   real max_depenetration_speed = 1;
   /// Coulomb friction without the cone model's drift: in the convex cone model a contact that
   /// slides at speed s (m/s, beyond its friction regularisation) moves apart at mu s. During up

@@ -5,7 +5,6 @@
 #include <sstream>
 #include <system_error>
 
-#include "superdex/physics/convex_hull.h"
 #include "superdex/physics/error.h"
 #include "superdex/physics/mesh_shape.h"
 
@@ -106,7 +105,7 @@ void scale_mesh(TriangleMesh& mesh, const Vec3& s) {
 physics::ShapeGeometry mesh_collider(TriangleMesh mesh, const std::string& source, MeshCollision mode, std::string* warning) {
   if (mode == MeshCollision::ConvexHull) {
     try {
-      return physics::make_mesh_shape(physics::convex_hull(mesh.vertices, source), source + " (convex hull)");
+      return physics::make_convex_hull_shape(mesh.vertices, source);
     } catch (const Error& e) {
       // a flat mesh (a plate, a single quad) has no hull with volume: its triangles collide
       if (warning) *warning = std::string(e.what()) + "; the mesh itself collides";

@@ -909,14 +909,26 @@ class MjcfImporter {
   // Link pairs that collide and whose shapes already interpenetrate at the start pose (capsules
   // that meet at the joint between them, as models often draw limbs) would push on each other
   // from the first step, at a point their joint cannot move: they are switched off, named in one
-  // warning. A link's contact with the world's rigid body is kept unless it hangs from it by a
-  // joint: a foot that starts in the floor must still stand on it.
+  // warning. A link's contact with the world body's own geoms is kept unless it hangs from the
+  // world by a joint (a foot that starts in the floor must still stand on it), and so is its
+  // contact with a body welded to the world that it does not hang from (a table); a welded body's
+  // overlaps with the links below it (an arm's base and its own arm) are switched off.
   void exclude_overlaps(int bot, const std::vector<int>& weld, const std::vector<bool>& hangs_from_world) {
     auto& art = model_.bots[bot].articulation;
+    auto below = [&](int root, int l) {
+      for (int x = l; x >= 0; x = art.links[x].parent_link)
+        if (x == root) return true;
+      return false;
+    };
+    // whether welded link w keeps its contact with `other` though they overlap
+    auto keeps = [&](int w, int other) {
+      if (bot != 0 || weld[w] != 0) return false;
+      return w == 0 ? !hangs_from_world[other] : !below(w, other);
+    };
     const auto overlaps = physics::overlapping_link_pairs(art, 0, doc_.path());
     for (const auto& o : overlaps) {
       const int a = o.link_a, b = o.link_b;
-      if (bot == 0 && ((weld[a] == 0 && !hangs_from_world[b]) || (weld[b] == 0 && !hangs_from_world[a]))) continue;
+      if (keeps(a, b) || keeps(b, a)) continue;
       const std::string &na = art.links[a].name, &nb = art.links[b].name;
       bool found = false;
       for (auto& ov : art.contact_overrides)

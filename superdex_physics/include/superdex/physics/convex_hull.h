@@ -15,7 +15,8 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 /// The convex hull of `points` (m) as a closed triangle mesh, counter-clockwise seen from
 /// outside. Its vertices are the hull's extreme points plus, for a hull face with more than three
 /// corners, the face's centroid (faces are fanned around it, so no triangle is degenerate).
-/// Coplanar facets are merged first. Throws superdex::Error "<where>: ..." for non-finite points
+/// Points within 1e-4 of the points' extent of one another are welded into one (no sliver
+/// facets) and coplanar facets are merged. Throws superdex::Error "<where>: ..." for non-finite points
 /// and for points that span no volume (fewer than four, or all on one plane or line).
 TriangleMesh convex_hull(const std::vector<Vec3>& points, const std::string& where);
 

@@ -20,6 +20,10 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 MeshShape make_mesh_shape(TriangleMesh mesh, const std::string& source, const SdfOptions& options = {},
                           std::shared_ptr<const SdfGrid> sdf = nullptr);
 
+/// The convex hull of `points` (m, shape frame; see convex_hull) as a convex MeshShape, named
+/// "<source> (convex hull)". Convex by construction, whatever the round-off in its faces.
+MeshShape make_convex_hull_shape(const std::vector<Vec3>& points, const std::string& source);
+
 /// Throws superdex::Error "<where>: ..." for a non-positive or non-finite scale, or a non-finite
 /// transform or zero rotation quaternion.
 void check_bake(const ShapeBake& bake, const std::string& where);

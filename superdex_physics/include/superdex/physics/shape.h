@@ -54,6 +54,8 @@ struct SdfGrid {
   std::vector<real> values;
 };
 
+struct ConvexFaces;  // a convex mesh's corners and polygon faces (engine-internal)
+
 /// A mesh shape: a triangle mesh (convex or not) with, when it is closed, a signed-distance
 /// grid used for contact. Shared, immutable data.
 struct MeshShape {
@@ -61,6 +63,7 @@ struct MeshShape {
   std::shared_ptr<const SdfGrid> sdf;  ///< null for open meshes (they only offer surface samples)
   bool convex = false;
   std::string source;                  ///< file it came from, for messages
+  std::shared_ptr<const ConvexFaces> faces;  ///< set for convex meshes: their contact is GJK/EPA and face clipping
 };
 
 /// What the contact solve uses of a surface's ContactParams. A pair combines them: friction

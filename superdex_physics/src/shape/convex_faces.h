@@ -1,0 +1,42 @@
+#pragma once
+// A convex polyhedron as its corners and polygon faces: what the convex-convex narrow phase
+// needs (support points over the corners, a reference face to clip against), read from a closed
+// convex triangle mesh by merging its coplanar triangles, or made for a box.
+
+#include <vector>
+
+#include "superdex/physics/shape.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+struct ConvexFaces {
+  std::vector<Vec3> corners;          // the extreme points (m, shape frame)
+  std::vector<Vec3> normals;          // outward unit normal per face
+  std::vector<real> offsets;          // per face: normal . x for x on the face (m)
+  std::vector<int> loop_start;        // face f's corners are loops[loop_start[f] .. loop_start[f + 1])
+  std::vector<int> loops;             // corner indices, counter-clockwise seen from outside
+  Vec3 centre = Vec3::Zero();         // the corners' mean (an interior point)
+  // corner c's neighbours along the faces' edges: neighbours[neighbour_start[c] .. [c + 1])
+  std::vector<int> neighbour_start, neighbours;
+
+  int num_faces() const { return static_cast<int>(normals.size()); }
+  // The corner farthest along `dir` (shape frame): by hill climbing along the edges from `start`
+  // (on a convex polyhedron a corner no neighbour improves on is the farthest), or by scanning
+  // every corner when there is no edge graph.
+  int support(const Vec3& dir, int start = 0) const;
+};
+
+// The faces of a closed, convex, outward-oriented triangle mesh: triangles that share an edge and
+// a plane (normals within `angle_tolerance` rad) are one face; vertices on no face boundary (a
+// fan's centre) are not corners.
+ConvexFaces convex_faces_of(const TriangleMesh& mesh, real angle_tolerance = real(1e-5));
+
+// Fills f.neighbour_start and f.neighbours from its faces' edges.
+void build_corner_graph(ConvexFaces& f);
+
+// The 8 corners and 6 faces of a box centred on its frame, into `out` (its storage kept).
+void box_convex_faces(const Vec3& half_extents, ConvexFaces& out);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,239 @@
+/// @file convex_contact_test.cpp
+/// Convex-convex contact (GJK/EPA and face clipping) against references that do not share its
+/// code: the separating-axis box-box test for random overlapping boxes, analytic gaps for
+/// stacked, edge-crossed and vertex-down shapes, and a brute-force scan for the hill-climbing
+/// support search. Also the faces read back from a hull, and hulls of near-duplicate points.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "collision/collision_detection.h"
+#include "mesh_builders.h"
+#include "superdex/physics/convex_hull.h"
+#include "superdex/physics/mesh_shape.h"
+#include "superdex/physics/mesh_validation.h"
+
+namespace superdex::physics::test {
+namespace {
+
+// A box as a convex mesh shape (its hull), so that the pair goes through the convex path.
+MeshShape box_hull(const Vec3& h) {
+  std::vector<Vec3> corners;
+  for (int i = 0; i < 8; ++i) corners.push_back(Vec3((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(), (i & 4 ? 1 : -1) * h.z()));
+  return make_convex_hull_shape(corners, "box");
+}
+
+SpatialTransform pose(const Vec3& p, const Quat& q = Quat::Identity()) {
+  SpatialTransform X;
+  X.R = q.toRotationMatrix();
+  X.p = p;
+  return X;
+}
+
+real deepest(const std::vector<ShapeContact>& c) {
+  real d = std::numeric_limits<real>::infinity();
+  for (const ShapeContact& x : c) d = std::min(d, x.phi);
+  return d;
+}
+
+TEST(ConvexFaces, HullOfACubeHasSixSquareFacesAndEightCorners) {
+  const MeshShape s = box_hull(Vec3(0.1, 0.2, 0.3));
+  ASSERT_TRUE(s.convex);
+  ASSERT_TRUE(s.faces);
+  const ConvexFaces& f = *s.faces;
+  EXPECT_EQ(f.corners.size(), 8u);  // the fan centres are not corners
+  ASSERT_EQ(f.num_faces(), 6);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_EQ(f.loop_start[k + 1] - f.loop_start[k], 4);
+    // axis-aligned outward normals, each face's corners on its plane
+    EXPECT_NEAR(f.normals[k].cwiseAbs().maxCoeff(), 1, 1e-12);
+    for (int i = f.loop_start[k]; i < f.loop_start[k + 1]; ++i) EXPECT_NEAR(f.normals[k].dot(f.corners[f.loops[i]]), f.offsets[k], 1e-12);
+    // counter-clockwise seen from outside
+    const Vec3 a = f.corners[f.loops[f.loop_start[k]]], b = f.corners[f.loops[f.loop_start[k] + 1]], c = f.corners[f.loops[f.loop_start[k] + 2]];
+    EXPECT_GT((b - a).cross(c - b).dot(f.normals[k]), 0);
+  }
+  // three edges meet at each corner of a box
+  for (size_t c = 0; c < 8; ++c) EXPECT_EQ(f.neighbour_start[c + 1] - f.neighbour_start[c], 3);
+}
+
+TEST(ConvexFaces, HillClimbingSupportEqualsBruteForce) {
+  const MeshShape s = make_convex_hull_shape(icosphere(3, 0.05).vertices, "icosphere");
+  const ConvexFaces& f = *s.faces;
+  ASSERT_GT(f.corners.size(), 600u);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  int start = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vec3 d(real(g(rng)), real(g(rng)), real(g(rng)));
+    real best = -1e30;
+    for (const Vec3& c : f.corners) best = std::max(best, c.dot(d));
+    start = f.support(d, start);
+    EXPECT_NEAR(f.corners[start].dot(d), best, 1e-12) << "trial " << trial;
+  }
+}
+
+TEST(ConvexHull, NearDuplicatePointsAreWeldedIntoOneCorner) {
+  // a unit cube's corners, each also 1e-7 m (1e-7 of the extent) away from itself: 8 corners,
+  // a closed hull without degenerate triangles
+  std::vector<Vec3> points = cube_mesh(0.5).vertices;
+  const size_t n = points.size();
+  for (size_t i = 0; i < n; ++i) points.push_back(points[i] + Vec3(real(1e-7), real(-1e-7), real(5e-8)));
+  const TriangleMesh hull = convex_hull(points, "cube with near-duplicates");
+  EXPECT_TRUE(is_closed(hull));
+  EXPECT_TRUE(degenerate_triangles(hull).empty());
+  const MeshShape s = make_convex_hull_shape(points, "cube with near-duplicates");
+  EXPECT_EQ(s.faces->corners.size(), 8u);
+}
+
+TEST(ConvexContact, StackedBoxesGiveTheFourCornersOfTheOverlapAtTheGap) {
+  // a 0.2 m cube over a 1 m x 1 m slab, apart by 1 mm, then pressed 2 mm into it
+  const MeshShape top = box_hull(Vec3(0.1, 0.1, 0.1)), slab = box_hull(Vec3(0.5, 0.5, 0.05));
+  for (const real gap : {real(0.001), real(-0.002)}) {
+    std::vector<ShapeContact> c;
+    collide_convex_convex(*top.faces, pose(Vec3(0.02, -0.03, 0.05 + 0.1 + gap)), *slab.faces, pose(Vec3::Zero()), real(0.005), c);
+    ASSERT_EQ(c.size(), 4u) << "gap " << gap;
+    for (const ShapeContact& x : c) {
+      EXPECT_NEAR(x.phi, gap, 1e-9);
+      EXPECT_NEAR((x.n_W - Vec3::UnitZ()).norm(), 0, 1e-9);  // from the slab towards the cube
+      EXPECT_NEAR(std::abs(x.p_W.x() - 0.02), 0.1, 1e-9);     // the cube's bottom corners
+      EXPECT_NEAR(std::abs(x.p_W.y() + 0.03), 0.1, 1e-9);
+      EXPECT_NEAR(x.p_W.z(), 0.05 + gap / 2, 1e-9);           // midway between the surfaces
+    }
+  }
+  // beyond the margin: nothing
+  std::vector<ShapeContact> none;
+  collide_convex_convex(*top.faces, pose(Vec3(0, 0, 0.05 + 0.1 + 0.006)), *slab.faces, pose(Vec3::Zero()), real(0.005), none);
+  EXPECT_TRUE(none.empty());
+}
+
+TEST(ConvexContact, CrossedEdgesMeetAtOnePointAtTheirDistance) {
+  // two cubes (half 0.1 m) turned 45 degrees about x and about y: their edges cross, one over
+  // the other; the gap between the edges is the centres' distance less 2 * 0.1 * sqrt(2)
+  const MeshShape cube = box_hull(Vec3(0.1, 0.1, 0.1));
+  const real h = real(0.1 * std::sqrt(2.0));
+  const Quat about_x(Eigen::AngleAxis<real>(real(M_PI / 4), Vec3::UnitX()));
+  const Quat about_y(Eigen::AngleAxis<real>(real(M_PI / 4), Vec3::UnitY()));
+  for (const real gap : {real(0.003), real(-0.004)}) {
+    std::vector<ShapeContact> c;
+    collide_convex_convex(*cube.faces, pose(Vec3(0, 0, 2 * h + gap), about_x), *cube.faces, pose(Vec3::Zero(), about_y), real(0.01), c);
+    ASSERT_EQ(c.size(), 1u) << "gap " << gap;
+    EXPECT_NEAR(c[0].phi, gap, 1e-7);
+    EXPECT_NEAR((c[0].n_W - Vec3::UnitZ()).norm(), 0, 1e-6);
+    EXPECT_NEAR((c[0].p_W - Vec3(0, 0, h + gap / 2)).norm(), 0, 1e-6);
+  }
+}
+
+// Penetration of two posed boxes along unit axis L: their projections' overlap (m).
+double overlap_along(const Vec3& L, const SpatialTransform& Xa, const Vec3& ha, const SpatialTransform& Xb, const Vec3& hb) {
+  double r = 0;
+  for (int k = 0; k < 3; ++k) r += ha[k] * std::abs(Xa.R.col(k).dot(L)) + hb[k] * std::abs(Xb.R.col(k).dot(L));
+  return r - std::abs(L.dot(Xa.p - Xb.p));
+}
+
+// Two boxes of random sizes (half extents in [0.02, 0.2) m) at random orientations, a's centre
+// within `spread` (m) of b's at the origin, and the 15 axes of the separating axis theorem.
+struct BoxPair {
+  Vec3 ha, hb;
+  SpatialTransform Xa, Xb;
+  std::vector<Vec3> axes;
+  double least_overlap() const {
+    double least = 1e30;
+    for (const Vec3& L : axes) least = std::min(least, overlap_along(L, Xa, ha, Xb, hb));
+    return least;
+  }
+};
+
+BoxPair random_box_pair(std::mt19937& rng, double spread) {
+  std::uniform_real_distribution<double> u(-1, 1), size(0.02, 0.2);
+  BoxPair p;
+  p.ha = Vec3(real(size(rng)), real(size(rng)), real(size(rng)));
+  p.hb = Vec3(real(size(rng)), real(size(rng)), real(size(rng)));
+  const Quat qa = Quat(real(u(rng)), real(u(rng)), real(u(rng)), real(u(rng))).normalized();
+  const Quat qb = Quat(real(u(rng)), real(u(rng)), real(u(rng)), real(u(rng))).normalized();
+  p.Xa = pose(Vec3(real(spread * u(rng)), real(spread * u(rng)), real(spread * u(rng))), qa);
+  p.Xb = pose(Vec3::Zero(), qb);
+  for (int i = 0; i < 3; ++i) {
+    p.axes.push_back(p.Xa.R.col(i));
+    p.axes.push_back(p.Xb.R.col(i));
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 c = p.Xa.R.col(i).cross(p.Xb.R.col(j));
+      if (c.norm() > 1e-9) p.axes.push_back(c.normalized());
+    }
+  }
+  return p;
+}
+
+TEST(ConvexContact, OverlappingBoxesAgreeWithTheSeparatingAxisTheorem) {
+  // random overlapping boxes: EPA's deepest penetration is the minimal translation, which by the
+  // separating axis theorem is the least overlap over the 3 + 3 face normals and 9 edge
+  // directions; and the boxes overlap by exactly that much along the contact normal
+  std::mt19937 rng(11);
+  int compared = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const BoxPair pair = random_box_pair(rng, 0.15);
+    const Vec3 &ha = pair.ha, &hb = pair.hb;
+    const SpatialTransform &Xa = pair.Xa, &Xb = pair.Xb;
+    const double least = pair.least_overlap();
+    if (least < 1e-4) continue;  // apart, or barely touching
+    const MeshShape a = box_hull(ha), b = box_hull(hb);
+    std::vector<ShapeContact> epa;
+    collide_convex_convex(*a.faces, Xa, *b.faces, Xb, 0, epa);
+    ASSERT_FALSE(epa.empty()) << "trial " << trial;
+    ASSERT_LE(epa.size(), kMaxConvexContacts);
+    EXPECT_NEAR(deepest(epa), -least, 1e-6) << "trial " << trial;
+    EXPECT_NEAR(overlap_along(epa[0].n_W, Xa, ha, Xb, hb), least, 1e-6) << "trial " << trial;
+    // the normal points from b towards a
+    EXPECT_GT(epa[0].n_W.dot(Xa.p - Xb.p), 0) << "trial " << trial;
+    ++compared;
+  }
+  EXPECT_GT(compared, 50);
+}
+
+TEST(ConvexDistance, GjkDistanceIsCertifiedAndFindsEveryOverlap) {
+  // random box pairs: when the separating axis theorem finds them overlapping, GJK must too; when
+  // apart, GJK's distance is at least the best axis's separation, and its closest points certify
+  // it (the two boxes' supports along the closest points' direction are that far apart)
+  std::mt19937 rng(5);
+  int apart = 0, overlapping = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const BoxPair pair = random_box_pair(rng, 0.4);
+    const Vec3 &ha = pair.ha, &hb = pair.hb;
+    const SpatialTransform &Xa = pair.Xa, &Xb = pair.Xb;
+    const double separation = -pair.least_overlap();
+    const MeshShape a = box_hull(ha), b = box_hull(hb);
+    const ConvexDistance d = convex_distance(*a.faces, Xa, *b.faces, Xb);
+    if (separation < -1e-6) {
+      EXPECT_TRUE(d.overlap || d.distance < 1e-9) << "trial " << trial << ": overlap by " << -separation << " not found";
+      ++overlapping;
+    } else if (separation > 1e-6) {
+      ASSERT_FALSE(d.overlap) << "trial " << trial;
+      EXPECT_GE(d.distance, separation - 1e-9) << "trial " << trial;
+      const Vec3 n = (d.p_a - d.p_b) / d.distance;
+      EXPECT_NEAR(-overlap_along(n, Xa, ha, Xb, hb), d.distance, 1e-9) << "trial " << trial;
+      EXPECT_NEAR(-overlap_along(d.normal, Xa, ha, Xb, hb), d.distance, 1e-9) << "trial " << trial;
+      ++apart;
+    }
+  }
+  EXPECT_GT(apart, 50);
+  EXPECT_GT(overlapping, 50);
+}
+
+TEST(ConvexContact, TetrahedronPointDownTouchesAtItsTip) {
+  // a regular tetrahedron standing on one vertex over a slab: one contact under the tip
+  const real s = real(0.1);
+  const std::vector<Vec3> tet{Vec3(0, 0, 0), Vec3(s, 0, s * real(std::sqrt(2.0))), Vec3(-s / 2, s * real(std::sqrt(3.0) / 2), s * real(std::sqrt(2.0))),
+                              Vec3(-s / 2, -s * real(std::sqrt(3.0) / 2), s * real(std::sqrt(2.0)))};
+  const MeshShape t = make_convex_hull_shape(tet, "tetrahedron"), slab = box_hull(Vec3(0.5, 0.5, 0.05));
+  std::vector<ShapeContact> c;
+  collide_convex_convex(*t.faces, pose(Vec3(0.1, 0.2, 0.05 - 0.0015)), *slab.faces, pose(Vec3::Zero()), real(0.005), c);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0].phi, -0.0015, 1e-9);
+  EXPECT_NEAR((c[0].n_W - Vec3::UnitZ()).norm(), 0, 1e-9);
+  EXPECT_NEAR((c[0].p_W - Vec3(0.1, 0.2, 0.05 - 0.00075)).norm(), 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace superdex::physics::test
