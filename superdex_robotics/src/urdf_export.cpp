@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <nlohmann/json.hpp>
@@ -127,14 +128,17 @@ struct Writer {
       const physics::LinkDesc& L = a.links[i];
       auto* link = robot->InsertNewChildElement("link");
       link->SetAttribute("name", link_name[i].c_str());
+      // the inline primitive at its shapeScale (meshes come baked)
+      std::optional<physics::ShapeGeometry> shape;
+      if (L.shape) shape = physics::scaled_shape(*L.shape, L.shape_scale, "save_to_urdf: links[" + std::to_string(i) + "].shapeScale");
       // mass and inertia about the centre of mass (the link's axes), from the shape when not given
       real mass = L.mass.value_or(0);
       Vec3 com = L.center_of_mass.value_or(Vec3::Zero());
       std::array<real, 6> I{};
       if (L.moment_of_inertia) {
         I = *L.moment_of_inertia;
-      } else if (L.shape && !std::holds_alternative<physics::PlaneShape>(*L.shape) && (mass > 0 || !L.mass)) {
-        physics::MassProperties mp = physics::shape_mass_properties(*L.shape, L.density.value_or(real(1000)));
+      } else if (shape && !std::holds_alternative<physics::PlaneShape>(*shape) && (mass > 0 || !L.mass)) {
+        physics::MassProperties mp = physics::shape_mass_properties(*shape, L.density.value_or(real(1000)));
         const Mat3 R = L.link_from_shape.rotation.normalized().toRotationMatrix();
         const Mat3 Ic = R * mp.inertia_about_com * R.transpose() * (L.mass ? mass / mp.mass : real(1));
         if (!L.mass) mass = mp.mass;
@@ -149,8 +153,8 @@ struct Writer {
         const char* names[] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
         for (int k = 0; k < 6; ++k) inertia->SetAttribute(names[k], num(I[k]).c_str());
       }
-      if (L.shape && L.collider_type != "None")
-        collision(link, *L.shape, offset[i] + L.link_from_shape.translation, L.link_from_shape.rotation, link_name[i]);
+      if (shape && L.collider_type != "None")
+        collision(link, *shape, offset[i] + L.link_from_shape.translation, L.link_from_shape.rotation, link_name[i]);
       for (size_t k = 0; k < L.extra_shapes.size(); ++k)
         if (L.collider_type != "None")
           collision(link, L.extra_shapes[k].shape, offset[i] + L.extra_shapes[k].link_from_shape.translation,

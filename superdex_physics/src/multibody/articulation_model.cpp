@@ -62,22 +62,6 @@ void check_transform(const Transform& X, const Reporter& r, const std::string& p
     r.fail(path + ".rotation", "must be a finite, non-zero quaternion [x, y, z, w]");
 }
 
-// Scales a primitive shape by a per-axis factor; spheres need a uniform scale, capsules x = y.
-ShapeGeometry scaled(const ShapeGeometry& shape, const Vec3& s, const Reporter& r, const std::string& path) {
-  if (!s.allFinite() || (s.array() <= 0).any()) r.fail(path, "shapeScale must be positive and finite");
-  if (auto* sph = std::get_if<SphereShape>(&shape)) {
-    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x() || std::abs(s.x() - s.z()) > real(1e-6) * s.x())
-      r.fail(path, "a sphere needs a uniform shapeScale");
-    return SphereShape{sph->center.cwiseProduct(s), sph->radius * s.x()};
-  }
-  if (auto* box = std::get_if<BoxShape>(&shape)) return BoxShape{box->half_extents.cwiseProduct(s)};
-  if (auto* cap = std::get_if<CapsuleShape>(&shape)) {
-    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x()) r.fail(path, "a capsule needs shapeScale x == y");
-    return CapsuleShape{cap->radius * s.x(), cap->half_length * s.z()};
-  }
-  return shape;
-}
-
 // Checks a rotational inertia: symmetric positive definite and satisfying the triangle
 // inequality of principal moments (a physical mass distribution).
 void check_inertia(const Mat3& I, const Reporter& r, const std::string& path) {
@@ -89,6 +73,22 @@ void check_nonnegative(real x, const Reporter& r, const std::string& path) {
 }
 
 }  // namespace
+
+ShapeGeometry scaled_shape(const ShapeGeometry& shape, const Vec3& s, const std::string& where) {
+  auto fail = [&](const std::string& what) { throw Error(where + ": " + what); };
+  if (!s.allFinite() || (s.array() <= 0).any()) fail("shapeScale must be positive and finite");
+  if (auto* sph = std::get_if<SphereShape>(&shape)) {
+    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x() || std::abs(s.x() - s.z()) > real(1e-6) * s.x())
+      fail("a sphere needs a uniform shapeScale");
+    return SphereShape{sph->center.cwiseProduct(s), sph->radius * s.x()};
+  }
+  if (auto* box = std::get_if<BoxShape>(&shape)) return BoxShape{box->half_extents.cwiseProduct(s)};
+  if (auto* cap = std::get_if<CapsuleShape>(&shape)) {
+    if (std::abs(s.x() - s.y()) > real(1e-6) * s.x()) fail("a capsule needs shapeScale x == y");
+    return CapsuleShape{cap->radius * s.x(), cap->half_length * s.z()};
+  }
+  return shape;
+}
 
 JointCoupling coupling_of(const LinearTransmission& t, const std::vector<JointDesc>& joints, const std::string& where) {
   if (t.joint_indices.size() != 2 || t.joint_coefficients.size() != 2)
@@ -238,7 +238,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     std::optional<ShapeGeometry> shape;
     if (L.shape) {
       validate_shape(*L.shape, source + ": " + at("links", i, "shape"));
-      shape = scaled(*L.shape, L.shape_scale, r, at("links", i, "shapeScale"));
+      shape = scaled_shape(*L.shape, L.shape_scale, source + ": " + at("links", i, "shapeScale"));
     }
     if (L.center_of_mass && !L.center_of_mass->allFinite()) r.fail(at("links", i, "centerOfMass"), "must be finite");
     if (!L.link_from_shape.translation.allFinite() || !L.link_from_shape.rotation.coeffs().allFinite())

@@ -185,3 +185,29 @@ def test_what_urdf_cannot_hold_is_an_error(tmp_path):
     prefab = sdr.load_bot_prefab_from_file(tmp_path / "ball.superdex_bot")
     with pytest.raises(sdp.Error, match=r"save_to_urdf: joints\[1\]\.type: URDF has no Spherical joint below the root \(joint 'shoulder'\)"):
         sdr.save_to_urdf_string(prefab)
+
+
+def test_a_scaled_primitive_is_written_at_its_scale(tmp_path):
+    """A link's box with shapeScale (2, 1, 0.5) and a density, no mass: the URDF box is the scaled
+    one, and its mass and inertia are the scaled box's (m = rho * volume, I = m (b^2 + c^2) / 12)."""
+    bot = {
+        "name": "slab",
+        "links": [{"name": "base", "density": 500.0, "shapeScale": [2.0, 1.0, 0.5],
+                   "shape": {"box": {"halfExtents": [0.1, 0.05, 0.04]}}}],
+        "joints": [{"name": "root", "type": "Free"}],
+    }
+    path = tmp_path / "slab.superdex_bot"
+    path.write_text(json.dumps(bot))
+    prefab = quiet(sdr.load_bot_prefab_from_file, path)
+    import xml.etree.ElementTree as ET
+
+    link = ET.fromstring(quiet(sdr.save_to_urdf_string, prefab)).find("link")
+    size = [float(x) for x in link.find("collision/geometry/box").get("size").split()]
+    np.testing.assert_allclose(size, [0.4, 0.1, 0.04], rtol=ROUND_TRIP)
+    a, b, c = size
+    mass = 500.0 * a * b * c
+    assert float(link.find("inertial/mass").get("value")) == pytest.approx(mass, rel=ROUND_TRIP)
+    inertia = link.find("inertial/inertia")
+    expected = {"ixx": mass * (b * b + c * c) / 12, "iyy": mass * (a * a + c * c) / 12, "izz": mass * (a * a + b * b) / 12}
+    for name, value in expected.items():
+        assert float(inertia.get(name)) == pytest.approx(value, rel=ROUND_TRIP)

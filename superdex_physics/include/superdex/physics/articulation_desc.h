@@ -176,6 +176,11 @@ struct ArticulationDesc {
   std::vector<LinearTransmission> linear_transmissions;
 };
 
+/// A link's inline primitive scaled by its shapeScale `s` per axis (a sphere needs a uniform
+/// scale, a capsule x == y; meshes come baked and are returned as they are). Throws
+/// superdex::Error "<where>: ..." for a non-positive or non-finite scale or one the shape cannot take.
+ShapeGeometry scaled_shape(const ShapeGeometry& shape, const Vec3& s, const std::string& where);
+
 /// The coupling a two-joint linear transmission holds: joint 1 follows joint 0 by -c_0 / c_1,
 /// offset target / c_1. Throws superdex::Error naming `where` for indices out of range, a
 /// transmission of another number of joints, or a zero c_1.
