@@ -20,11 +20,9 @@ struct Vertex {
 // The simplex's closest point to the origin: barycentric weights over its vertices; vertices
 // whose weight is zero are dropped. Returns false when the origin lies inside a tetrahedron.
 bool closest_on_simplex(Vertex* s, int& n, real* lambda) {
-  auto keep = [&](std::initializer_list<int> idx, std::initializer_list<real> weights) {
+  auto apply = [&](const int* idx, const real* wts, int m) {
     Vertex kept[4];
-    int m = 0;
-    auto wt = weights.begin();
-    for (int i : idx) kept[m] = s[i], lambda[m] = *wt++, ++m;
+    for (int i = 0; i < m; ++i) kept[i] = s[idx[i]], lambda[i] = wts[i];
     for (int i = 0; i < m; ++i) s[i] = kept[i];
     n = m;
   };
@@ -36,9 +34,9 @@ bool closest_on_simplex(Vertex* s, int& n, real* lambda) {
     const Vec3 ab = s[1].w - s[0].w;
     const real len2 = ab.squaredNorm();
     const real t = len2 > 0 ? -s[0].w.dot(ab) / len2 : real(0);
-    if (t <= 0) keep({0}, {1});
-    else if (t >= 1) keep({1}, {1});
-    else keep({0, 1}, {1 - t, t});
+    const int idx[2] = {t >= 1 ? 1 : 0, 1};
+    const real wts[2] = {t <= 0 || t >= 1 ? real(1) : 1 - t, t};
+    apply(idx, wts, t <= 0 || t >= 1 ? 1 : 2);
     return true;
   }
   // a triangle's regions: its corners, edges and face
@@ -69,12 +67,6 @@ bool closest_on_simplex(Vertex* s, int& n, real* lambda) {
     const real denom = 1 / (va + vb + vc);
     const real v = vb * denom, w = vc * denom;
     m = 3, idx[0] = ia, idx[1] = ib, idx[2] = ic, wts[0] = 1 - v - w, wts[1] = v, wts[2] = w;
-  };
-  auto apply = [&](const int* idx, const real* wts, int m) {
-    Vertex kept[4];
-    for (int i = 0; i < m; ++i) kept[i] = s[idx[i]], lambda[i] = wts[i];
-    for (int i = 0; i < m; ++i) s[i] = kept[i];
-    n = m;
   };
   if (n == 3) {
     int idx[3], m;
