@@ -87,9 +87,7 @@ void collide_convex_convex(const ConvexFaces& a, const SpatialTransform& X_WA, c
                            const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out) {
   if (a.corners.empty() || b.corners.empty()) return;
   // the pair's size, for tolerances
-  real size = 0;
-  for (const Vec3& c : a.corners) size = std::max(size, (c - a.centre).norm());
-  for (const Vec3& c : b.corners) size = std::max(size, (c - b.centre).norm());
+  const real size = std::max(a.radius, b.radius);
   real gap = 0;
   Vec3 n;
   std::optional<Vec3> witness;  // the contact point, when the closest points give it

@@ -144,6 +144,7 @@ ConvexFaces convex_faces_of(const TriangleMesh& mesh, real angle_tolerance) {
   out.loop_start.push_back(static_cast<int>(out.loops.size()));
   for (const Vec3& c : out.corners) out.centre += c;
   if (!out.corners.empty()) out.centre /= static_cast<real>(out.corners.size());
+  for (const Vec3& c : out.corners) out.radius = std::max(out.radius, (c - out.centre).norm());
   build_corner_graph(out);
   return out;
 }
@@ -163,6 +164,7 @@ void box_convex_faces(const Vec3& h, ConvexFaces& out) {
   }
   out.loop_start.push_back(static_cast<int>(out.loops.size()));
   out.centre = Vec3::Zero();
+  out.radius = h.norm();
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -17,6 +17,7 @@ struct ConvexFaces {
   std::vector<int> loop_start;        // face f's corners are loops[loop_start[f] .. loop_start[f + 1])
   std::vector<int> loops;             // corner indices, counter-clockwise seen from outside
   Vec3 centre = Vec3::Zero();         // the corners' mean (an interior point)
+  real radius = 0;                    // the farthest corner's distance from `centre` (m)
   // corner c's neighbours along the faces' edges: neighbours[neighbour_start[c] .. [c + 1])
   std::vector<int> neighbour_start, neighbours;
 
