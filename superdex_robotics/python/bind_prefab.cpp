@@ -113,9 +113,9 @@ void export_prefab(nb::module_& m) {
                                             "towards target_displacement. One of two joints is held as a rigid coupling (the second joint "
                                             "follows the first by -c_0 / c_1); its spring and damper are not modelled yet.")
       .field("name", &physics::LinearTransmission::name, "a label")
-      .span_field("joint_indices", &physics::LinearTransmission::joint_indices, "indices into BotPrefab.joints")
-      .span_field("joint_coefficients", &physics::LinearTransmission::joint_coefficients, "c_k per joint")
-      .span_field("joint_axis_disps", &physics::LinearTransmission::joint_axis_disps, "attachment offsets along the joint axes (m)")
+      .field("joint_indices", &physics::LinearTransmission::joint_indices, "indices into BotPrefab.joints")
+      .field("joint_coefficients", &physics::LinearTransmission::joint_coefficients, "c_k per joint")
+      .field("joint_axis_disps", &physics::LinearTransmission::joint_axis_disps, "attachment offsets along the joint axes (m)")
       .field("target_displacement", &physics::LinearTransmission::target_displacement, "m (or joint units for a gearbox)")
       .field("stiffness", &physics::LinearTransmission::stiffness, "N/m (not modelled yet)")
       .field("damping", &physics::LinearTransmission::damping, "N s/m (not modelled yet)")

@@ -87,3 +87,19 @@ def test_transmissions_set_in_code_couple_the_joints(scene, tmp_path):  # noqa: 
     prefab.linear_transmissions = [sdr.BotLinearTransmissionPrefab(joint_indices=[1, 2], joint_coefficients=[0.5, 0.0])]
     with pytest.raises(sdp.Error, match=r"linearTransmissions\[0\]\.jointCoefficients\[1\]: must not be zero"):
         sdr.create_bot(scene, prefab, sdr.create_context())
+
+
+def test_transmission_arrays_are_edited_in_place():
+    # the joint arrays are the struct's own arrays: appending or assigning an element changes it
+    t = sdr.BotLinearTransmissionPrefab(joint_indices=[1, 2], joint_coefficients=[0.5, -1.0])
+    t.joint_indices.append(3)
+    t.joint_coefficients[0] = 2.0
+    t.joint_axis_disps.resize(3)
+    assert list(t.joint_indices) == [1, 2, 3]
+    assert list(t.joint_coefficients) == [2.0, -1.0]
+    assert list(t.joint_axis_disps) == [0.0, 0.0, 0.0]
+    assert t != sdr.BotLinearTransmissionPrefab(joint_indices=[1, 2], joint_coefficients=[0.5, -1.0])
+    t.joint_indices = (4, 5)
+    assert list(t.joint_indices) == [4, 5]
+    with pytest.raises(TypeError):
+        t.joint_coefficients = ["a"]
