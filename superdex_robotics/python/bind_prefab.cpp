@@ -122,6 +122,21 @@ void export_prefab(nb::module_& m) {
       .field("allow_compressive_force", &physics::LinearTransmission::allow_compressive_force)
       .done();
   nb::bind_vector<std::vector<physics::LinearTransmission>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotLinearTransmissionPrefab");
+  StructBinder<physics::FixedTendon>(m, "FixedTendon",
+                                     "A fixed tendon (BotPrefab.fixed_tendons, MJCF <tendon><fixed>): length L = sum_k c_k q_k, kept "
+                                     "within [lower, upper] where limited, pulled towards rest_length by a spring and damper.")
+      .field("name", &physics::FixedTendon::name)
+      .field("joints", &physics::FixedTendon::joints, "joint names, one per coefficient")
+      .field("coefficients", &physics::FixedTendon::coefficients, "c_k: length per unit of joint k's motion")
+      .field("has_lower", &physics::FixedTendon::has_lower)
+      .field("has_upper", &physics::FixedTendon::has_upper)
+      .field("lower", &physics::FixedTendon::lower, "m (or rad), where has_lower")
+      .field("upper", &physics::FixedTendon::upper, "m (or rad), where has_upper")
+      .field("stiffness", &physics::FixedTendon::stiffness, "N/m (or N m/rad)")
+      .field("damping", &physics::FixedTendon::damping, "N s/m (or N m s/rad)")
+      .field("rest_length", &physics::FixedTendon::rest_length, "m (or rad): the spring's relaxed length")
+      .done();
+  nb::bind_vector<std::vector<physics::FixedTendon>, nb::rv_policy::reference_internal>(m, "DynamicArrayFixedTendon");
   nb::bind_vector<std::vector<BotSensorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotSensorPrefab");
   nb::bind_vector<std::vector<BotActuatorPrefab>, nb::rv_policy::reference_internal>(m, "DynamicArrayBotActuatorPrefab");
   nb::bind_vector<std::vector<std::vector<ComponentDecl>>, nb::rv_policy::reference_internal>(m, "ComponentDeclLists");
@@ -226,6 +241,9 @@ void export_prefab(nb::module_& m) {
                    [](BotPrefab& p) -> std::vector<physics::LinearTransmission>& { return p.articulation.linear_transmissions; },
                    [](BotPrefab& p, std::vector<physics::LinearTransmission> t) { p.articulation.linear_transmissions = std::move(t); },
                    nb::rv_policy::reference_internal, "the bot file's linearTransmissions (two-joint ones hold their joints coupled)")
+      .def_prop_rw("fixed_tendons", [](BotPrefab& p) -> std::vector<physics::FixedTendon>& { return p.articulation.fixed_tendons; },
+                   [](BotPrefab& p, std::vector<physics::FixedTendon> t) { p.articulation.fixed_tendons = std::move(t); },
+                   nb::rv_policy::reference_internal, "fixed tendons: length limits and springs on sums of joint positions (MJCF)")
       .def_prop_ro("sensors", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.sensors; },
                    nb::rv_policy::reference_internal, "per link: the sensors declared on it")
       .def_prop_ro("actuators", [](BotPrefab& p) -> std::vector<std::vector<ComponentDecl>>& { return p.actuators; },

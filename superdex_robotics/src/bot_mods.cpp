@@ -129,6 +129,7 @@ void apply_attach_bot(const ModContext& c, BotPrefab& bot, const json& mod, cons
   bot.articulation.default_pose = std::move(pose);
   auto& a = bot.articulation;
   a.couplings.insert(a.couplings.end(), child.articulation.couplings.begin(), child.articulation.couplings.end());
+  a.fixed_tendons.insert(a.fixed_tendons.end(), child.articulation.fixed_tendons.begin(), child.articulation.fixed_tendons.end());
   a.contact_overrides.insert(a.contact_overrides.end(), child.articulation.contact_overrides.begin(), child.articulation.contact_overrides.end());
   // the child's transmissions name its joints by index: now `offset` further on
   for (physics::LinearTransmission t : child.articulation.linear_transmissions) {

@@ -220,6 +220,11 @@ struct Writer {
       if (meshes_skipped > 0)
         warnings->push_back(who + std::to_string(meshes_skipped) + " mesh collision shape(s) left out (a URDF string has no folder for mesh files)");
       if (planes_skipped > 0) warnings->push_back(who + std::to_string(planes_skipped) + " plane shape(s) left out (URDF has no plane)");
+      if (!a.fixed_tendons.empty()) {
+        std::string list;
+        for (const physics::FixedTendon& t : a.fixed_tendons) list += (list.empty() ? "" : ", ") + t.name;
+        warnings->push_back(who + "URDF has no tendons or joint springs: left out " + list);
+      }
     }
     tinyxml2::XMLPrinter printer;
     doc.Print(&printer);

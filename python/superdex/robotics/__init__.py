@@ -21,6 +21,7 @@ BotSensorPrefab = _r.BotSensorPrefab
 BotActuatorPrefab = _r.BotActuatorPrefab
 BotLinearTransmissionPrefab = _r.BotLinearTransmissionPrefab
 JointCoupling = _r.JointCoupling
+FixedTendon = _r.FixedTendon
 ComponentDecl = _r.ComponentDecl
 # handles: 0 (a default-constructed handle) is invalid
 RoboticsHandle = _r.RoboticsHandle

@@ -75,7 +75,7 @@ void solve_island_once(const IslandInputs& in, bool include_deferred, const std:
 bool violates_deferred_rows(const Island& island, const std::vector<ArticulationTerms>& terms, const std::vector<VecX>& v) {
   for (size_t j = 0; j < island.bodies.size(); ++j)
     for (const JointRow& row : terms[island.bodies[j]].joint_rows)
-      if (row.deferred && row.sign * v[j][row.dof] < row.block.vhat) return true;
+      if (row.deferred && (row.J.size() > 0 ? row.J.dot(v[j]) : row.sign * v[j][row.dof]) < row.block.vhat) return true;
   return false;
 }
 

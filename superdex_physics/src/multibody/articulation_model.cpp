@@ -1,6 +1,7 @@
 // Validation of an ArticulationDesc and construction of its model and initial state.
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -70,6 +71,41 @@ void check_inertia(const Mat3& I, const Reporter& r, const std::string& path) {
 
 void check_nonnegative(real x, const Reporter& r, const std::string& path) {
   if (!std::isfinite(x) || x < 0) r.fail(path, "must be a finite number >= 0, got " + num(x));
+}
+
+// fixedTendons[k] on the model's revolute and prismatic joints, checked field by field
+ArticulationModel::Tendon tendon_model(const FixedTendon& t, const ArticulationModel& m, const Reporter& r, size_t k) {
+  const std::string path = at("fixedTendons", k);
+  if (t.joints.empty()) r.fail(path + ".joints", "a tendon needs at least one joint");
+  if (t.coefficients.size() != t.joints.size())
+    r.fail(path + ".coefficients", "expected one per joint (" + std::to_string(t.joints.size()) + "), got " + std::to_string(t.coefficients.size()));
+  ArticulationModel::Tendon out;
+  for (size_t j = 0; j < t.joints.size(); ++j) {
+    const auto it = std::find(m.joint_names.begin(), m.joint_names.end(), t.joints[j]);
+    const std::string jpath = path + ".joints[" + std::to_string(j) + "]";
+    if (it == m.joint_names.end()) r.fail(jpath, "no joint named '" + t.joints[j] + "'");
+    const JointModel& joint = m.joints[static_cast<size_t>(it - m.joint_names.begin())];
+    if (joint.type != JointType::Revolute && joint.type != JointType::Prismatic)
+      r.fail(jpath, "joint '" + t.joints[j] + "' is " + joint_type_name(joint.type) + "; tendons run over revolute and prismatic joints");
+    if (!std::isfinite(t.coefficients[j])) r.fail(path + ".coefficients[" + std::to_string(j) + "]", "must be finite");
+    out.dofs.push_back(joint.v_offset);
+    out.q.push_back(joint.q_offset);
+    out.coefficients.push_back(t.coefficients[j]);
+  }
+  if ((t.has_lower && !std::isfinite(t.lower)) || (t.has_upper && !std::isfinite(t.upper))) r.fail(path + ".range", "must be finite");
+  if (t.has_lower && t.has_upper && t.lower > t.upper)
+    r.fail(path + ".range", "lower (" + num(t.lower) + ") is above upper (" + num(t.upper) + ")");
+  check_nonnegative(t.stiffness, r, path + ".stiffness");
+  check_nonnegative(t.damping, r, path + ".damping");
+  if (!std::isfinite(t.rest_length)) r.fail(path + ".restLength", "must be finite");
+  out.has_lower = t.has_lower;
+  out.has_upper = t.has_upper;
+  out.lower = t.lower;
+  out.upper = t.upper;
+  out.stiffness = t.stiffness;
+  out.damping = t.damping;
+  out.rest_length = t.rest_length;
+  return out;
 }
 
 }  // namespace
@@ -359,6 +395,7 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
     const std::string where = source + ": linearTransmissions[" + std::to_string(k) + "]";
     add_coupling(coupling_of(t, desc.joints, where), "linearTransmissions", k);
   }
+  for (size_t k = 0; k < desc.fixed_tendons.size(); ++k) m.tendons.push_back(tendon_model(desc.fixed_tendons[k], m, r, k));
   m.desc = desc;
   merge_welded_links(m);
   // every body that moves carries mass once welded links are merged into it

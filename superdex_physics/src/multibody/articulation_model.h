@@ -69,6 +69,20 @@ struct ArticulationModel {
     real ratio = 1, offset = 0;
   };
   std::vector<Coupling> couplings;
+  // fixed tendons (ArticulationDesc::fixed_tendons): length sum_k coefficients[k] q[q[k]], its
+  // rate the same sum over v[dofs[k]]
+  struct Tendon {
+    std::vector<int> dofs, q;
+    std::vector<real> coefficients;
+    bool has_lower = false, has_upper = false;
+    real lower = 0, upper = 0, stiffness = 0, damping = 0, rest_length = 0;
+    real length(const VecX& positions) const {
+      real L = 0;
+      for (size_t k = 0; k < q.size(); ++k) L += coefficients[k] * positions[q[k]];
+      return L;
+    }
+  };
+  std::vector<Tendon> tendons;
   ArticulationDesc desc;               // the validated description it was built from
 };
 

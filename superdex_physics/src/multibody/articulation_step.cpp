@@ -95,6 +95,47 @@ void coupling_rows(const ArticulationModel& model, const ArticulationState& stat
   }
 }
 
+// Fixed tendon limit rows: sign * (c . v) >= vhat closing the length's distance to its bound, as
+// joint limits are (near-rigid, back no faster than the depenetration bound), deferred while the
+// free motion stays well inside the range.
+void tendon_limit_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const StepSettings& params,
+                       ArticulationTerms& t) {
+  const real near_rigid = near_rigid_factor(params);
+  for (const ArticulationModel::Tendon& tendon : model.tendons) {
+    if (!tendon.has_lower && !tendon.has_upper) continue;
+    const real L = tendon.length(state.q);
+    real rate_free = 0;
+    for (size_t k = 0; k < tendon.dofs.size(); ++k) rate_free += tendon.coefficients[k] * t.v_free[tendon.dofs[k]];
+    for (const real sign : {real(1), real(-1)}) {
+      if (!(sign > 0 ? tendon.has_lower : tendon.has_upper)) continue;
+      JointRow row;
+      row.J = VecX::Zero(model.nv);
+      for (size_t k = 0; k < tendon.dofs.size(); ++k) row.J[tendon.dofs[k]] += sign * tendon.coefficients[k];
+      MatX X = row.J;
+      row.block.kind = BlockKind::Unilateral;
+      row.block.R = near_rigid * compliance_diagonal(t.A_llt, X)[0];
+      row.block.vhat = std::min(-(sign > 0 ? L - tendon.lower : tendon.upper - L) / dt, params.max_depenetration_speed);
+      row.deferred = params.defer_inactive_joint_limits && row.block.vhat < 0 && sign * rate_free > row.block.vhat / 2;
+      t.joint_rows.push_back(std::move(row));
+    }
+  }
+}
+
+// Fixed tendon springs and dampers, implicit: the tendon force f = K (rest - L(q+)) - D (c . v+)
+// with L(q+) = L + dt c . v+ adds dt (dt K + D) c c^T to A and dt K (rest - L) c to r.
+void tendon_springs(const ArticulationModel& model, const ArticulationState& state, real dt, ArticulationTerms& t) {
+  for (const ArticulationModel::Tendon& tendon : model.tendons) {
+    if (tendon.stiffness <= 0 && tendon.damping <= 0) continue;
+    const real force = tendon.stiffness * (tendon.rest_length - tendon.length(state.q));
+    const real per_rate = dt * (dt * tendon.stiffness + tendon.damping);
+    for (size_t a = 0; a < tendon.dofs.size(); ++a) {
+      t.r[tendon.dofs[a]] += dt * force * tendon.coefficients[a];
+      for (size_t b = 0; b < tendon.dofs.size(); ++b)
+        t.A(tendon.dofs[a], tendon.dofs[b]) += per_rate * tendon.coefficients[a] * tendon.coefficients[b];
+    }
+  }
+}
+
 // A single free body's gyroscopic torque w x (I w), explicit in the bias forces, lets a tumbling
 // body gain energy. Replace it by backward Euler on Euler's equations in the body frame,
 // I (w2 - w1) + dt w2 x (I w2) = 0 (Newton), whose solution never gains kinetic energy
@@ -179,11 +220,13 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   for (const JointModel& j : model.joints)
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   implicit_gyroscopic(model, a.state, dt, t.r);
+  tendon_springs(model, a.state, dt, t);
   t.A_llt.compute(t.A);
   t.v_free = t.r;
   t.A_llt.solve_in_place(t.v_free);
   joint_rows(model, a.state, dt, params, t);
   coupling_rows(model, a.state, dt, params, t);
+  tendon_limit_rows(model, a.state, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
 }
 
@@ -198,6 +241,7 @@ real ArticulationTerms::inverse_diagonal(int k) const {
 }
 
 real deferred_compliance(const ArticulationTerms& t, const JointRow& row, const StepSettings& params) {
+  if (row.J.size() > 0) return row.block.R;  // a row over several DOFs has its floor already
   return std::max(row.block.R, near_rigid_factor(params) * t.inverse_diagonal(row.dof));
 }
 

@@ -211,3 +211,15 @@ def test_a_scaled_primitive_is_written_at_its_scale(tmp_path):
     expected = {"ixx": mass * (b * b + c * c) / 12, "iyy": mass * (a * a + c * c) / 12, "izz": mass * (a * a + b * b) / 12}
     for name, value in expected.items():
         assert float(inertia.get(name)) == pytest.approx(value, rel=ROUND_TRIP)
+
+
+def test_tendons_are_named_when_left_out(tmp_path):
+    # URDF cannot hold an MJCF model's tendons or joint springs: the writer names each one
+    prefab = finger_bot(tmp_path)
+    prefab.fixed_tendons = [sdr.FixedTendon(name="coupling", joints=["proximal_joint", "distal_joint"], coefficients=[1.0, -1.0]),
+                            sdr.FixedTendon(name="distal_joint/spring", joints=["distal_joint"], coefficients=[1.0], stiffness=2.0)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        text = sdr.save_to_urdf_string(prefab)
+    assert any("URDF has no tendons or joint springs: left out coupling, distal_joint/spring" in str(w.message) for w in caught)
+    assert "<robot" in text

@@ -131,7 +131,9 @@ const char* MjcfDocument::attr(const XMLElement* e, const char* name, const std:
   const std::string cls = own ? own : (childclass.empty() ? "main" : childclass);
   const auto c = defaults_.find(cls);
   if (c == defaults_.end()) fail(e, "class " + in_quotes(cls) + " is not a defined default class");
-  const auto k = c->second.find(e->Name());
+  // <fixed> and <spatial> tendons take their defaults from <default><tendon>
+  const std::string kind = e->Name();
+  const auto k = c->second.find(kind == "fixed" || kind == "spatial" ? std::string("tendon") : kind);
   if (k == c->second.end()) return nullptr;
   const auto a = k->second.find(name);
   return a == k->second.end() ? nullptr : a->second.c_str();

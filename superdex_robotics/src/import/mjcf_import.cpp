@@ -35,8 +35,10 @@
 //  * Joint actuators (<motor>, <position>, <velocity>, <general> of those kinds) become IDEAL_PD
 //    actuators on their joint's link (read_actuators says how).
 //  * <equality><joint> (q1 = c0 + c1 q2) becomes a joint coupling (JointCoupling).
-//  * Not imported, named in warnings: other actuators, tendons, other equality constraints, sensors,
-//    <contact><pair>, joint springs (stiffness), height fields.
+//  * <tendon><fixed> becomes a FixedTendon (length range, spring and damper); joint springs
+//    (stiffness, springref) become one-joint tendons (read_tendons).
+//  * Not imported, named in warnings: other actuators, spatial tendons, other equality constraints,
+//    sensors, <contact><pair>, height fields.
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -186,6 +188,7 @@ class MjcfImporter {
     for (size_t b = 0; b < model_.bots.size(); ++b) finish(static_cast<int>(b));
     read_actuators();
     read_equalities();
+    read_tendons();
     // a world with nothing on it is left out
     const auto& w = model_.bots[0].articulation;
     if (w.links.size() == 1 && !w.links[0].shape && model_.bots.size() > 1) model_.bots.erase(model_.bots.begin());
@@ -441,7 +444,17 @@ class MjcfImporter {
     J.coulomb_friction = real(doc_.number_or(je, "frictionloss", cls, 0));
     if (J.armature < 0 || J.viscous_friction < 0 || J.coulomb_friction < 0)
       doc_.fail(je, "armature, damping and frictionloss must not be negative");
-    if (doc_.number_or(je, "stiffness", cls, 0) != 0) notes_["joint springs (stiffness) are not imported"].push_back(J.name);
+    // a joint spring -k (q - springref) is a one-joint tendon (read_tendons adds it); springref is
+    // also where tendon springs are relaxed by default
+    const double stiffness = doc_.number_or(je, "stiffness", cls, 0);
+    if (stiffness < 0) doc_.fail(je, "stiffness must not be negative");
+    if (J.type == JointType::Spherical) {
+      if (stiffness > 0) notes_["ball joint springs are not imported"].push_back(J.name);
+      return;
+    }
+    const double springref = doc_.number_or(je, "springref", cls, 0);
+    joint_springref_[J.name] = J.type == JointType::Revolute ? doc_.angle(springref) : springref;
+    if (stiffness > 0) joint_springs_.push_back({J.name, stiffness, joint_springref_[J.name]});
   }
 
   // ------------------------------------------------------------------ mass
@@ -715,7 +728,6 @@ class MjcfImporter {
   void note_unsupported() {
     const XMLElement* root = doc_.root();
     static const std::pair<const char*, const char*> kSections[] = {
-        {"tendon", "tendons are not imported"},
         {"sensor", "sensors are not imported"},
         {"deformable", "deformable bodies are not imported"},  {"skin", "skins are not imported"},
     };
@@ -851,6 +863,82 @@ class MjcfImporter {
       }
   }
 
+  // <tendon><fixed>: the length sum_k coef_k q_k of joints of one bot as a FixedTendon, with its
+  // range (limited, or auto with autolimits), stiffness, damping and springlength (-1, the
+  // default: the length at the joints' springref); joint springs as one-joint tendons named "<joint>/spring".
+  // Spatial tendons, tendon friction and armature, and spring deadbands are named in warnings.
+  void read_tendons() {
+    for (const JointSpring& js : joint_springs_) {
+      const LinkRef at = joint_link_.at(js.joint);
+      physics::FixedTendon t;
+      t.name = js.joint + "/spring";
+      t.joints = {js.joint};
+      t.coefficients = {1};
+      t.stiffness = real(js.stiffness);
+      t.rest_length = real(js.springref);
+      model_.bots[at.bot].articulation.fixed_tendons.push_back(std::move(t));
+    }
+    for (const XMLElement* sec = doc_.root()->FirstChildElement("tendon"); sec; sec = sec->NextSiblingElement("tendon"))
+      for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
+        const std::string label = name_or_kind(e);
+        if (std::string(e->Name()) != "fixed") {
+          notes_["spatial tendons are not imported"].push_back(label);
+          continue;
+        }
+        physics::FixedTendon t;
+        t.name = label;
+        int bot = -1;
+        double spring_length = 0;  // at MuJoCo's qpos_spring
+        bool importable = true;
+        for (const XMLElement* j = e->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+          const char* jn = j->Attribute("joint");
+          if (!jn) doc_.fail(j, "missing required attribute 'joint'");
+          const auto it = joint_link_.find(jn);
+          if (it == joint_link_.end()) doc_.fail(j, "refers to joint " + in_quotes(jn) + ", which is not defined");
+          const JointType type = model_.bots[it->second.bot].articulation.joints[it->second.link].type;
+          if (type != JointType::Revolute && type != JointType::Prismatic) {
+            notes_["tendons over ball joints are not imported"].push_back(label);
+            importable = false;
+            break;
+          }
+          if (bot >= 0 && bot != it->second.bot) {
+            notes_["tendons across separate bots are not imported"].push_back(label);
+            importable = false;
+            break;
+          }
+          bot = it->second.bot;
+          const double coef = doc_.number_or(j, "coef", "", 1);
+          t.joints.push_back(jn);
+          t.coefficients.push_back(real(coef));
+          spring_length += coef * joint_springref_.at(jn);
+        }
+        if (!importable) continue;
+        if (bot < 0) doc_.fail(e, "a fixed tendon needs at least one <joint>");
+        const auto range = doc_.numbers(e, "range", "", 2);
+        const std::optional<bool> limited = doc_.boolean(e, "limited", "");
+        if (limited ? *limited : (doc_.compiler().autolimits && range.has_value())) {
+          if (!range) doc_.fail(e, "a limited tendon needs a 'range'");
+          if ((*range)[0] > (*range)[1])
+            doc_.fail(e, "attribute 'range': the lower limit " + format_number((*range)[0]) + " exceeds the upper limit " +
+                             format_number((*range)[1]));
+          t.has_lower = t.has_upper = true;
+          t.lower = real((*range)[0]);
+          t.upper = real((*range)[1]);
+        }
+        t.stiffness = real(doc_.number_or(e, "stiffness", "", 0));
+        t.damping = real(doc_.number_or(e, "damping", "", 0));
+        if (t.stiffness < 0 || t.damping < 0) doc_.fail(e, "stiffness and damping must not be negative");
+        const auto spring = doc_.numbers(e, "springlength", "", 0);
+        if (spring && spring->size() > 2) doc_.fail(e, "attribute 'springlength': expected 1 or 2 numbers");
+        t.rest_length = real(spring && (*spring)[0] >= 0 ? (*spring)[0] : spring_length);
+        if (spring && spring->size() == 2 && (*spring)[1] != (*spring)[0])
+          notes_["tendon spring deadbands are not imported (the spring pulls towards the first springlength)"].push_back(label);
+        if (doc_.number_or(e, "frictionloss", "", 0) != 0) notes_["tendon friction is not imported"].push_back(label);
+        if (doc_.number_or(e, "armature", "", 0) != 0) notes_["tendon armature is not imported"].push_back(label);
+        model_.bots[bot].articulation.fixed_tendons.push_back(std::move(t));
+      }
+  }
+
   // An element's name, or for an unnamed one its kind and what it acts on: "<motor joint='hip'>"
   static std::string name_or_kind(const XMLElement* e) {
     if (const char* n = e->Attribute("name"); n && *n) return n;
@@ -943,6 +1031,12 @@ class MjcfImporter {
   MjcfModel model_;
   std::map<std::string, MeshAsset> meshes_;
   std::map<std::string, LinkRef> body_link_, joint_link_;
+  std::map<std::string, double> joint_springref_;  // per hinge and slide joint: MuJoCo's qpos_spring
+  struct JointSpring {
+    std::string joint;
+    double stiffness, springref;
+  };
+  std::vector<JointSpring> joint_springs_;
   std::vector<BotBuild> builds_;  // per bot
   std::set<std::tuple<int, std::string, std::string>> excluded_;
   std::map<std::string, std::vector<std::string>> notes_;

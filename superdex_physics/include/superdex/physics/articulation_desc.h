@@ -159,6 +159,21 @@ struct LinearTransmission {
   bool operator==(const LinearTransmission&) const = default;
 };
 
+/// A fixed tendon (MuJoCo's <tendon><fixed>): a length L = sum_k c_k q_k over revolute and prismatic
+/// joints of one articulation, kept within [lower, upper] where limited and pulled towards
+/// rest_length by a linear spring and damper (implicit in the step, like joint damping).
+struct FixedTendon {
+  std::string name;
+  std::vector<std::string> joints;  ///< joint names, one per coefficient
+  std::vector<real> coefficients;   ///< c_k: m (or rad) of length per unit of joint k's motion
+  bool has_lower = false, has_upper = false;
+  real lower = 0, upper = 0;        ///< length range (m or rad), where limited
+  real stiffness = 0;               ///< N/m (or N m/rad) along the length
+  real damping = 0;                 ///< N s/m (or N m s/rad) along the length
+  real rest_length = 0;             ///< length at which the spring is relaxed
+  bool operator==(const FixedTendon&) const = default;
+};
+
 /// A whole articulation: links[i] is attached to its parent by joints[i].
 struct ArticulationDesc {
   std::string name;
@@ -174,6 +189,8 @@ struct ArticulationDesc {
   std::vector<JointCoupling> couplings;
   /// Linear transmissions between joints; two-joint ones are held as couplings.
   std::vector<LinearTransmission> linear_transmissions;
+  /// Fixed tendons (length limits and springs on linear combinations of joints).
+  std::vector<FixedTendon> fixed_tendons;
 };
 
 /// A link's inline primitive scaled by its shapeScale `s` per axis (a sphere needs a uniform
