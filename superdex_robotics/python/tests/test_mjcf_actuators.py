@@ -120,3 +120,39 @@ def test_geared_motor_saturates_at_its_force_range(tmp_path):
     # one step from rest: the velocity damping acts implicitly in both (3 N / (2 kg + 3 N s/m dt))
     assert abs(v_ref - DT * 3 / (2 + 3 * DT)) < 1e-9
     assert abs(v - v_ref) < 1e-9 * (1 if sdp.uses_double_precision() else 1e3)
+
+
+def settle_uncommanded(tmp_path, xml: str, steps: int) -> float:
+    """Our pendulum's angle after `steps` with no controller at all: the actuators hold ctrl = 0."""
+    path = tmp_path / "model.xml"
+    path.write_text(xml)
+    sdp.initialize(num_worker_threads=0)
+    try:
+        model = sdr.load_mjcf_file(path)
+        scene = sdp.create_scene("mjcf")
+        scene.set_gravity(model.gravity)
+        (prefab,) = model.bots
+        bot = sdr.create_bot(scene, prefab, sdr.create_context())  # (keeps its context, and its actuators, alive)
+        art = bot.get_articulated_actor()
+        art.set_articulated_pose_from_joints([0.5])
+        for _ in range(steps):
+            scene.step(model.timestep)
+        return float(np.asarray(art.get_articulated_pose(), dtype=float)[0])
+    finally:
+        sdp.shutdown()
+
+
+@pytest.mark.parametrize("ctrlrange, gear", [("", 1.0), ('ctrllimited="true" ctrlrange="0.3 1"', 2.0)])
+def test_an_uncommanded_position_servo_holds_ctrl_zero_like_mujoco(tmp_path, ctrlrange, gear):
+    # MuJoCo's ctrl starts at 0 (clamped into ctrlrange): the servo pulls towards ctrl / gear from
+    # the first step, before any controller exists. Started at 0.5 rad, the pendulum settles where
+    # kp g^2 (target - q) balances gravity: target 0 (hangs below it) or 0.3 / 2
+    xml = pendulum(f'<position name="servo" joint="hinge" kp="20" kv="2" gear="{gear}" {ctrlrange}/>')
+    m = mujoco.MjModel.from_xml_string(xml)
+    d = mujoco.MjData(m)
+    d.qpos[0] = 0.5
+    for _ in range(3000):
+        mujoco.mj_step(m, d)
+    q = settle_uncommanded(tmp_path, xml, 3000)
+    target = 0.15 if ctrlrange else 0.0
+    assert abs(d.qpos[0] - target) < 0.1 and abs(q - d.qpos[0]) < 1e-4

@@ -4,7 +4,8 @@ over two hinges moves the finger along MuJoCo's path; unset spring lengths come 
 a tendon range holds a two-joint finger the way the Shadow hand's distal tendons do, at the
 static pose and near MuJoCo's; the Shadow hand of
 gymnasium-robotics imports all its tendons and keeps its coupled joints within their ranges;
-defaults classes apply to tendons; bad tendons name the file and element.
+defaults classes apply to tendons; bad tendons name the file and element; joint limits, like
+MuJoCo's, come to rest at their margin.
 """
 
 from __future__ import annotations
@@ -265,3 +266,23 @@ def test_tendon_added_in_code_acts(tmp_path):
     finally:
         sdp.shutdown()
     assert abs(q[0] - q[1]) < 1e-4 and abs(q[0]) < 0.7  # swung down together (near-rigid: 3e-5 in float)
+
+
+def test_joint_limits_rest_at_their_margin_like_mujoco(tmp_path):
+    # MuJoCo's limit acts from `margin` inside the range: a pendulum falling onto its lower limit
+    # 0.3 with margin 0.05 comes to rest at 0.35 (the Shadow hand's fingers rest 0.01 off theirs)
+    xml = f"""<mujoco>
+  <compiler angle="radian"/>
+  <option timestep="{DT}" gravity="0 0 -9.81"/>
+  <worldbody>
+    <body name="pendulum">
+      <joint name="hinge" axis="0 1 0" damping="0.5" limited="true" range="0.3 1" margin="0.05"/>
+      <geom type="sphere" size="0.05" pos="0 0 -0.5" mass="1" contype="0" conaffinity="0"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+    q_ref, _ = mujoco_settle(xml, [0.6], 2000)
+    q, _ = ours_settle(tmp_path, xml, [0.6], 2000)
+    assert abs(q_ref[0] - 0.35) < 2e-3  # (MuJoCo's soft limit gives a little under gravity)
+    assert abs(q[0] - 0.35) < 1e-5 and abs(q[0] - q_ref[0]) < 2e-3

@@ -14,7 +14,8 @@
 //    the link frame sits at -pos from it (joint_from_link), so that the link frame is the body
 //    frame. hinge -> Revolute, slide -> Prismatic, ball -> Spherical, free -> Free (top-level
 //    bodies only: a bot of its own). `range` (degrees under compiler angle="degree") limits
-//    hinge and slide joints when `limited` is true, or auto with compiler autolimits;
+//    hinge and slide joints when `limited` is true, or auto with compiler autolimits, narrowed
+//    by the joint's `margin` (where MuJoCo's limit comes to rest);
 //    `armature`, `damping` and `frictionloss` map to armature, viscous and Coulomb friction.
 //    A joint `ref` turns (shifts) the joint frame back by ref: joint positions are MuJoCo's
 //    qpos, and the bot starts at MuJoCo's qpos0 (ref) in its default pose.
@@ -434,6 +435,10 @@ class MjcfImporter {
       double lo = (*range)[0], hi = (*range)[1];
       if (J.type == JointType::Revolute) lo = doc_.angle(lo), hi = doc_.angle(hi);
       if (lo > hi) doc_.fail(je, "attribute 'range': the lower limit " + format_number(lo) + " exceeds the upper limit " + format_number(hi));
+      // MuJoCo's limit acts from `margin` inside the range and comes to rest there
+      const double margin = doc_.number_or(je, "margin", cls, 0);
+      if (margin < 0) doc_.fail(je, "margin must not be negative");
+      if (lo + margin <= hi - margin) lo += margin, hi -= margin;
       J.min_limit = (axis * lo).cast<real>();
       J.max_limit = (axis * hi).cast<real>();
     } else if (is_limited) {
@@ -745,7 +750,8 @@ class MjcfImporter {
   // kv g^2 v with q_cmd = ctrl / g; <velocity kv> is kv g^2 (v_cmd - v); <general> with a fixed
   // gain and no bias is a motor, with an affine bias (0, -kp, -kv) a position actuator.
   // forcerange x |gear| bounds the effort (forcelimited, or auto with autolimits). ctrlrange is
-  // left to the controller that issues the commands.
+  // left to the controller that issues the commands; until one does, a position servo holds
+  // MuJoCo's ctrl = 0 (within ctrlrange), as MuJoCo's does.
   void read_actuators() {
     for (const XMLElement* sec = doc_.root()->FirstChildElement("actuator"); sec; sec = sec->NextSiblingElement("actuator"))
       for (const XMLElement* e = sec->FirstChildElement(); e; e = e->NextSiblingElement()) {
@@ -810,7 +816,17 @@ class MjcfImporter {
         if (kp < 0 || kd < 0) doc_.fail(e, "kp and kv must not be negative");
         std::ostringstream params;
         params.precision(17);
-        params << "{\"kp\": " << kp << ", \"kd\": " << kd << ", \"effort_limit\": " << effort_limit << "}";
+        params << "{\"kp\": " << kp << ", \"kd\": " << kd << ", \"effort_limit\": " << effort_limit;
+        // until commanded, a servo holds MuJoCo's ctrl = 0 (clamped to ctrlrange where limited):
+        // the joint target ctrl / gear
+        if (kp > 0) {
+          double ctrl = 0;
+          const auto ctrlrange = doc_.numbers(e, "ctrlrange", "", 2);
+          const std::optional<bool> ctrl_limited = doc_.boolean(e, "ctrllimited", "");
+          if (ctrlrange && (ctrl_limited ? *ctrl_limited : doc_.compiler().autolimits)) ctrl = std::clamp(0.0, (*ctrlrange)[0], std::max((*ctrlrange)[0], (*ctrlrange)[1]));
+          params << ", \"default_position\": " << ctrl / gear;
+        }
+        params << "}";
         ComponentDecl d;
         d.type = "IDEAL_PD";
         d.name = label;
@@ -924,6 +940,10 @@ class MjcfImporter {
           t.has_lower = t.has_upper = true;
           t.lower = real((*range)[0]);
           t.upper = real((*range)[1]);
+          // as for joints, the limit rests `margin` inside the range
+          const double margin = doc_.number_or(e, "margin", "", 0);
+          if (margin < 0) doc_.fail(e, "margin must not be negative");
+          if (t.lower + margin <= t.upper - margin) t.lower += real(margin), t.upper -= real(margin);
         }
         t.stiffness = real(doc_.number_or(e, "stiffness", "", 0));
         t.damping = real(doc_.number_or(e, "damping", "", 0));
