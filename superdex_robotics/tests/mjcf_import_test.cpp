@@ -84,7 +84,7 @@ constexpr const char* kModel = R"(<mujoco model="walker">
     </body>
   </worldbody>
   <contact><exclude body1="door_frame" body2="door"/></contact>
-  <tendon><fixed name="cable"><joint joint="hip_x" coef="1"/></fixed></tendon>
+  <tendon><fixed name="cable"><joint joint="hip_x" coef="1"/></fixed><spatial name="rope"><site site="a"/><site site="b"/></spatial></tendon>
   <actuator><motor joint="knee"/></actuator>
 </mujoco>
 )";
@@ -115,8 +115,10 @@ TEST_F(MjcfImport, WorldAndFreeBodiesBecomeBots) {
   EXPECT_EQ(walker.actuators[shin][0].type, "IDEAL_PD");
   EXPECT_EQ(walker.actuators[shin][0].name, "<motor joint='knee'>");
   EXPECT_THAT(walker.actuators[shin][0].params, HasSubstr("\"kp\": 0, \"kd\": 0, \"effort_limit\": -1"));
-  // the tendon it does not import is named in a warning
-  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find("tendons are not imported: 'cable'") != std::string::npos; }));
+  // the fixed tendon is the walker's; the spatial one, not imported, is named in a warning
+  ASSERT_EQ(walker.articulation.fixed_tendons.size(), 1u);
+  EXPECT_EQ(walker.articulation.fixed_tendons[0].joints, std::vector<std::string>{"hip_x"});
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find("spatial tendons are not imported: 'rope'") != std::string::npos; }));
 }
 
 TEST_F(MjcfImport, BodyWithSeveralJointsIsAChainAndRefIsTheDefaultPose) {
