@@ -346,7 +346,7 @@ void BM_ReducedResidualColumns(benchmark::State& st) {
   {
     sp::Scene scene = sp::create_scene("duck");
     const std::string root = SUPERDEX_ASSETS_DIR;
-    sp::add_prefab_to_scene(root + "/prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab", root, scene, sp::PrefabParams{}, nullptr);
+    sp::prefab::add_to_scene(root + "/prefabs/duck_lamp/duck_lamp_recumbent.mochi_prefab", root, scene);
     const sp::ReducedSoftModel& model = *sp::scene_data(scene.handle()).soft_bodies.front()->reduced;
     // the free nodes highest up (where the seed's ball presses)
     std::vector<int> nodes;
