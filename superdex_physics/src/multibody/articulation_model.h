@@ -83,12 +83,28 @@ struct ArticulationModel {
     }
   };
   std::vector<Tendon> tendons;
+  // linear transmissions added at run time (Scene::add_linear_transmission): the same sums, no
+  // range or spring of their own; their actuators are state (ArticulationState)
+  std::vector<Tendon> transmissions;
   ArticulationDesc desc;               // the validated description it was built from
 };
 
 // Evolving state: what capture_state copies.
+// The actuator of a transmission (Scene::attach_*_actuator): its kind, its one state variable
+// (the target displacement or the force) and its constants.
+struct TransmissionActuator {
+  enum class Kind { None, DisplacementControl, ForceControl };
+  Kind kind = Kind::None;
+  real value = 0;
+  real stiffness = 0, damping = 0;  // DisplacementControl
+  bool allow_compressive_force = false;
+};
+
 struct ArticulationState {
   std::vector<JointDrive> drives;      // per DOF (nv); inactive when stiffness and damping are 0
+  // per ArticulationModel::transmissions (shorter after restoring a state captured before later
+  // transmissions were added: those have no actuator)
+  std::vector<TransmissionActuator> transmission_actuators;
   std::vector<LinkDrive> link_drives;  // per link; inactive when all gains are 0
   VecX q;                          // generalized positions (nq)
   VecX v;                          // generalized velocities (nv)

@@ -5,7 +5,9 @@
 // + 12 reals (q, v, external forces, base rotation row-major and translation), then 5 nv reals of
 // joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
 // 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
-// velocity, linear stiffness and damping, angular stiffness and damping, max force and torque).
+// velocity, linear stiffness and damping, angular stiffness and damping, max force and torque),
+// then u32 transmission actuator count and per actuator u8 kind and 4 reals (state variable,
+// stiffness, damping, allow_compressive_force as 0 or 1).
 // Then u32 soft body count; per soft body: its frame X_WL (rotation xyzw, translation: 7 reals),
 // u32 3N, node positions, velocities and forces (3N each),
 // u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
@@ -25,7 +27,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 5;
+constexpr std::uint32_t kVersion = 6;
 
 class Writer {
  public:
@@ -97,6 +99,12 @@ std::vector<std::uint8_t> state_bytes(const SceneData& s) {
                           d.target_angular_velocity.x(), d.target_angular_velocity.y(), d.target_angular_velocity.z(),
                           d.linear_stiffness, d.linear_damping, d.angular_stiffness, d.angular_damping, d.max_force, d.max_torque};
       w.put_reals(x, 19);
+    }
+    w.put(static_cast<std::uint32_t>(a->state.transmission_actuators.size()));
+    for (const TransmissionActuator& t : a->state.transmission_actuators) {
+      w.put(static_cast<std::uint8_t>(t.kind));
+      const real x[4] = {t.value, t.stiffness, t.damping, real(t.allow_compressive_force ? 1 : 0)};
+      w.put_reals(x, 4);
     }
   }
   w.put(static_cast<std::uint32_t>(s.soft_bodies.size()));
@@ -171,6 +179,21 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
       d.target_angular_velocity = Vec3(x[10], x[11], x[12]);
       d.linear_stiffness = x[13], d.linear_damping = x[14], d.angular_stiffness = x[15], d.angular_damping = x[16];
       d.max_force = x[17], d.max_torque = x[18];
+    }
+    const auto actuators = r.get<std::uint32_t>("transmission actuator count");
+    if (actuators > a.model.transmissions.size())
+      throw Error("restore_state: actor " + std::to_string(i) + " of the state has " + std::to_string(actuators) +
+                  " transmissions but '" + a.model.name + "' has " + std::to_string(a.model.transmissions.size()));
+    st.transmission_actuators.resize(a.model.transmissions.size());
+    for (std::uint32_t k = 0; k < actuators; ++k) {
+      TransmissionActuator& t = st.transmission_actuators[k];
+      const auto kind = r.get<std::uint8_t>("transmission actuator kind");
+      if (kind > static_cast<std::uint8_t>(TransmissionActuator::Kind::ForceControl))
+        throw Error("restore_state: actor " + std::to_string(i) + ": unknown transmission actuator kind " + std::to_string(kind));
+      real x[4];
+      r.get_reals(x, 4, "transmission actuators");
+      t.kind = static_cast<TransmissionActuator::Kind>(kind);
+      t.value = x[0], t.stiffness = x[1], t.damping = x[2], t.allow_compressive_force = x[3] != 0;
     }
     if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");

@@ -20,6 +20,7 @@
 #include "superdex/physics/params/actor_params.h"
 #include "superdex/physics/params/recording_params.h"
 #include "superdex/physics/params/solver_params.h"
+#include "superdex/physics/params/transmission_params.h"
 #include "superdex/physics/real.h"
 #include "superdex/physics/shape.h"
 #include "superdex/physics/transform.h"
@@ -264,6 +265,23 @@ class Scene {
   void set_link_drive(ActorHandle link, const LinkDrive& drive);
   /// The drive efforts (N m or N) the last step applied, per DOF (zero where no drive).
   VecX joint_drive_efforts(ActorHandle articulation) const;
+
+  // Transmissions of an articulated actor (transmissions.cpp). Errors name the function and the
+  // bad argument: an actor that is not articulated, an index out of range, a bad joint list.
+  /// Adds a linear transmission; returns its index (0, 1, ... in order of addition).
+  int add_linear_transmission(ActorHandle articulation, const LinearTransmissionParams& params);
+  /// Its displacement d at the current pose (m).
+  real transmission_displacement(ActorHandle articulation, int transmission) const;
+  /// dd/dv over the actor's DOFs (num_dofs entries).
+  VecX transmission_displacement_jacobian(ActorHandle articulation, int transmission) const;
+  /// Attaches (replacing any) an actuator to a transmission.
+  void attach_displacement_control_actuator(ActorHandle articulation, int transmission, const DisplacementControlActuatorParams& params);
+  void attach_force_control_actuator(ActorHandle articulation, int transmission, const ForceControlActuatorParams& params);
+  /// The attached actuator's state variables (the target displacement, or the force): error
+  /// when none is attached.
+  int num_transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;
+  std::vector<real> transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;
+  void set_transmission_actuator_state_variables(ActorHandle articulation, int transmission, std::span<const real> values);
 
   /// Registers a query on an actor (superdex::Error when the actor does not support it; see
   /// is_query_supported); `compute_now` makes a query computed from the state readable at once.
