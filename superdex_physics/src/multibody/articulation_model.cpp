@@ -460,6 +460,7 @@ ArticulationState initial_state(const ArticulationModel& model) {
   s.tau_external = VecX::Zero(model.nv);
   s.drives.assign(model.nv, JointDrive{});
   s.link_drives.assign(model.num_links, LinkDrive{});
+  s.transmission_actuators.assign(model.transmissions.size(), TransmissionActuator{});
   Transform X_WR = model.desc.world_from_root;
   X_WR.rotation.normalize();
   s.X_W_base = SpatialTransform::from(X_WR);

@@ -81,6 +81,12 @@ struct ArticulationModel {
       for (size_t k = 0; k < q.size(); ++k) L += coefficients[k] * positions[q[k]];
       return L;
     }
+    // dL/dv over the articulation's nv DOFs (a joint listed twice adds its coefficients)
+    VecX jacobian(int nv) const {
+      VecX J = VecX::Zero(nv);
+      for (size_t k = 0; k < dofs.size(); ++k) J[dofs[k]] += coefficients[k];
+      return J;
+    }
   };
   std::vector<Tendon> tendons;
   // linear transmissions added at run time (Scene::add_linear_transmission): the same sums, no
@@ -89,7 +95,6 @@ struct ArticulationModel {
   ArticulationDesc desc;               // the validated description it was built from
 };
 
-// Evolving state: what capture_state copies.
 // The actuator of a transmission (Scene::attach_*_actuator): its kind, its one state variable
 // (the target displacement or the force) and its constants.
 struct TransmissionActuator {
@@ -100,11 +105,10 @@ struct TransmissionActuator {
   bool allow_compressive_force = false;
 };
 
+// Evolving state: what capture_state copies.
 struct ArticulationState {
   std::vector<JointDrive> drives;      // per DOF (nv); inactive when stiffness and damping are 0
-  // per ArticulationModel::transmissions (shorter after restoring a state captured before later
-  // transmissions were added: those have no actuator)
-  std::vector<TransmissionActuator> transmission_actuators;
+  std::vector<TransmissionActuator> transmission_actuators;  // per ArticulationModel::transmissions
   std::vector<LinkDrive> link_drives;  // per link; inactive when all gains are 0
   VecX q;                          // generalized positions (nq)
   VecX v;                          // generalized velocities (nv)

@@ -104,13 +104,12 @@ void tendon_limit_rows(const ArticulationModel& model, const ArticulationState& 
   for (const ArticulationModel::Tendon& tendon : model.tendons) {
     if (!tendon.has_lower && !tendon.has_upper) continue;
     const real L = tendon.length(state.q);
-    real rate_free = 0;
-    for (size_t k = 0; k < tendon.dofs.size(); ++k) rate_free += tendon.coefficients[k] * t.v_free[tendon.dofs[k]];
+    const VecX J = tendon.jacobian(model.nv);
+    const real rate_free = J.dot(t.v_free);
     for (const real sign : {real(1), real(-1)}) {
       if (!(sign > 0 ? tendon.has_lower : tendon.has_upper)) continue;
       JointRow row;
-      row.J = VecX::Zero(model.nv);
-      for (size_t k = 0; k < tendon.dofs.size(); ++k) row.J[tendon.dofs[k]] += sign * tendon.coefficients[k];
+      row.J = sign * J;
       MatX X = row.J;
       row.block.kind = BlockKind::Unilateral;
       row.block.R = near_rigid * compliance_diagonal(t.A_llt, X)[0];
@@ -138,8 +137,7 @@ void tendon_springs(const ArticulationModel& model, const ArticulationState& sta
 
 // Force-controlled transmissions: the tension's joint efforts f c, explicit (dt f c into r).
 void transmission_forces(const ArticulationModel& model, const ArticulationState& state, real dt, ArticulationTerms& t) {
-  const size_t n = std::min(model.transmissions.size(), state.transmission_actuators.size());
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < model.transmissions.size(); ++i) {
     const TransmissionActuator& act = state.transmission_actuators[i];
     if (act.kind != TransmissionActuator::Kind::ForceControl) continue;
     const ArticulationModel::Tendon& path = model.transmissions[i];
@@ -151,14 +149,12 @@ void transmission_forces(const ArticulationModel& model, const ArticulationState
 // spring-damper as a joint drive is, that only pulls (unilateral) unless it may push.
 void transmission_drive_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const StepSettings& params,
                              ArticulationTerms& t) {
-  const size_t n = std::min(model.transmissions.size(), state.transmission_actuators.size());
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < model.transmissions.size(); ++i) {
     const TransmissionActuator& act = state.transmission_actuators[i];
     if (act.kind != TransmissionActuator::Kind::DisplacementControl || (act.stiffness <= 0 && act.damping <= 0)) continue;
     const ArticulationModel::Tendon& path = model.transmissions[i];
     JointRow row;
-    row.J = VecX::Zero(model.nv);
-    for (size_t k = 0; k < path.dofs.size(); ++k) row.J[path.dofs[k]] += path.coefficients[k];
+    row.J = path.jacobian(model.nv);
     MatX X = row.J;
     const real w = compliance_diagonal(t.A_llt, X)[0];
     const real per_rate = dt * act.stiffness + act.damping;  // tension per unit of displacement rate

@@ -25,17 +25,15 @@ void check_index(const Articulation& a, int transmission, const char* what) {
 // The attached actuator of a transmission; an error when there is none.
 TransmissionActuator& attached(Articulation& a, int transmission, const char* what) {
   check_index(a, transmission, what);
-  auto& acts = a.state.transmission_actuators;
-  if (static_cast<size_t>(transmission) >= acts.size() || acts[transmission].kind == TransmissionActuator::Kind::None)
+  TransmissionActuator& act = a.state.transmission_actuators[transmission];
+  if (act.kind == TransmissionActuator::Kind::None)
     throw Error(std::string(what) + ": transmission " + std::to_string(transmission) + " has no actuator attached");
-  return acts[transmission];
+  return act;
 }
 
 void attach(Articulation& a, int transmission, const TransmissionActuator& act, const char* what) {
   check_index(a, transmission, what);
-  auto& acts = a.state.transmission_actuators;
-  if (acts.size() < a.model.transmissions.size()) acts.resize(a.model.transmissions.size());
-  acts[transmission] = act;
+  a.state.transmission_actuators[transmission] = act;
 }
 
 }  // namespace
@@ -76,10 +74,7 @@ VecX Scene::transmission_displacement_jacobian(ActorHandle h, int transmission) 
   const char* what = "get_transmission_displacement_jacobian";
   const Articulation& a = articulated(scene_data(handle_), h, what);
   check_index(a, transmission, what);
-  const ArticulationModel::Tendon& path = a.model.transmissions[transmission];
-  VecX J = VecX::Zero(a.model.nv);
-  for (size_t k = 0; k < path.dofs.size(); ++k) J[path.dofs[k]] += path.coefficients[k];
-  return J;
+  return a.model.transmissions[transmission].jacobian(a.model.nv);
 }
 
 void Scene::attach_displacement_control_actuator(ActorHandle h, int transmission, const DisplacementControlActuatorParams& p) {

@@ -55,6 +55,21 @@ def two_links(tendon: str, joint_attrs: str = 'damping="0.02"', gravity: str = "
 """
 
 
+def pendulum(joint_attrs: str, angle: str = "radian") -> str:
+    """A 1 kg ball 0.5 m below a hinge about y, under gravity, its joint given `joint_attrs`."""
+    return f"""<mujoco>
+  <compiler angle="{angle}"/>
+  <option timestep="{DT}" gravity="0 0 -9.81"/>
+  <worldbody>
+    <body name="pendulum">
+      <joint name="hinge" axis="0 1 0" {joint_attrs}/>
+      <geom type="sphere" size="0.05" pos="0 0 -0.5" mass="1" contype="0" conaffinity="0"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
 def mujoco_settle(xml: str, qpos0, steps: int):
     m = mujoco.MjModel.from_xml_string(xml)
     d = mujoco.MjData(m)
@@ -87,17 +102,7 @@ def ours_settle(tmp_path, xml: str, qpos0, steps: int):
 def test_joint_spring_balances_gravity(tmp_path):
     # a 1 kg ball 0.5 m below a hinge with k = 20 N m/rad towards springref = 60 degrees:
     # k (ref - q) = m g l sin q at rest
-    xml = f"""<mujoco>
-  <compiler angle="degree"/>
-  <option timestep="{DT}" gravity="0 0 -9.81"/>
-  <worldbody>
-    <body name="pendulum">
-      <joint name="hinge" axis="0 1 0" damping="1" stiffness="20" springref="60"/>
-      <geom type="sphere" size="0.05" pos="0 0 -0.5" mass="1" contype="0" conaffinity="0"/>
-    </body>
-  </worldbody>
-</mujoco>
-"""
+    xml = pendulum('damping="1" stiffness="20" springref="60"', angle="degree")
     q, tendons = ours_settle(tmp_path, xml, [0.0], 4000)
     assert [(t.name, list(t.joints), t.stiffness) for t in tendons] == [("hinge/spring", ["hinge"], 20.0)]
     assert tendons[0].rest_length == pytest.approx(np.pi / 3)
@@ -271,17 +276,7 @@ def test_tendon_added_in_code_acts(tmp_path):
 def test_joint_limits_rest_at_their_margin_like_mujoco(tmp_path):
     # MuJoCo's limit acts from `margin` inside the range: a pendulum falling onto its lower limit
     # 0.3 with margin 0.05 comes to rest at 0.35 (the Shadow hand's fingers rest 0.01 off theirs)
-    xml = f"""<mujoco>
-  <compiler angle="radian"/>
-  <option timestep="{DT}" gravity="0 0 -9.81"/>
-  <worldbody>
-    <body name="pendulum">
-      <joint name="hinge" axis="0 1 0" damping="0.5" limited="true" range="0.3 1" margin="0.05"/>
-      <geom type="sphere" size="0.05" pos="0 0 -0.5" mass="1" contype="0" conaffinity="0"/>
-    </body>
-  </worldbody>
-</mujoco>
-"""
+    xml = pendulum('damping="0.5" limited="true" range="0.3 1" margin="0.05"')
     q_ref, _ = mujoco_settle(xml, [0.6], 2000)
     q, _ = ours_settle(tmp_path, xml, [0.6], 2000)
     assert abs(q_ref[0] - 0.35) < 2e-3  # (MuJoCo's soft limit gives a little under gravity)

@@ -418,6 +418,14 @@ class MjcfImporter {
     for (const Placed& c : bodies) visit_body(c.element, at, c.X_BF * doc_.pose(c.element, c.cls), c.cls, false, is_static);
   }
 
+  // MuJoCo's limit (of a joint or a tendon) acts from the element's `margin` inside the range
+  // [lo, hi] and comes to rest there: the range narrowed by it (unless that would empty it).
+  void narrow_by_margin(const XMLElement* e, const std::string& cls, double& lo, double& hi) const {
+    const double margin = doc_.number_or(e, "margin", cls, 0);
+    if (margin < 0) doc_.fail(e, "margin must not be negative");
+    if (lo + margin <= hi - margin) lo += margin, hi -= margin;
+  }
+
   void read_joint(const XMLElement* je, const std::string& cls, const std::string& type, JointDesc& J) {
     if (type == "hinge") J.type = JointType::Revolute;
     else if (type == "slide") J.type = JointType::Prismatic;
@@ -435,10 +443,7 @@ class MjcfImporter {
       double lo = (*range)[0], hi = (*range)[1];
       if (J.type == JointType::Revolute) lo = doc_.angle(lo), hi = doc_.angle(hi);
       if (lo > hi) doc_.fail(je, "attribute 'range': the lower limit " + format_number(lo) + " exceeds the upper limit " + format_number(hi));
-      // MuJoCo's limit acts from `margin` inside the range and comes to rest there
-      const double margin = doc_.number_or(je, "margin", cls, 0);
-      if (margin < 0) doc_.fail(je, "margin must not be negative");
-      if (lo + margin <= hi - margin) lo += margin, hi -= margin;
+      narrow_by_margin(je, cls, lo, hi);
       J.min_limit = (axis * lo).cast<real>();
       J.max_limit = (axis * hi).cast<real>();
     } else if (is_limited) {
@@ -459,7 +464,7 @@ class MjcfImporter {
     }
     const double springref = doc_.number_or(je, "springref", cls, 0);
     joint_springref_[J.name] = J.type == JointType::Revolute ? doc_.angle(springref) : springref;
-    if (stiffness > 0) joint_springs_.push_back({J.name, stiffness, joint_springref_[J.name]});
+    if (stiffness > 0) joint_springs_.push_back({J.name, stiffness});
   }
 
   // ------------------------------------------------------------------ mass
@@ -891,7 +896,7 @@ class MjcfImporter {
       t.joints = {js.joint};
       t.coefficients = {1};
       t.stiffness = real(js.stiffness);
-      t.rest_length = real(js.springref);
+      t.rest_length = real(joint_springref_.at(js.joint));
       model_.bots[at.bot].articulation.fixed_tendons.push_back(std::move(t));
     }
     for (const XMLElement* sec = doc_.root()->FirstChildElement("tendon"); sec; sec = sec->NextSiblingElement("tendon"))
@@ -937,13 +942,11 @@ class MjcfImporter {
           if ((*range)[0] > (*range)[1])
             doc_.fail(e, "attribute 'range': the lower limit " + format_number((*range)[0]) + " exceeds the upper limit " +
                              format_number((*range)[1]));
+          double lo = (*range)[0], hi = (*range)[1];
+          narrow_by_margin(e, "", lo, hi);
           t.has_lower = t.has_upper = true;
-          t.lower = real((*range)[0]);
-          t.upper = real((*range)[1]);
-          // as for joints, the limit rests `margin` inside the range
-          const double margin = doc_.number_or(e, "margin", "", 0);
-          if (margin < 0) doc_.fail(e, "margin must not be negative");
-          if (t.lower + margin <= t.upper - margin) t.lower += real(margin), t.upper -= real(margin);
+          t.lower = real(lo);
+          t.upper = real(hi);
         }
         t.stiffness = real(doc_.number_or(e, "stiffness", "", 0));
         t.damping = real(doc_.number_or(e, "damping", "", 0));
@@ -1054,7 +1057,7 @@ class MjcfImporter {
   std::map<std::string, double> joint_springref_;  // per hinge and slide joint: MuJoCo's qpos_spring
   struct JointSpring {
     std::string joint;
-    double stiffness, springref;
+    double stiffness;
   };
   std::vector<JointSpring> joint_springs_;
   std::vector<BotBuild> builds_;  // per bot
