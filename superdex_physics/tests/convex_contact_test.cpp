@@ -235,5 +235,116 @@ TEST(ConvexContact, TetrahedronPointDownTouchesAtItsTip) {
   EXPECT_NEAR((c[0].p_W - Vec3(0.1, 0.2, 0.05 - 0.00075)).norm(), 0, 1e-9);
 }
 
+TEST(ConvexDistance, StopsOnceTheGapIsKnownToExceedTheBound) {
+  // random apart box pairs: asked to stop beyond half their separation, GJK stops with a lower
+  // bound between that and the true distance and a normal that parts the boxes by the bound;
+  // asked to stop beyond twice it, it runs to the exact distance
+  std::mt19937 rng(17);
+  int stopped = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const BoxPair pair = random_box_pair(rng, 0.5);
+    const double separation = -pair.least_overlap();
+    if (separation < 1e-3) continue;
+    const MeshShape a = box_hull(pair.ha), b = box_hull(pair.hb);
+    const ConvexDistance exact = convex_distance(*a.faces, pair.Xa, *b.faces, pair.Xb);
+    ASSERT_FALSE(exact.overlap || exact.beyond) << "trial " << trial;
+    const ConvexDistance early = convex_distance(*a.faces, pair.Xa, *b.faces, pair.Xb, real(separation / 2));
+    if (early.beyond) {
+      EXPECT_GT(early.distance, separation / 2) << "trial " << trial;
+      EXPECT_LE(early.distance, exact.distance + 1e-9) << "trial " << trial;
+      EXPECT_GE(-overlap_along(early.normal, pair.Xa, pair.ha, pair.Xb, pair.hb), early.distance - 1e-9) << "trial " << trial;
+      ++stopped;
+    } else {
+      EXPECT_NEAR(early.distance, exact.distance, 1e-12) << "trial " << trial;
+    }
+    const ConvexDistance full = convex_distance(*a.faces, pair.Xa, *b.faces, pair.Xb, real(2 * exact.distance));
+    EXPECT_FALSE(full.beyond) << "trial " << trial;
+    EXPECT_NEAR(full.distance, exact.distance, 1e-12) << "trial " << trial;
+  }
+  EXPECT_GT(stopped, 50);
+}
+
+TEST(Midphase, OrientedBoxesApartExactlyWhenAnAxisSeparatesThemByTheGap) {
+  // the separating axis theorem on the 15 axes as the reference: boxes_apart holds when the best
+  // axis parts the boxes by more than the gap, and not when none does
+  std::mt19937 rng(23);
+  int apart = 0, close = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const BoxPair pair = random_box_pair(rng, 0.4);
+    const double best = -pair.least_overlap();  // the largest separation over the axes (m)
+    const real gap = real(trial % 3 == 0 ? 0.0 : 0.01);
+    Bounds a, b;
+    a.min = -pair.ha, a.max = pair.ha, b.min = -pair.hb, b.max = pair.hb;
+    // boxes off their frames' origins: the same boxes posed from frames moved the other way
+    const Vec3 shift(0.03, -0.02, 0.05);
+    SpatialTransform Xa = pair.Xa;
+    Xa.p -= Xa.R * shift;
+    a.min += shift, a.max += shift;
+    const bool got = boxes_apart(a, Xa, b, pair.Xb, gap);
+    if (best > gap + 1e-4) {
+      EXPECT_TRUE(got) << "trial " << trial << ": apart by " << best;
+      ++apart;
+    } else if (best < gap - 1e-9) {
+      EXPECT_FALSE(got) << "trial " << trial << ": within " << best;
+      ++close;
+    }
+  }
+  EXPECT_GT(apart, 300);
+  EXPECT_GT(close, 300);
+}
+
+TEST(ConvexContact, AConvexMeshOnAPlaneTouchesAtItsCornersWithinTheMargin) {
+  // a hull of many corners (points on an ellipsoid) posed over a ground plane: the walk along its
+  // edges from the deepest corner finds the corners a scan of all of them finds within the margin
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  std::vector<Vec3> points;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 d = Vec3(real(g(rng)), real(g(rng)), real(g(rng))).normalized();
+    points.push_back(Vec3(real(0.08) * d.x(), real(0.05) * d.y(), real(0.03) * d.z()));
+  }
+  LinkCollider hull, ground;
+  hull.shape = make_convex_hull_shape(points, "ellipsoid");
+  ground.shape = PlaneShape{Vec3::UnitZ(), 0};
+  const ConvexFaces& f = *std::get<MeshShape>(hull.shape).faces;
+  ASSERT_GT(f.corners.size(), 200u);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int exact = 0, reduced = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Quat q = Quat(real(u(rng)), real(u(rng)), real(u(rng)), real(u(rng))).normalized();
+    SpatialTransform X = pose(Vec3::Zero(), q);
+    real lowest = std::numeric_limits<real>::infinity();
+    for (const Vec3& c : f.corners) lowest = std::min(lowest, (X.R * c).z());
+    const real margin = real(0.004);
+    X.p = Vec3(0.1, -0.2, -lowest + real(0.006 * u(rng)));
+    // the reference: every corner below the margin
+    std::vector<Vec3> within;
+    real deepest_phi = std::numeric_limits<real>::infinity();
+    for (const Vec3& c : f.corners) {
+      const Vec3 p = X.R * c + X.p;
+      if (p.z() < margin) within.push_back(p);
+      deepest_phi = std::min(deepest_phi, p.z());
+    }
+    std::vector<ShapeContact> got;
+    collide_shapes(hull, X, ground, SpatialTransform{}, margin, got);
+    if (within.empty()) {
+      EXPECT_TRUE(got.empty()) << "trial " << trial;
+      continue;
+    }
+    ASSERT_EQ(got.size(), std::min(within.size(), kMaxConvexContacts)) << "trial " << trial;
+    // each contact is one of those corners (midway to the plane), and the deepest is among them
+    for (const ShapeContact& c : got) {
+      const Vec3 corner = c.p_W + Vec3::UnitZ() * (c.phi / 2);
+      real nearest = std::numeric_limits<real>::infinity();
+      for (const Vec3& p : within) nearest = std::min(nearest, (p - corner).norm());
+      EXPECT_LT(nearest, 1e-9) << "trial " << trial;
+    }
+    EXPECT_NEAR(deepest(got), deepest_phi, 1e-12) << "trial " << trial;
+    (within.size() <= kMaxConvexContacts ? exact : reduced)++;
+  }
+  EXPECT_GT(exact, 20);
+  EXPECT_GT(reduced, 20);
+}
+
 }  // namespace
 }  // namespace superdex::physics::test

@@ -135,8 +135,17 @@ void find_contact_pairs(const SceneData& s, real margin, real dt, ContactPairs& 
     for (size_t l = k + 1; l < order.size() && posed[order[l]].box.min.x() <= p.box.max.x(); ++l)
       if (p.box.overlaps(posed[order[l]].box)) out.pairs.emplace_back(std::min(order[k], order[l]), std::max(order[k], order[l]));
   }
-  for (size_t pl = 0; pl < out.planes.size(); ++pl)
-    for (size_t i = 0; i < posed.size(); ++i) out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+  // with each plane, the colliders whose bounds reach below it (by the plane's own sweep)
+  for (size_t pl = 0; pl < out.planes.size(); ++pl) {
+    const PosedCollider& plane = out.planes[pl];
+    const WorldPlane wp = world_plane(std::get<PlaneShape>(s.articulations[plane.body]->model.colliders[plane.collider].shape), plane.X_WS);
+    for (size_t i = 0; i < posed.size(); ++i) {
+      const Bounds& box = posed[i].box;
+      const real lowest = wp.n.dot((box.min + box.max) / 2) - wp.n.cwiseAbs().dot((box.max - box.min) / 2) - wp.d;
+      if (lowest > plane.sweep) continue;
+      out.pairs.emplace_back(static_cast<int>(i), -1 - static_cast<int>(pl));
+    }
+  }
   // in the order of the contacts' links, so that the contact list comes out in that order; sorted
   // as keys that hold the links, which spares the comparisons the lookups
   std::vector<std::array<int, 6>>& keys = out.keys;
@@ -163,8 +172,11 @@ void collide_pairs(const SceneData& s, const ContactPairs& pairs, size_t chunk, 
     const LinkCollider& ca = A.model.colliders[pa.collider];
     const LinkCollider& cb = B.model.colliders[pb.collider];
     if (!pair_enabled(s, A, ca, B, cb)) continue;
+    const real gap = pairs.margin + pa.sweep + pb.sweep;
+    // midphase: the shapes' own oriented boxes, tighter than their world bounds
+    if (j >= 0 && boxes_apart(ca.aabb_S, pa.X_WS, cb.aabb_S, pb.X_WS, gap)) continue;
     points.clear();
-    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, pairs.margin + pa.sweep + pb.sweep, points);
+    collide_shapes(ca, pa.X_WS, cb, pb.X_WS, gap, points);
     reduce_contacts(points, kMaxContactsPerPair);
     const ContactMaterial m = combine_materials(ca.material, cb.material);
     for (const ShapeContact& p : points) out.push_back({pa.body, ca.link, pb.body, cb.link, p.p_W, p.n_W, p.phi, m});

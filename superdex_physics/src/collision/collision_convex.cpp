@@ -91,7 +91,8 @@ void collide_convex_convex(const ConvexFaces& a, const SpatialTransform& X_WA, c
   real gap = 0;
   Vec3 n;
   std::optional<Vec3> witness;  // the contact point, when the closest points give it
-  const ConvexDistance d = convex_distance(a, X_WA, b, X_WB);
+  const ConvexDistance d = convex_distance(a, X_WA, b, X_WB, margin);
+  if (d.beyond) return;
   // GJK ends near (not at) the origin for shapes that touch or overlap: below this it is EPA's
   const real touching = std::max(real(1e-9) * size, 64 * std::numeric_limits<real>::epsilon() * (1 + X_WA.p.norm() + X_WB.p.norm()));
   auto from_closest_points = [&] {

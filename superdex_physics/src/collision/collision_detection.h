@@ -4,6 +4,7 @@
 // normal and a signed distance) for the implicit solve.
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "scene/scene_data.h"
@@ -47,8 +48,9 @@ struct ContactPairs {
 };
 
 // Broad phase: colliders whose bounds, grown by `margin` (m) plus the distance they can move
-// within `dt` at their current speeds (speculative contact), overlap; every collider is paired
-// with every plane.
+// within `dt` at their current speeds (speculative contact), overlap; a collider is paired with
+// each plane its grown bounds reach below (by the plane's own sweep). The narrow phase then skips
+// the pairs whose shapes' oriented boxes stay apart by more than the margin (boxes_apart).
 ContactPairs find_contact_pairs(const SceneData& scene, real margin, real dt);
 // The same into `out`, whose vectors keep their storage.
 void find_contact_pairs(const SceneData& scene, real margin, real dt, ContactPairs& out);
@@ -98,14 +100,18 @@ void keep_at_most(std::vector<ShapeContact>& out, size_t first, size_t max_point
 // the opposing face clipped against that face; at most kMaxConvexContacts (normal from b to a).
 constexpr size_t kMaxConvexContacts = 4;
 // The distance between two convex polyhedra posed in the world (gjk_distance.cpp), with the
-// closest points on each; `overlap` when they intersect (then nothing else is set).
+// closest points on each; `overlap` when they intersect (then nothing else is set). When the
+// distance is found to exceed `stop_beyond` (m), the search stops there: `beyond` is set,
+// `distance` is a lower bound above stop_beyond and `normal` separates them (no closest points).
 struct ConvexDistance {
   bool overlap = false;
+  bool beyond = false;
   real distance = 0;  // m
   Vec3 p_a = Vec3::Zero(), p_b = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();  // unit, from b towards a
 };
-ConvexDistance convex_distance(const ConvexFaces& a, const SpatialTransform& X_WA, const ConvexFaces& b, const SpatialTransform& X_WB);
+ConvexDistance convex_distance(const ConvexFaces& a, const SpatialTransform& X_WA, const ConvexFaces& b, const SpatialTransform& X_WB,
+                               real stop_beyond = std::numeric_limits<real>::infinity());
 void collide_convex_convex(const ConvexFaces& a, const SpatialTransform& X_WA, const ConvexFaces& b,
                            const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 

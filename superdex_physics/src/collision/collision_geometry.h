@@ -36,6 +36,11 @@ std::vector<Vec3> shape_surface_samples(const ShapeGeometry& shape);
 // Bounding box in the shape frame; infinite for planes.
 Bounds shape_local_aabb(const ShapeGeometry& shape);
 
+// Whether boxes a_S and b_S (each in its shape's frame, posed by X_WA and X_WB) are more than
+// `gap` (m) apart along one of their 15 separating axes (oriented_bounds.cpp). False when
+// unsure (nearly parallel edges, non-finite bounds): the pair is then left to the narrow phase.
+bool boxes_apart(const Bounds& a_S, const SpatialTransform& X_WA, const Bounds& b_S, const SpatialTransform& X_WB, real gap);
+
 // The closest points cp on segment [p0, p1] and cq on segment [q0, q1].
 void closest_segment_points(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& cp, Vec3& cq);
 

@@ -173,7 +173,30 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
       // a convex mesh reaches deepest into a plane at its vertices: its contact polygon is theirs,
       // kept to a few corners that span it
       const size_t first = out.size();
-      for (const Vec3& v : mesh->mesh->vertices) add(X_WA.R * v + X_WA.p, 0);
+      const ConvexFaces* f = mesh->faces.get();
+      if (f != nullptr && !f->corners.empty() && f->neighbour_start.size() == f->corners.size() + 1) {
+        // the corners within the margin of the plane: on a convex polyhedron, those below any
+        // level are joined along its edges to the deepest one, so a walk from it finds them all
+        const Vec3 n_S = X_WA.R.transpose() * pl.n;
+        const real level = pl.d + margin - pl.n.dot(X_WA.p);  // corners x_S with n_S . x_S below it are within the margin
+        thread_local std::vector<int> walk;
+        thread_local std::vector<char> seen;
+        if (seen.size() < f->corners.size()) seen.resize(f->corners.size(), 0);
+        walk.assign(1, f->support(-n_S));
+        seen[walk[0]] = 1;
+        for (size_t k = 0; k < walk.size(); ++k) {
+          const int c = walk[k];
+          if (!(n_S.dot(f->corners[c]) < level)) continue;
+          add(X_WA.R * f->corners[c] + X_WA.p, 0);
+          for (int e = f->neighbour_start[c]; e < f->neighbour_start[c + 1]; ++e) {
+            const int next = f->neighbours[e];
+            if (!seen[next]) seen[next] = 1, walk.push_back(next);
+          }
+        }
+        for (int c : walk) seen[c] = 0;
+      } else {
+        for (const Vec3& v : mesh->mesh->vertices) add(X_WA.R * v + X_WA.p, 0);
+      }
       keep_at_most(out, first, kMaxConvexContacts);
     } else {
       for (const Vec3& s : a.samples_S) add(X_WA.R * s + X_WA.p, 0);

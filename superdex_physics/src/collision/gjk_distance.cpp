@@ -105,7 +105,8 @@ bool closest_on_simplex(Vertex* s, int& n, real* lambda) {
 
 }  // namespace
 
-ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_WA, const ConvexFaces& fb, const SpatialTransform& X_WB) {
+ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_WA, const ConvexFaces& fb, const SpatialTransform& X_WB,
+                               real stop_beyond) {
   int hint_a = 0, hint_b = 0;
   // the difference's support point in direction d: a's farthest along d less b's farthest along -d
   auto support = [&](const Vec3& d) {
@@ -133,6 +134,15 @@ ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_
       return out;
     }
     const Vertex p = support(-v);
+    // every point of the difference lies at least v . p / |v| from the origin (the plane through
+    // p normal to v bounds it): beyond stop_beyond, the distance is not needed
+    const real lower_bound = v.dot(p.w) / std::sqrt(vv);
+    if (lower_bound > stop_beyond) {
+      out.distance = lower_bound;
+      out.beyond = true;
+      out.normal = v / std::sqrt(vv);
+      return out;
+    }
     if (vv - v.dot(p.w) <= eps * vv) break;
     bool repeated = false;
     for (int i = 0; i < n; ++i) repeated |= (s[i].w - p.w).squaredNorm() == 0;

@@ -53,12 +53,13 @@ bool factor_lower(real* L, real* inverse, Eigen::Index n_runtime) {
 template <int N>
 void solve_lower_columns(const real* L, const real* inverse, real* X, Eigen::Index k, Eigen::Index stride, Eigen::Index n_runtime) {
   const Eigen::Index n = N > 0 ? N : n_runtime;
+  // column by column of L: each solved entry taken out of those below it (contiguous in L)
   for (Eigen::Index c = 0; c < k; ++c) {
     real* x = X + c * stride;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      real v = x[i];
-      for (Eigen::Index j = 0; j < i; ++j) v -= L[i + n * j] * x[j];
-      x[i] = v * inverse[i];
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const real x_j = x[j] * inverse[j];
+      x[j] = x_j;
+      for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= L[i + n * j] * x_j;
     }
   }
 }
@@ -124,13 +125,18 @@ void SmallLLT::solve_lower_in_place(Eigen::Ref<MatX> X) const {
     matrixL().solveInPlace(X);
     return;
   }
-  // 17 to 32 rows (factored by Eigen: no reciprocals kept)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const real inverse = 1 / m_matrix(i, i);
+  // 17 to 32 rows (factored by Eigen: no reciprocals kept): column by column of L, each solved
+  // entry taken out of the entries below it (contiguous in L's column and in X's)
+  const real* L = m_matrix.data();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const real* L_j = L + j * n;
+    const real inverse = 1 / L_j[j];
     for (Eigen::Index c = 0; c < X.cols(); ++c) {
-      real y = X(i, c);
-      for (Eigen::Index l = 0; l < i; ++l) y -= m_matrix(i, l) * X(l, c);
-      X(i, c) = y * inverse;
+      real* x = X.data() + c * X.outerStride();
+      const real x_j = x[j] * inverse;
+      x[j] = x_j;
+      if (x_j == 0) continue;
+      for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= L_j[i] * x_j;
     }
   }
 }

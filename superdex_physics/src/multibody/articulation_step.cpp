@@ -106,13 +106,15 @@ void tendon_limit_rows(const ArticulationModel& model, const ArticulationState& 
     const real L = tendon.length(state.q);
     const VecX J = tendon.jacobian(model.nv);
     const real rate_free = J.dot(t.v_free);
+    // the tendon's compliance c^T A^-1 c, the same for either bound
+    MatX X = J;
+    const real w = compliance_diagonal(t.A_llt, X)[0];
     for (const real sign : {real(1), real(-1)}) {
       if (!(sign > 0 ? tendon.has_lower : tendon.has_upper)) continue;
       JointRow row;
       row.J = sign * J;
-      MatX X = row.J;
       row.block.kind = BlockKind::Unilateral;
-      row.block.R = near_rigid * compliance_diagonal(t.A_llt, X)[0];
+      row.block.R = near_rigid * w;
       row.block.vhat = std::min(-(sign > 0 ? L - tendon.lower : tendon.upper - L) / dt, params.max_depenetration_speed);
       row.deferred = params.defer_inactive_joint_limits && row.block.vhat < 0 && sign * rate_free > row.block.vhat / 2;
       t.joint_rows.push_back(std::move(row));

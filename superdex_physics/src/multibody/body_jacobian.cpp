@@ -7,24 +7,30 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// out(0..s) += P x for a piece P (s x nb, column-major); S = s when known at compile time
+// out(0..s) += P x(cols) for a piece P (s x nc, column-major) on the body's DOFs `cols` (all
+// nc = nb of them, in order, when cols is null); S = s when known at compile time
 template <int S>
-void add_piece_product(const real* P, int s_, int nb, const real* x, real* out) {
+void add_piece_product(const real* P, int s_, int nc, const int* cols, const real* x, real* out) {
   const int s = S > 0 ? S : s_;
   real sum[3] = {0, 0, 0};
-  for (int c = 0; c < nb; ++c)
-    for (int i = 0; i < s; ++i) sum[i] += P[c * s + i] * x[c];
+  if (cols == nullptr) {
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < s; ++i) sum[i] += P[c * s + i] * x[c];
+  } else {
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < s; ++i) sum[i] += P[c * s + i] * x[cols[c]];
+  }
   for (int i = 0; i < s; ++i) out[i] += sum[i];
 }
 
-// out(0..nb) += P^T y
+// out(cols) += P^T y
 template <int S>
-void add_piece_transposed_product(const real* P, int s_, int nb, const real* y, real* out) {
+void add_piece_transposed_product(const real* P, int s_, int nc, const int* cols, const real* y, real* out) {
   const int s = S > 0 ? S : s_;
-  for (int c = 0; c < nb; ++c) {
+  for (int c = 0; c < nc; ++c) {
     real sum = 0;
     for (int i = 0; i < s; ++i) sum += P[c * s + i] * y[i];
-    out[c] += sum;
+    out[cols == nullptr ? c : cols[c]] += sum;
   }
 }
 
@@ -37,6 +43,7 @@ void BodyJacobian::reset(std::span<const int> body_dofs) {
   piece_start_.assign(1, 0);
   pieces_.clear();
   values_.clear();
+  columns_.clear();
   rows_ = 0;
   open_ = 0;
 }
@@ -57,6 +64,28 @@ real* BodyJacobian::piece(int body) {
 }
 
 void BodyJacobian::end_block() {
+  // the open block's pieces are the last values, one after the other: each is compacted to its
+  // non-zero columns, moved down behind the one before
+  const int s = open_;
+  size_t write = piece_start_.back() < static_cast<int>(pieces_.size()) ? static_cast<size_t>(pieces_[piece_start_.back()].value) : 0;
+  for (size_t p = piece_start_.back(); p < pieces_.size(); ++p) {
+    Piece& piece = pieces_[p];
+    const int nb = body_dofs(piece.body);
+    const real* P = values_.data() + piece.value;
+    piece.value = static_cast<int>(write);
+    piece.col_start = static_cast<int>(columns_.size());
+    for (int c = 0; c < nb; ++c) {
+      bool zero = true;
+      for (int i = 0; i < s; ++i) zero = zero && P[c * s + i] == 0;
+      if (zero) continue;
+      // write <= the column's own place: a forward copy never overwrites a column not yet read
+      for (int i = 0; i < s; ++i) values_[write + i] = P[c * s + i];
+      write += s;
+      columns_.push_back(c);
+    }
+    piece.num_cols = static_cast<int>(columns_.size()) - piece.col_start;
+  }
+  if (piece_start_.back() < static_cast<int>(pieces_.size())) values_.resize(write);
   piece_start_.push_back(static_cast<int>(pieces_.size()));
   rows_ += open_;
   open_ = 0;
@@ -70,10 +99,11 @@ void BodyJacobian::multiply(const VecX& x, VecX& out) const {
     for (const Piece& p : pieces(k)) {
       const real* P = values_.data() + p.value;
       const real* x_b = x.data() + body_start_[p.body];
+      const int* cols = p.num_cols == body_dofs(p.body) ? nullptr : columns(p);
       if (s == 3) {
-        add_piece_product<3>(P, 3, body_dofs(p.body), x_b, out_k);
+        add_piece_product<3>(P, 3, p.num_cols, cols, x_b, out_k);
       } else {
-        add_piece_product<0>(P, s, body_dofs(p.body), x_b, out_k);
+        add_piece_product<0>(P, s, p.num_cols, cols, x_b, out_k);
       }
     }
   }
@@ -87,10 +117,11 @@ void BodyJacobian::multiply_transposed(const VecX& y, VecX& out) const {
     for (const Piece& p : pieces(k)) {
       const real* P = values_.data() + p.value;
       real* out_b = out.data() + body_start_[p.body];
+      const int* cols = p.num_cols == body_dofs(p.body) ? nullptr : columns(p);
       if (s == 3) {
-        add_piece_transposed_product<3>(P, 3, body_dofs(p.body), y_k, out_b);
+        add_piece_transposed_product<3>(P, 3, p.num_cols, cols, y_k, out_b);
       } else {
-        add_piece_transposed_product<0>(P, s, body_dofs(p.body), y_k, out_b);
+        add_piece_transposed_product<0>(P, s, p.num_cols, cols, y_k, out_b);
       }
     }
   }

@@ -112,32 +112,37 @@ bool SparseNewtonSystem::factor(const BodyJacobian& J, const std::vector<Eigen::
     const auto pieces = J.pieces(k);
     const Where* where = where_.data() + where_start_[k];
     // M = J_a^T dG J_b (columns of piece a against those of piece b) into H's block at `value`,
-    // column-major with piece a's DOFs as rows
+    // column-major with piece a's body's DOFs as rows; only the pieces' non-zero columns
     auto add = [&](const BodyJacobian::Piece& a, const BodyJacobian::Piece& b, int value) {
       const int na = J.body_dofs(a.body), nb = J.body_dofs(b.body);
-      const real* Ja = J_values + a.value;  // s x na, column-major
+      const int ca = a.num_cols, cb = b.num_cols;
+      const real* Ja = J_values + a.value;  // s x ca, column-major
       const real* Jb = J_values + b.value;
       double* M = values.data() + value;
       // a contact between free bodies (the common case), at fixed sizes
-      if (s == 3 && na == 6 && nb == 6) {
+      if (s == 3 && na == 6 && nb == 6 && ca == 6 && cb == 6) {
         const Eigen::Matrix<double, 3, 6> Ja_d = Eigen::Map<const Eigen::Matrix<real, 3, 6>>(Ja).template cast<double>();
         const Eigen::Matrix<double, 3, 6> GJb = dG * Eigen::Map<const Eigen::Matrix<real, 3, 6>>(Jb).template cast<double>();
         Eigen::Map<Eigen::Matrix<double, 6, 6>>(M).noalias() += Ja_d.transpose() * GJb;
         return;
       }
-      GJ.resize(3, nb);
-      for (int c = 0; c < nb; ++c)
+      const int* cols_a = J.columns(a);
+      const int* cols_b = J.columns(b);
+      GJ.resize(3, cb);
+      for (int c = 0; c < cb; ++c)
         for (int i = 0; i < s; ++i) {
           double sum = 0;
           for (int j = 0; j < s; ++j) sum += dG(i, j) * Jb[c * s + j];
           GJ(i, c) = sum;
         }
-      for (int c = 0; c < nb; ++c)
-        for (int r = 0; r < na; ++r) {
+      for (int c = 0; c < cb; ++c) {
+        double* M_c = M + static_cast<ptrdiff_t>(cols_b[c]) * na;
+        for (int r = 0; r < ca; ++r) {
           double sum = 0;
           for (int i = 0; i < s; ++i) sum += Ja[r * s + i] * GJ(i, c);
-          M[r + c * na] += sum;
+          M_c[cols_a[r]] += sum;
         }
+      }
     };
     for (size_t p = 0; p < pieces.size(); ++p) add(pieces[p], pieces[p], where[p].value);
     const Where* pair = where + pieces.size();
