@@ -22,7 +22,7 @@ namespace {
 struct PosedConvex {
   const ConvexFaces* faces;
   const SpatialTransform* X_WS;
-  mutable int last = 0;  // the last support corner: where the next search starts
+  mutable int last = -1;  // the last support corner: where the next search starts (-1: none yet)
 };
 
 Vec3 from_ccd(const ccd_vec3_t* v) { return Vec3(real(v->v[0]), real(v->v[1]), real(v->v[2])); }

@@ -2,9 +2,10 @@
 // contact patch, so that a mesh lying on another keeps a small, well-spread manifold.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
+#include <tuple>
 
 #include "collision/collision_detection.h"
 
@@ -20,8 +21,10 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
   // cell of a 16^3 grid over the patch and per direction of the normal, in their order
   if (points.size() > 8 * max_points && extent > 0) {
     const real cell = extent / 16;
-    std::unordered_map<std::uint64_t, size_t> best;
-    std::vector<char> keep(points.size(), 0);
+    // (cell and direction, depth, index) of each point; sorted, each key's first is its deepest
+    // (the earliest of equally deep ones)
+    thread_local std::vector<std::tuple<std::uint64_t, real, size_t>> keyed;
+    keyed.clear();
     for (size_t i = 0; i < points.size(); ++i) {
       const ShapeContact& p = points[i];
       const Eigen::Array3i c = ((p.p_W - box.min) / cell).array().floor().cast<int>().min(16);
@@ -29,10 +32,14 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
       int axis = 0;
       p.n_W.cwiseAbs().maxCoeff(&axis);
       const std::uint64_t key = static_cast<std::uint64_t>(c.x() + 17 * (c.y() + 17 * c.z())) * 6 + 2 * axis + (p.n_W[axis] < 0);
-      auto [it, inserted] = best.try_emplace(key, i);
-      if (!inserted && p.phi < points[it->second].phi) it->second = i;
+      // (a NaN depth sorts last, so that the order stays strict)
+      keyed.emplace_back(key, std::isnan(p.phi) ? std::numeric_limits<real>::infinity() : p.phi, i);
     }
-    for (const auto& [key, i] : best) keep[i] = 1;
+    std::sort(keyed.begin(), keyed.end());
+    thread_local std::vector<char> keep;
+    keep.assign(points.size(), 0);
+    for (size_t k = 0; k < keyed.size(); ++k)
+      if (k == 0 || std::get<0>(keyed[k]) != std::get<0>(keyed[k - 1])) keep[std::get<2>(keyed[k])] = 1;
     size_t k = 0;
     for (size_t i = 0; i < points.size(); ++i)
       if (keep[i]) points[k++] = points[i];

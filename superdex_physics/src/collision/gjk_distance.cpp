@@ -107,7 +107,7 @@ bool closest_on_simplex(Vertex* s, int& n, real* lambda) {
 
 ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_WA, const ConvexFaces& fb, const SpatialTransform& X_WB,
                                real stop_beyond) {
-  int hint_a = 0, hint_b = 0;
+  int hint_a = -1, hint_b = -1;  // the last support corners (-1: none yet)
   // the difference's support point in direction d: a's farthest along d less b's farthest along -d
   auto support = [&](const Vec3& d) {
     hint_a = fa.support(X_WA.R.transpose() * d, hint_a);

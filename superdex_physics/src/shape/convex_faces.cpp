@@ -4,13 +4,33 @@
 #include "shape/convex_faces.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <unordered_map>
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+// The 26 unit directions from a cube's centre to its faces, edges and corners.
+constexpr int kNumSeeds = 26;
+const std::array<Vec3, kNumSeeds>& seed_directions() {
+  static const std::array<Vec3, kNumSeeds> table = [] {
+    std::array<Vec3, kNumSeeds> t;
+    for (int k = 0; k < kNumSeeds; ++k) {
+      const int i = k < 13 ? k : k + 1;  // components -1, 0, 1; the centre (13) skipped
+      t[k] = Vec3(real(i % 3 - 1), real(i / 3 % 3 - 1), real(i / 9 - 1)).normalized();
+    }
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
 
 int ConvexFaces::support(const Vec3& dir, int start) const {
   const int n = static_cast<int>(corners.size());
@@ -24,6 +44,14 @@ int ConvexFaces::support(const Vec3& dir, int start) const {
     return best;
   }
   int at = start >= 0 && start < n ? start : 0;
+  if (start < 0 && !seeds.empty()) {
+    // the seed whose direction is nearest dir
+    real best_dot = -std::numeric_limits<real>::infinity();
+    for (int k = 0; k < kNumSeeds; ++k) {
+      const real d = seed_directions()[k].dot(dir);
+      if (d > best_dot) best_dot = d, at = seeds[k];
+    }
+  }
   real at_dot = corners[at].dot(dir);
   // steepest strictly uphill moves only: it ends, and at a corner no neighbour improves on
   for (;;) {
@@ -42,6 +70,17 @@ int ConvexFaces::support(const Vec3& dir, int start) const {
 }
 
 void build_corner_graph(ConvexFaces& f) {
+  f.seeds.clear();
+  // hill climbing from one corner crosses about the square root of the corners: seeds pay off
+  // on large hulls only
+  if (f.corners.size() > 32)
+    for (int k = 0; k < kNumSeeds; ++k) {
+      const Vec3& d = seed_directions()[k];
+      int best = 0;
+      for (int c = 1; c < static_cast<int>(f.corners.size()); ++c)
+        if (f.corners[c].dot(d) > f.corners[best].dot(d)) best = c;
+      f.seeds.push_back(best);
+    }
   std::vector<std::vector<int>> adj(f.corners.size());
   for (int face = 0; face < f.num_faces(); ++face) {
     const int s = f.loop_start[face], e = f.loop_start[face + 1];

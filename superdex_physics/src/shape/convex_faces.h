@@ -20,12 +20,15 @@ struct ConvexFaces {
   real radius = 0;                    // the farthest corner's distance from `centre` (m)
   // corner c's neighbours along the faces' edges: neighbours[neighbour_start[c] .. [c + 1])
   std::vector<int> neighbour_start, neighbours;
+  // on polyhedra of many corners, the farthest corner along each of the 26 directions to the
+  // faces, edges and corners of a cube: where a support search without a start begins
+  std::vector<int> seeds;
 
   int num_faces() const { return static_cast<int>(normals.size()); }
   // The corner farthest along `dir` (shape frame): by hill climbing along the edges from `start`
-  // (on a convex polyhedron a corner no neighbour improves on is the farthest), or by scanning
-  // every corner when there is no edge graph.
-  int support(const Vec3& dir, int start = 0) const;
+  // (on a convex polyhedron a corner no neighbour improves on is the farthest), from the seed
+  // nearest `dir` when start is -1, or by scanning every corner when there is no edge graph.
+  int support(const Vec3& dir, int start = -1) const;
 };
 
 // The faces of a closed, convex, outward-oriented triangle mesh: triangles that share an edge and
