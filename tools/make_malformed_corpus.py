@@ -177,7 +177,7 @@ def bot_cases():
     case(B, "params_number_overflow" + e, bot_edit(link(1, actuators=[{"type": "IDEAL_PD", "name": "a", "params": '{"kp": 1e999}'}])),
          r"links\[1\]\.actuators\[0\] \('a'\): .*IDEAL_PD: params is not valid JSON: .*number overflow parsing '1e999'")
     case(B, "params_unknown_key" + e, bot_edit(link(1, actuators=[{"type": "IDEAL_PD", "name": "a", "params": '{"gain": 1}'}])),
-         r"links\[1\]\.actuators\[0\] \('a'\): .*IDEAL_PD: unknown parameter 'gain' \(known: rate, kp, kd, effort_limit\)")
+         r"links\[1\]\.actuators\[0\] \('a'\): .*IDEAL_PD: unknown parameter 'gain' \(known: rate, kp, kd, effort_limit, default_position\)")
     case(B, "params_wrong_type" + e, bot_edit(link(1, actuators=[{"type": "IDEAL_PD", "name": "a", "params": '{"kp": "stiff"}'}])),
          r"links\[1\]\.actuators\[0\] \('a'\): .*IDEAL_PD: params\.kp: expected a number, got \"stiff\"")
 
@@ -536,6 +536,38 @@ def mesh_cases():
          r"the file ends early, in element 'vertex' record 5", loader="mesh")
     case("ply", "ascii_malformed_number.ply", ply_header(8, 12) + ply_body_ascii().replace(b"0.5 0.5 0.5", b"0.5 half 0.5"), r"ascii_malformed_number\.ply:16: malformed number 'half' in element 'vertex' record 6", loader="mesh")
 
+    dae_cases()
+
+
+# a tetrahedron as COLLADA (read through Assimp); the cases below break one piece of it
+def dae_text(positions="0 0 0 1 0 0 0 1 0 0 0 1", count=12, indices="0 2 1 0 1 3 0 3 2 1 2 3", source="#tet-pos",
+             geometries=None, instance='<instance_geometry url="#tet"/>'):
+    if geometries is None:
+        geometries = (f'<geometry id="tet"><mesh><source id="tet-pos"><float_array id="tet-pos-array" count="{count}">{positions}</float_array>'
+                      '<technique_common><accessor source="#tet-pos-array" count="4" stride="3"><param name="X" type="float"/>'
+                      '<param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>'
+                      f'<vertices id="tet-vtx"><input semantic="POSITION" source="{source}"/></vertices>'
+                      f'<triangles count="4"><input semantic="VERTEX" source="#tet-vtx" offset="0"/><p>{indices}</p></triangles></mesh></geometry>')
+    return ('<?xml version="1.0" encoding="utf-8"?>\n<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">'
+            '<asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>'
+            f'<library_geometries>{geometries}</library_geometries>'
+            f'<library_visual_scenes><visual_scene id="s"><node id="n">{instance}</node></visual_scene></library_visual_scenes>'
+            '<scene><instance_visual_scene url="#s"/></scene></COLLADA>\n')
+
+
+def dae_cases():
+    good = dae_text()
+    case("dae", "not_xml.dae", "this is not a COLLADA file\n", r"not_xml\.dae: cannot read: .*malformed XML", loader="mesh")
+    case("dae", "empty.dae", "", r"empty\.dae: cannot read: .*malformed XML", loader="mesh")
+    case("dae", "truncated.dae", good[: len(good) // 2], r"truncated\.dae: cannot read: .*malformed XML", loader="mesh")
+    case("dae", "wrong_root.dae", '<?xml version="1.0"?><COLLADAX></COLLADAX>\n', r"wrong_root\.dae: cannot read: ", loader="mesh")
+    case("dae", "no_geometry.dae", dae_text(geometries="", instance=""), r"no_geometry\.dae: no triangles in the file", loader="mesh")
+    case("dae", "index_out_of_range.dae", dae_text(indices="0 2 1 0 1 3 0 3 2 1 2 99"), r"index_out_of_range\.dae: cannot read: Invalid data index \(99/4\)", loader="mesh")
+    case("dae", "bad_number.dae", dae_text(positions="0 0 0 1 0 0 0 x 0 0 0 1"), r"bad_number\.dae: cannot read: Cannot parse string .* as a real number", loader="mesh")
+    case("dae", "short_float_array.dae", dae_text(positions="0 0 0 1 0 0"), r"short_float_array\.dae: cannot read: Expected more values while reading float_array", loader="mesh")
+    case("dae", "nan_vertex.dae", dae_text(positions="0 0 0 1 0 0 0 nan 0 0 0 1"), r"nan_vertex\.dae: a vertex has a non-finite coordinate", loader="mesh")
+    case("dae", "missing_source.dae", dae_text(source="#nothing"), r"missing_source\.dae: cannot read: Unable to resolve library reference \"nothing\"", loader="mesh")
+    case("dae", "degenerate_only.dae", dae_text(indices="0 0 1 1 1 2 2 2 3 3 3 0"), r"degenerate_only\.dae: ", loader="mesh")
 
 # ---------------------------------------------------------------------------------------------
 # debugger recordings (.jsonl)
@@ -615,6 +647,11 @@ def mjcf_cases():
          r"<body name='hand'>/<freejoint>: a free joint must be the only joint of a body that is a child of the world")
     case(M, "range_inverted" + e, mjcf('<body name="arm"><joint name="j" range="30 -30"/><geom size="0.1"/></body>'),
          r"<joint name='j'>: attribute 'range': the lower limit 0.523599 exceeds the upper limit -0.523599")
+    arm = '<mujoco model="corpus_mjcf">\n<worldbody>\n<body name="arm"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body>\n</worldbody>\n'
+    case(M, "tendon_unknown_joint" + e, arm + '<tendon><fixed name="t"><joint joint="j" coef="1"/><joint joint="missing" coef="-1"/></fixed></tendon>\n</mujoco>\n',
+         r"<fixed name='t'>/<joint>: refers to joint 'missing', which is not defined")
+    case(M, "tendon_range_inverted" + e, arm + '<tendon><fixed name="t" limited="true" range="0.5 -0.5"><joint joint="j" coef="1"/></fixed></tendon>\n</mujoco>\n',
+         r"<fixed name='t'>: attribute 'range': the lower limit 0\.5 exceeds the upper limit -0\.5")
     case(M, "negative_inertial_mass" + e, mjcf('<body name="arm"><joint name="j"/><inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/></body>'),
          r"<body name='arm'>/<inertial>: missing or negative 'mass'")
     case(M, "coordinate_global" + e, mjcf(head='<compiler coordinate="global"/>\n'), r"coordinate=\"global\" is not supported")

@@ -67,7 +67,7 @@ LOADERS = {"bot": load_bot, "urdf": load_urdf, "mjcf": load_mjcf, "prefab": load
 
 def test_corpus_is_large_and_covers_every_format():
     folders = {entry["file"].split("/")[0] for entry in MANIFEST}
-    assert folders == {"bot", "prefab", "urdf", "mjcf", "h5", "obj", "stl", "ply", "recording"}
+    assert folders == {"bot", "prefab", "urdf", "mjcf", "h5", "obj", "stl", "ply", "dae", "recording"}
     assert len(MANIFEST) >= 100
     on_disk = {p.relative_to(CORPUS).as_posix() for p in CORPUS.rglob("*") if p.is_file() and not p.name.startswith("valid_")}
     assert on_disk - {"manifest.json"} == {entry["file"] for entry in MANIFEST}, "every corpus file is in the manifest"

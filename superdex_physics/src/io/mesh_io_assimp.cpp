@@ -53,6 +53,8 @@ TriangleMesh read_assimp_file(const std::string& path) {
   const aiScene* scene = importer.ReadFile(path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                      aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) mesh_io::fail(path, 0, std::string("cannot read: ") + importer.GetErrorString());
+  // a file without meshes comes back flagged incomplete, with a placeholder of Assimp's own
+  if (scene->mNumMeshes == 0 || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) mesh_io::fail(path, 0, "no triangles in the file");
   TriangleMesh mesh;
   add_node(*scene, *scene->mRootNode, aiMatrix4x4(), mesh);
   for (const Vec3& v : mesh.vertices)
