@@ -86,11 +86,13 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
                     const SpatialTransform& X_WB, real margin, std::vector<ShapeContact>& out);
 
 // At most `max_points` of a shape pair's contacts, spread over its contact patch (collision_reduce.cpp).
-// More than 8 max_points are first thinned to the deepest per cell of a 16^3 grid over the patch
-// and direction of the normal (its dominant axis and sign). Then the one farthest from the patch's centre, then repeatedly the one farthest from those kept
+// More than 8 max_points, and more than kThinningThreshold, are first thinned to the deepest per
+// cell of a 16^3 grid over the patch and direction of the normal (its dominant axis and sign)
+// (fewer cost less to spread directly than to thin). Then the one farthest from the patch's centre, then repeatedly the one farthest from those kept
 // (distance in position plus the patch's size times 1 - cos of the angle between normals), and the
 // deepest; in their original order.
 constexpr size_t kMaxContactsPerPair = 32;
+constexpr size_t kThinningThreshold = 256;
 void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points);
 // reduce_contacts on out[first, end).
 void keep_at_most(std::vector<ShapeContact>& out, size_t first, size_t max_points);

@@ -19,7 +19,7 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
   const real extent = (box.max - box.min).norm();
   // many points (a mesh lying on another gives thousands) are first thinned to the deepest per
   // cell of a 16^3 grid over the patch and per direction of the normal, in their order
-  if (points.size() > 8 * max_points && extent > 0) {
+  if (points.size() > std::max<size_t>(8 * max_points, kThinningThreshold) && extent > 0) {
     const real cell = extent / 16;
     // (cell and direction, depth, index) of each point; sorted, each key's first is its deepest
     // (the earliest of equally deep ones)
