@@ -567,6 +567,8 @@ def dae_cases():
     case("dae", "short_float_array.dae", dae_text(positions="0 0 0 1 0 0"), r"short_float_array\.dae: cannot read: Expected more values while reading float_array", loader="mesh")
     case("dae", "nan_vertex.dae", dae_text(positions="0 0 0 1 0 0 0 nan 0 0 0 1"), r"nan_vertex\.dae: a vertex has a non-finite coordinate", loader="mesh")
     case("dae", "missing_source.dae", dae_text(source="#nothing"), r"missing_source\.dae: cannot read: Unable to resolve library reference \"nothing\"", loader="mesh")
+    case("dae", "count_huge.dae", dae_text().replace('<triangles count="4">', '<triangles count="3000000000">'),
+         r"count_huge\.dae:\d+: a count attribute exceeds what a file of \d+ bytes can hold", loader="mesh")
     case("dae", "degenerate_only.dae", dae_text(indices="0 0 1 1 1 2 2 2 3 3 3 0"), r"degenerate_only\.dae: ", loader="mesh")
 
 # ---------------------------------------------------------------------------------------------

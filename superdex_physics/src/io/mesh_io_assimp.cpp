@@ -7,7 +7,11 @@
 #include <assimp/scene.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
+#include "io/file_extension.h"
 #include "io/mesh_io_detail.h"
 #include "superdex/physics/mesh_io.h"
 #include "superdex/physics/mesh_validation.h"
@@ -36,11 +40,44 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
   for (unsigned c = 0; c < node.mNumChildren; ++c) add_node(scene, *node.mChildren[c], X, mesh);
 }
 
+// A COLLADA file's count attributes (of arrays, accessors and primitives) are sizes Assimp
+// allocates before it reads what they count: each counted value takes at least a byte of the
+// file, so a count beyond the file's size is an error here, not an allocation of gigabytes there.
+void check_collada_counts(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  long line = 1;
+  size_t counted_to = 0;  // text[0, counted_to) has been scanned for line breaks
+  for (size_t at = text.find("count"); at != std::string::npos; at = text.find("count", at + 5)) {
+    size_t k = at + 5;
+    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\n' || text[k] == '\r')) ++k;
+    if (k >= text.size() || text[k] != '=') continue;
+    ++k;
+    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\n' || text[k] == '\r')) ++k;
+    if (k >= text.size() || (text[k] != '"' && text[k] != '\'')) continue;
+    ++k;
+    // the value's digits, stopped once it exceeds the file size (no overflow)
+    unsigned long long value = 0;
+    bool too_large = false;
+    for (; k < text.size() && text[k] >= '0' && text[k] <= '9'; ++k) {
+      value = 10 * value + static_cast<unsigned long long>(text[k] - '0');
+      if (value > text.size()) {
+        too_large = true;
+        break;
+      }
+    }
+    if (!too_large) continue;
+    for (; counted_to < at; ++counted_to) line += text[counted_to] == '\n';
+    mesh_io::fail(path, line, "a count attribute exceeds what a file of " + std::to_string(text.size()) + " bytes can hold");
+  }
+}
+
 }  // namespace
 
 TriangleMesh read_assimp_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) mesh_io::fail(path, 0, "file not found");
+  if (lower_extension(path) == ".dae") check_collada_counts(path);
   Assimp::Importer importer;
   // only positions are needed: normals, colours, texture coordinates and materials are dropped
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
