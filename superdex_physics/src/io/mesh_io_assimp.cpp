@@ -6,9 +6,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "io/file_extension.h"
@@ -44,16 +43,15 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
 // allocates before it reads what they count: each counted value takes at least a byte of the
 // file, so a count beyond the file's size is an error here, not an allocation of gigabytes there.
 void check_collada_counts(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  long line = 1;
-  size_t counted_to = 0;  // text[0, counted_to) has been scanned for line breaks
+  const std::string text = mesh_io::read_bytes(path);
+  auto skip_space = [&](size_t k) {
+    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\n' || text[k] == '\r')) ++k;
+    return k;
+  };
   for (size_t at = text.find("count"); at != std::string::npos; at = text.find("count", at + 5)) {
-    size_t k = at + 5;
-    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\n' || text[k] == '\r')) ++k;
+    size_t k = skip_space(at + 5);
     if (k >= text.size() || text[k] != '=') continue;
-    ++k;
-    while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\n' || text[k] == '\r')) ++k;
+    k = skip_space(k + 1);
     if (k >= text.size() || (text[k] != '"' && text[k] != '\'')) continue;
     ++k;
     // the value's digits, stopped once it exceeds the file size (no overflow)
@@ -67,7 +65,7 @@ void check_collada_counts(const std::string& path) {
       }
     }
     if (!too_large) continue;
-    for (; counted_to < at; ++counted_to) line += text[counted_to] == '\n';
+    const long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
     mesh_io::fail(path, line, "a count attribute exceeds what a file of " + std::to_string(text.size()) + " bytes can hold");
   }
 }

@@ -3,6 +3,7 @@
 #include "linalg/small_llt.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace superdex::physics {
@@ -59,6 +60,7 @@ void solve_lower_columns(const real* L, const real* inverse, real* X, Eigen::Ind
     for (Eigen::Index j = 0; j < n; ++j) {
       const real x_j = x[j] * inverse[j];
       x[j] = x_j;
+      if (x_j == 0) continue;  // (a Jacobian's columns start with zeros)
       for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= L[i + n * j] * x_j;
     }
   }
@@ -125,20 +127,11 @@ void SmallLLT::solve_lower_in_place(Eigen::Ref<MatX> X) const {
     matrixL().solveInPlace(X);
     return;
   }
-  // 17 to 32 rows (factored by Eigen: no reciprocals kept): column by column of L, each solved
-  // entry taken out of the entries below it (contiguous in L's column and in X's)
-  const real* L = m_matrix.data();
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const real* L_j = L + j * n;
-    const real inverse = 1 / L_j[j];
-    for (Eigen::Index c = 0; c < X.cols(); ++c) {
-      real* x = X.data() + c * X.outerStride();
-      const real x_j = x[j] * inverse;
-      x[j] = x_j;
-      if (x_j == 0) continue;
-      for (Eigen::Index i = j + 1; i < n; ++i) x[i] -= L_j[i] * x_j;
-    }
-  }
+  // 17 to 32 rows (factored by Eigen: no reciprocals kept): the same kernel, with the diagonal's
+  // reciprocals taken here
+  std::array<real, 32> inverse;
+  for (Eigen::Index i = 0; i < n; ++i) inverse[i] = 1 / m_matrix(i, i);
+  solve_lower_columns<0>(m_matrix.data(), inverse.data(), X.data(), X.cols(), X.outerStride(), n);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -67,8 +67,9 @@ void BodyJacobian::end_block() {
   // the open block's pieces are the last values, one after the other: each is compacted to its
   // non-zero columns, moved down behind the one before
   const int s = open_;
-  size_t write = piece_start_.back() < static_cast<int>(pieces_.size()) ? static_cast<size_t>(pieces_[piece_start_.back()].value) : 0;
-  for (size_t p = piece_start_.back(); p < pieces_.size(); ++p) {
+  const size_t first = static_cast<size_t>(piece_start_.back());
+  size_t write = first < pieces_.size() ? static_cast<size_t>(pieces_[first].value) : values_.size();
+  for (size_t p = first; p < pieces_.size(); ++p) {
     Piece& piece = pieces_[p];
     const int nb = body_dofs(piece.body);
     const real* P = values_.data() + piece.value;
@@ -85,7 +86,7 @@ void BodyJacobian::end_block() {
     }
     piece.num_cols = static_cast<int>(columns_.size()) - piece.col_start;
   }
-  if (piece_start_.back() < static_cast<int>(pieces_.size())) values_.resize(write);
+  values_.resize(write);
   piece_start_.push_back(static_cast<int>(pieces_.size()));
   rows_ += open_;
   open_ = 0;
