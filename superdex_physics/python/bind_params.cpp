@@ -74,6 +74,8 @@ void export_solver_params(nb::module_& m) {
              "Newton iterations that correct the friction cone's drift (0: pure cone model)")
       .field("dense_island_max_dofs", &ImplicitStepParams::dense_island_max_dofs, "islands above it use sparse algebra")
       .field("defer_inactive_joint_limits", &ImplicitStepParams::defer_inactive_joint_limits)
+      .field("defer_separating_contacts", &ImplicitStepParams::defer_separating_contacts,
+             "leave out of the solve the contacts the motion keeps apart; solve again if one would close")
       .field("soft_hessian_reuse_strain", &ImplicitStepParams::soft_hessian_reuse_strain)
       .done();
   StructBinder<SolverParams>(m, "SolverParams", "Everything that configures a scene's solve.")

@@ -456,7 +456,8 @@ LOSSLESS_DOC = {
                          "nonLinearSolver": {"absTol": 1e-6, "lineSearchMaxIter": 12, "convergenceMode": "GLOBAL"},
                          "linearSolver": {"solverType": "CG", "relTol": 1e-7},
                          "experimentalEval": {"fadeFriction": False},
-                         "implicitStep": {"nearRigidBeta": 2.0, "driftCorrectionIterations": 3, "deferInactiveJointLimits": False}}},
+                         "implicitStep": {"nearRigidBeta": 2.0, "driftCorrectionIterations": 3, "deferInactiveJointLimits": False,
+                                          "deferSeparatingContacts": False}}},
 }
 
 
@@ -489,6 +490,7 @@ def test_load_save_load_is_lossless(engine, tmp_path):
     assert solver.non_linear_solver.convergence_mode == sdp.NonLinearSolverConvergenceMode.GLOBAL
     assert solver.linear_solver.solver_type == sdp.LinearSolverType.CG and solver.linear_solver.rel_tol == pytest.approx(1e-7)
     assert not solver.experimental_eval.fade_friction and not solver.implicit_step.defer_inactive_joint_limits
+    assert not solver.implicit_step.defer_separating_contacts
     assert solver.implicit_step.near_rigid_beta == 2.0 and solver.implicit_step.drift_correction_iterations == 3
     assert saved["scene"]["solver"]["implicitStep"] == LOSSLESS_DOC["scene"]["solver"]["implicitStep"]
     s1, s2 = second.actors.soft

@@ -106,6 +106,7 @@ void solver_fields(A& a, B& b, V&& v) {
     v(g, "driftCorrectionIterations", x.drift_correction_iterations, y.drift_correction_iterations);
     v(g, "denseIslandMaxDofs", x.dense_island_max_dofs, y.dense_island_max_dofs);
     v(g, "deferInactiveJointLimits", x.defer_inactive_joint_limits, y.defer_inactive_joint_limits);
+    v(g, "deferSeparatingContacts", x.defer_separating_contacts, y.defer_separating_contacts);
     v(g, "softHessianReuseStrain", x.soft_hessian_reuse_strain, y.soft_hessian_reuse_strain);
   }
 }

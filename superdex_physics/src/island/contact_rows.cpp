@@ -8,15 +8,14 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-ContactRows::ContactRows(const IslandInputs& in, const IslandLayout& layout, IslandWorkspace& w, IslandJacobian& J)
+ContactRows::ContactRows(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J)
     : in_(in), w_(w), J_(J) {
-  reset_link_jacobians(layout.links, w);
   w.frames.clear();
 }
 
 void ContactRows::add_rigid() {
-  for (int ci : in_.island.contacts) {
-    const Contact& c = in_.contacts[ci];
+  for (int j : w_.solved_contacts) {
+    const Contact& c = in_.contacts[in_.island.contacts[j]];
     const Mat3 R_C = contact_frame(c.n_W);
     w_.frames.push_back(R_C);
     Vec3 W_diag = Vec3::Zero();
@@ -52,7 +51,7 @@ void ContactRows::add_link_side(int body, int link, const Vec3& p_W, const Mat3&
   const SceneData& s = in_.s;
   const int nb = s.articulations[body]->model.nv;
   if (nb == 0) return;
-  const IslandWorkspace::LinkJacobian& lj = link_compliance(s, body, link, in_.terms[body].A_llt, w_);
+  const IslandWorkspace::LinkJacobian& lj = link_compliance(s, body, link, in_.terms[body].A_factor, w_);
   const MatXR& J = lj.J_WL;
   const Vec3 r = p_W - s.articulations[body]->kin.X_WL[link].p;
   const Mat3 R = sign * R_C.transpose();

@@ -10,10 +10,11 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 class ContactRows {
  public:
-  // Starts with no link Jacobian computed and no contact frame (w.frames).
-  ContactRows(const IslandInputs& in, const IslandLayout& layout, IslandWorkspace& w, IslandJacobian& J);
+  // Starts with no contact frame (w.frames); the island's link Jacobians are reset once per step
+  // (reset_link_jacobians).
+  ContactRows(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J);
 
-  // The rigid contacts: a link (side a) against a link (side b).
+  // The rigid contacts that take part (w.solved_contacts): a link (side a) against a link (side b).
   void add_rigid();
   // The soft contacts: a point moving with up to three nodes of a full or reduced soft body by
   // barycentric weights (side a) against a link (side b).

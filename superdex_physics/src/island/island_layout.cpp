@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "island/island_stages.h"
+#include "island/deferred_contacts.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -18,15 +18,18 @@ IslandLayout lay_out_variables(const IslandInputs& in, bool include_deferred, co
   std::vector<int>& soft_offset = w.soft_offset;
   fill_to(offset, s.articulations.size(), -1);
   fill_to(soft_offset, soft_steps.size(), -1);
-  fill_to(w.link_base, s.articulations.size(), -1);
   fill_to(w.island_position, s.articulations.size(), -1);
-  int n = 0, links = 0;
+  int n = 0;
   for (size_t j = 0; j < island.bodies.size(); ++j) {
     const int b = island.bodies[j];
     offset[b] = n, n += s.articulations[b]->model.nv;
-    w.link_base[b] = links, links += s.articulations[b]->model.num_links;
     w.island_position[b] = static_cast<int>(j);
   }
+  // the rigid contacts that take part (positions in island.contacts)
+  std::vector<int>& solved_rigid = w.solved_contacts;
+  solved_rigid.clear();
+  for (size_t j = 0; j < island.contacts.size(); ++j)
+    if (w.contact_takes_part[j]) solved_rigid.push_back(static_cast<int>(j));
   // the soft contacts that take part (positions in island.soft_contacts)
   std::vector<int>& solved_soft = w.solved_soft_contacts;
   solved_soft.clear();
@@ -77,9 +80,8 @@ IslandLayout lay_out_variables(const IslandInputs& in, bool include_deferred, co
   IslandLayout layout;
   layout.n = n;
   layout.n_rigid = n_rigid;
-  layout.links = links;
   layout.joint_rows = static_cast<int>(solved_rows.size());
-  layout.num_contacts = static_cast<int>(island.contacts.size() + solved_soft.size());
+  layout.num_contacts = static_cast<int>(solved_rigid.size() + solved_soft.size());
   return layout;
 }
 

@@ -49,11 +49,14 @@ void pack_solution(const IslandInputs& in, const IslandLayout& layout, const Con
   }
   out.contact_force.clear();
   out.soft_contact_force.clear();
-  for (size_t k = 0; k < island.contacts.size(); ++k)
-    out.contact_force.push_back(w.frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt);
+  // deferred contacts are inactive at the solution (island_solver.cpp): no force
+  const size_t rigid = w.solved_contacts.size();
+  out.contact_force.assign(island.contacts.size(), Vec3::Zero());
+  for (size_t k = 0; k < rigid; ++k)
+    out.contact_force[w.solved_contacts[k]] = w.frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt;
   out.soft_contact_force.assign(island.soft_contacts.size(), Vec3::Zero());
-  for (size_t k = island.contacts.size(); k < w.frames.size(); ++k)
-    out.soft_contact_force[w.solved_soft_contacts[k - island.contacts.size()]] = w.frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt;
+  for (size_t k = rigid; k < w.frames.size(); ++k)
+    out.soft_contact_force[w.solved_soft_contacts[k - rigid]] = w.frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

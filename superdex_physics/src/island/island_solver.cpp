@@ -1,5 +1,5 @@
 // One island's solve: its convex problem assembled and solved by stages (island_stages.h), again
-// with the deferred rows and soft contacts its solution would make act.
+// with the deferred rows and contacts its solution would make act.
 
 #include "island/island_solver.h"
 
@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "island/contact_rows.h"
+#include "island/deferred_contacts.h"
 #include "island/island_jacobian.h"
 #include "island/island_stages.h"
 #include "island/link_jacobians.h"
@@ -52,8 +53,9 @@ const ConvexResult& solve_problem(const IslandInputs& in, bool sparse, SparseNew
                          : solve_convex(w.A, w.r, w.J_dense, w.rows.blocks, in.params, w.v_start, w.newton);
 }
 
-// One solve of the island, with or without the deferred joint-limit rows, and with the deferred
-// soft contacts `admitted` flags (per island soft contact).
+// One solve of the island, with or without the deferred joint-limit rows, with the rigid contacts
+// w.contact_takes_part flags and the deferred soft contacts `admitted` flags (per island soft
+// contact).
 void solve_island_once(const IslandInputs& in, bool include_deferred, const std::vector<char>& admitted, IslandWorkspace& w,
                        SparseNewtonSystem* system, IslandSolution& out) {
   const IslandLayout layout = lay_out_variables(in, include_deferred, admitted, w);
@@ -62,7 +64,7 @@ void solve_island_once(const IslandInputs& in, bool include_deferred, const std:
   assemble_momentum(in, layout, sparse, w);
   IslandJacobian J(in, layout, sparse, w);
   add_joint_rows(in, w, J);
-  ContactRows contact_rows(in, layout, w, J);
+  ContactRows contact_rows(in, w, J);
   contact_rows.add_rigid();
   contact_rows.add_soft();
   J.finish(layout.n, w.rows.J);
@@ -79,34 +81,6 @@ bool violates_deferred_rows(const Island& island, const std::vector<Articulation
   return false;
 }
 
-// Admits the deferred soft contacts not yet `admitted` whose gap the island's solution would close
-// by more than half (half the gap its contact block would let close before acting); returns how
-// many.
-int admit_closing_soft_contacts(const SceneData& s, const Island& island, const std::vector<SoftContact>& soft_contacts, real dt,
-                                const IslandSolution& out, IslandWorkspace& w, std::vector<char>& admitted) {
-  int count = 0;
-  // velocity of point p_W of a link at the solution (world), by the link Jacobians of the solve
-  auto point_velocity = [&](int body, int link, const Vec3& p_W) -> Vec3 {
-    const Articulation& a = *s.articulations[body];
-    if (a.model.nv == 0) return Vec3::Zero();
-    const int j = static_cast<int>(std::find(island.bodies.begin(), island.bodies.end(), body) - island.bodies.begin());
-    const Vec6 V = cached_link_jacobian(s, body, link, w).J_WL * out.v[j];
-    return V.head<3>() + V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
-  };
-  for (size_t j = 0; j < island.soft_contacts.size(); ++j) {
-    const SoftContact& c = soft_contacts[island.soft_contacts[j]];
-    if (admitted[j] || !soft_contact_deferred(c)) continue;
-    const VecX& v_soft = out.soft_v[std::find(island.soft_bodies.begin(), island.soft_bodies.end(), c.soft) - island.soft_bodies.begin()];
-    Vec3 v_point = Vec3::Zero();
-    for (int k = 0; k < 3; ++k)
-      if (c.nodes[k] >= 0) v_point += c.weights[k] * v_soft.segment<3>(3 * c.nodes[k]);
-    const real vn = c.n_W.dot(v_point - point_velocity(c.body, c.link, c.p_W));
-    const real allowed = c.material.stiffness > 0 ? c.phi / (dt + std::max<real>(c.material.dissipation_time, 0)) : c.phi / dt;
-    if (vn < -allowed / 2) admitted[j] = 1, ++count;
-  }
-  return count;
-}
-
 }  // namespace
 
 void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
@@ -115,20 +89,29 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
                   IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out) {
   const Ticks t0 = ticks_now();
   const IslandInputs in{s, island, terms, contacts, soft_contacts, soft_steps, dt, params};
+  // the links' Jacobians and compliances serve every solve of the island below
+  reset_link_jacobians(s, island, w);
+  select_rigid_contacts(in, w);
   std::vector<char>& admitted = w.admitted_soft_contacts;
   admitted.assign(island.soft_contacts.size(), 0);
   solve_island_once(in, false, admitted, w, system, out);
-  // a deferred limit row or soft contact is inactive at the solution unless it says otherwise:
-  // then the same problem with every limit row and the soft contacts the solution would close,
-  // until no other would (rare: the free motion kept them far from acting)
+  // a deferred limit row or contact is inactive at the solution unless it says otherwise: then
+  // the same problem with every limit row and the contacts the solution would close, until no
+  // other would (rare: the motion kept them far from acting)
   constexpr int kLastRound = 3;  // after which every deferred contact joins
   bool all_rows = false;
   for (int round = 0;; ++round) {
     const bool rows = !all_rows && violates_deferred_rows(island, terms, out.v);
-    const int closing = admit_closing_soft_contacts(s, island, soft_contacts, dt, out, w, admitted);
+    forget_link_velocities(LinkMotion::Solution, w);
+    int closing = admit_closing_rigid_contacts(in, out, w);
+    closing += admit_closing_soft_contacts(in, out, w, admitted);
     if (!rows && closing == 0) break;
     all_rows = all_rows || rows;
-    if (round == kLastRound) std::fill(admitted.begin(), admitted.end(), 1), all_rows = true;
+    if (round == kLastRound) {
+      std::fill(admitted.begin(), admitted.end(), 1);
+      std::fill(w.contact_takes_part.begin(), w.contact_takes_part.end(), 1);
+      all_rows = true;
+    }
     const int iterations = out.iterations;
     solve_island_once(in, all_rows, admitted, w, system, out);
     out.iterations += iterations;

@@ -3,6 +3,8 @@
 // their joint rows and the frictional contact blocks (SAP regularisation from each contact's
 // effective compliance), adds its soft bodies (soft_body.h), and solves the convex problem.
 
+#include <array>
+
 #include "multibody/articulation_step.h"
 #include "multibody/body_jacobian.h"
 #include "island/islands.h"
@@ -47,6 +49,8 @@ struct IslandWorkspace {
     int body, row;
   };
   std::vector<JointRowRef> solved_joint_rows;  // in the order of their constraint rows
+  std::vector<int> solved_contacts;            // the rigid contacts that take part (positions in the island's list)
+  std::vector<char> contact_takes_part;        // per island rigid contact: not deferred (deferred_contacts.h), or admitted
   std::vector<int> solved_soft_contacts;       // the soft contacts that take part (positions in the island's list)
   std::vector<char> admitted_soft_contacts;    // per island soft contact: a deferred one that takes part
   MatX A;                          // A on the dense paths
@@ -67,6 +71,10 @@ struct IslandWorkspace {
     // compliance as the body's DOFs and inertia allow it; valid when has_W_L
     Mat6 W_L;
     bool has_W_L = false;
+    // the link's spatial velocity J_WL v (its origin's linear velocity, then its angular one;
+    // m/s, rad/s, world) at each LinkMotion (link_jacobians.h), valid by the bit 1 << motion
+    std::array<Vec6, 3> V;
+    unsigned has_V = 0;
   };
   std::vector<LinkJacobian> link_jacobians;
   size_t link_jacobians_used = 0;
@@ -74,7 +82,7 @@ struct IslandWorkspace {
   // yet); link_base by articulation index, -1 for the bodies not in the island
   std::vector<int> link_base, link_slot;
   MatX Jc;   // a reduced body's side of a soft contact (3 x modes)
-  MatX L_inv_Jt;  // L^-1 J_WL^T of a link (DOFs x 6), for its W_L
+  MatX H_Jt;  // H J_WL^T of a link (DOFs x 6; H^T H = A^-1), for its W_L
   std::vector<Mat3> frames;
   NewtonScratch newton;
 };

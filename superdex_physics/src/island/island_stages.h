@@ -33,7 +33,6 @@ struct IslandInputs {
 struct IslandLayout {
   int n = 0;             // variables
   int n_rigid = 0;       // of which the articulations' DOFs and the reduced soft bodies' variables (A's dense part)
-  int links = 0;         // links of the island's articulations
   int joint_rows = 0;    // joint rows that take part (J's first rows)
   int num_contacts = 0;  // contacts that take part, rigid and soft (three rows each)
 };
@@ -45,12 +44,9 @@ inline void fill_to(std::vector<int>& v, size_t n, int value) {
   std::fill(v.begin(), v.end(), value);
 }
 
-// A soft contact too far apart to close within the step at the current speeds: it is left out of
-// the first solve, and joins a second one only if that solve's velocities would close (half) its
-// gap. Most speculative contacts of a soft surface are such.
-inline bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep; }
 
-// The variables' offsets, and the joint rows and soft contacts that take part (island_layout.cpp).
+// The variables' offsets, and the joint rows and contacts that take part (island_layout.cpp):
+// the rigid contacts w.contact_takes_part flags, the soft contacts not deferred or `admitted`.
 IslandLayout lay_out_variables(const IslandInputs& in, bool include_deferred, const std::vector<char>& admitted,
                                IslandWorkspace& w);
 // The momentum terms: A (its dense part), r, and the free motion v_start (island_momentum.cpp).

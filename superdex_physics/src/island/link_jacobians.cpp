@@ -8,7 +8,10 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-void reset_link_jacobians(int links, IslandWorkspace& w) {
+void reset_link_jacobians(const SceneData& s, const Island& island, IslandWorkspace& w) {
+  fill_to(w.link_base, s.articulations.size(), -1);
+  int links = 0;
+  for (int b : island.bodies) w.link_base[b] = links, links += s.articulations[b]->model.num_links;
   w.link_jacobians_used = 0;
   fill_to(w.link_slot, links, -1);
 }
@@ -23,21 +26,40 @@ IslandWorkspace::LinkJacobian& cached_link_jacobian(const SceneData& s, int body
   added.body = body;
   added.link = link;
   added.has_W_L = false;
+  added.has_V = 0;
   const Articulation& a = *s.articulations[body];
   link_jacobian_world(a.model, a.kin, link, added.J_WL);
   return added;
 }
 
-const IslandWorkspace::LinkJacobian& link_compliance(const SceneData& s, int body, int link, const SmallLLT& A_llt,
+const IslandWorkspace::LinkJacobian& link_compliance(const SceneData& s, int body, int link, const TreeLDLT& A_factor,
                                                      IslandWorkspace& w) {
   IslandWorkspace::LinkJacobian& lj = cached_link_jacobian(s, body, link, w);
   if (!lj.has_W_L) {
-    w.L_inv_Jt = lj.J_WL.transpose();
-    A_llt.solve_lower_in_place(w.L_inv_Jt);
-    lj.W_L.noalias() = w.L_inv_Jt.transpose() * w.L_inv_Jt;
+    w.H_Jt = lj.J_WL.transpose();
+    A_factor.half_solve_in_place(w.H_Jt);
+    lj.W_L.noalias() = w.H_Jt.transpose() * w.H_Jt;
     lj.has_W_L = true;
   }
   return lj;
+}
+
+Vec3 link_point_velocity(const SceneData& s, int body, int link, const Vec3& p_W, LinkMotion motion, const VecX& v_body,
+                         IslandWorkspace& w) {
+  const Articulation& a = *s.articulations[body];
+  if (a.model.nv == 0) return Vec3::Zero();
+  IslandWorkspace::LinkJacobian& lj = cached_link_jacobian(s, body, link, w);
+  const int k = static_cast<int>(motion);
+  if (!(lj.has_V & (1u << k))) {
+    lj.V[k].noalias() = lj.J_WL * v_body;
+    lj.has_V |= 1u << k;
+  }
+  const Vec6& V = lj.V[k];
+  return V.head<3>() + V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
+}
+
+void forget_link_velocities(LinkMotion motion, IslandWorkspace& w) {
+  for (size_t i = 0; i < w.link_jacobians_used; ++i) w.link_jacobians[i].has_V &= ~(1u << static_cast<int>(motion));
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -267,6 +267,16 @@ ArticulationModel build_articulation_model(const ArticulationDesc& desc, const s
   m.nq = q_offset;
   m.nv = v_offset;
   m.root_nv = m.joints[0].nv;
+  // the DOFs' tree: within a joint a chain, its first DOF below the nearest moving ancestor's last
+  m.dof_parent.assign(m.nv, -1);
+  for (int i = 0; i < n; ++i) {
+    const JointModel& j = m.joints[i];
+    if (j.nv == 0) continue;
+    int above = m.parent[i];
+    while (above >= 0 && m.joints[above].nv == 0) above = m.parent[above];
+    m.dof_parent[j.v_offset] = above >= 0 ? m.joints[above].v_offset + m.joints[above].nv - 1 : -1;
+    for (int c = 1; c < j.nv; ++c) m.dof_parent[j.v_offset + c] = j.v_offset + c - 1;
+  }
 
   // links: mass properties from explicit values, or from the shape and density
   for (int i = 0; i < n; ++i) {

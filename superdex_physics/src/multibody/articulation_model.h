@@ -48,6 +48,9 @@ struct ArticulationModel {
   int nv = 0;                          // generalized velocities (DOFs)
   int root_nv = 0;                     // DOFs of the root joint (0 Hard, 6 Free)
   std::vector<int> parent;             // parent link index, -1 for the root (num_links)
+  // per DOF: the DOF it moves with, -1 for none (the previous DOF of its joint, or the last DOF
+  // of the nearest ancestor link's joint that has DOFs) (nv)
+  std::vector<int> dof_parent;
   std::vector<int> order;              // links in topological order, parents first (num_links)
   std::vector<JointModel> joints;      // joint i attaches link i (num_links)
   std::vector<SpatialInertia> inertia; // spatial inertia of each link about its origin (num_links)

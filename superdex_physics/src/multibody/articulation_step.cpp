@@ -86,7 +86,7 @@ void coupling_rows(const ArticulationModel& model, const ArticulationState& stat
     row.J[c.dof] = 1;
     row.J[c.leader_dof] -= c.ratio;
     MatX X = row.J;
-    const real w = compliance_diagonal(t.A_llt, X)[0];
+    const real w = compliance_diagonal(t.A_factor, X)[0];
     row.block.kind = BlockKind::Bounded;
     row.block.R = near_rigid * w;
     row.block.vhat = -(state.q[c.q] - c.ratio * state.q[c.leader_q] - c.offset) / dt;
@@ -108,7 +108,7 @@ void tendon_limit_rows(const ArticulationModel& model, const ArticulationState& 
     const real rate_free = J.dot(t.v_free);
     // the tendon's compliance c^T A^-1 c, the same for either bound
     MatX X = J;
-    const real w = compliance_diagonal(t.A_llt, X)[0];
+    const real w = compliance_diagonal(t.A_factor, X)[0];
     for (const real sign : {real(1), real(-1)}) {
       if (!(sign > 0 ? tendon.has_lower : tendon.has_upper)) continue;
       JointRow row;
@@ -158,7 +158,7 @@ void transmission_drive_rows(const ArticulationModel& model, const ArticulationS
     JointRow row;
     row.J = path.jacobian(model.nv);
     MatX X = row.J;
-    const real w = compliance_diagonal(t.A_llt, X)[0];
+    const real w = compliance_diagonal(t.A_factor, X)[0];
     const real per_rate = dt * act.stiffness + act.damping;  // tension per unit of displacement rate
     row.block.kind = act.allow_compressive_force ? BlockKind::Bounded : BlockKind::Unilateral;
     // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
@@ -193,7 +193,7 @@ void implicit_gyroscopic(const ArticulationModel& model, const ArticulationState
 // Link drive rows: per world axis, a bounded implicit spring-damper on the link origin's velocity
 // (linear) or the link's angular velocity (angular), with the link Jacobian's rows.
 void link_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin,
-                     const SmallLLT& A_llt, real dt, const StepSettings& params, std::vector<JointRow>& rows) {
+                     const TreeLDLT& A_factor, real dt, const StepSettings& params, std::vector<JointRow>& rows) {
   const real near_rigid = near_rigid_factor(params);
   for (int link = 0; link < model.num_links; ++link) {
     const LinkDrive& d = state.link_drives[link];
@@ -205,7 +205,7 @@ void link_drive_rows(const ArticulationModel& model, const ArticulationState& st
     const Vec3 rotation_error = quat_log(d.target.rotation * Quat(X.R).conjugate());
     // the compliance J_i A^-1 J_i^T of each of the link Jacobian's six rows
     MatX Jt = J.transpose();
-    const VecX w = compliance_diagonal(A_llt, Jt);
+    const VecX w = compliance_diagonal(A_factor, Jt);
     for (int part = 0; part < 2; ++part) {
       const real K = part == 0 ? d.linear_stiffness : d.angular_stiffness;
       const real D = part == 0 ? d.linear_damping : d.angular_damping;
@@ -238,7 +238,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
     t.A.resize(0, 0);
     t.r.resize(0);
     t.v_free.resize(0);
-    t.A_llt.compute(t.A);
+    t.A_factor.compute(t.A, model.dof_parent);
     return;
   }
   mass_matrix(model, a.kin, t.A);
@@ -255,21 +255,21 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
   implicit_gyroscopic(model, a.state, dt, t.r);
   tendon_springs(model, a.state, dt, t);
   transmission_forces(model, a.state, dt, t);
-  t.A_llt.compute(t.A);
+  t.A_factor.compute(t.A, model.dof_parent);
   t.v_free = t.r;
-  t.A_llt.solve_in_place(t.v_free);
+  t.A_factor.solve_in_place(t.v_free);
   joint_rows(model, a.state, dt, params, t);
   coupling_rows(model, a.state, dt, params, t);
   tendon_limit_rows(model, a.state, dt, params, t);
   transmission_drive_rows(model, a.state, dt, params, t);
-  link_drive_rows(model, a.state, a.kin, t.A_llt, dt, params, t.joint_rows);
+  link_drive_rows(model, a.state, a.kin, t.A_factor, dt, params, t.joint_rows);
 }
 
 real ArticulationTerms::inverse_diagonal(int k) const {
   if (!have_inverse_diagonal_) {
     // diagonal of A^-1 = L^-T L^-1
-    L_inv_.setIdentity(A.rows(), A.cols());
-    A_inv_diagonal_ = compliance_diagonal(A_llt, L_inv_);
+    H_.setIdentity(A.rows(), A.cols());
+    A_inv_diagonal_ = compliance_diagonal(A_factor, H_);
     have_inverse_diagonal_ = true;
   }
   return A_inv_diagonal_[k];

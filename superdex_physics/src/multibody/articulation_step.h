@@ -4,7 +4,7 @@
 // factor, and the joint-limit and joint-friction rows.
 
 #include "solver/newton_solver.h"
-#include "linalg/small_llt.h"
+#include "linalg/tree_ldlt.h"
 #include "scene/scene_data.h"
 #include "solver/step_settings.h"
 
@@ -26,34 +26,32 @@ struct JointRow {
   VecX J;              // full row, for rows that involve several DOFs
 };
 
-// diag(X^T A^-1 X) for the SPD matrix A = L L^T factored in A_llt: the squared column norms of
-// L^-1 X, one triangular solve. X (n x k: a matrix, or a block of one) is overwritten by
-// L^-1 X; the result reads it.
+// diag(X^T A^-1 X) for the SPD matrix A factored in A_factor: the squared column norms of H X
+// (H^T H = A^-1), one triangular solve. X (n x k: a matrix, or a block of one) is overwritten by
+// H X; the result reads it.
 template <class Derived>
-auto compliance_diagonal(const SmallLLT& A_llt, Eigen::MatrixBase<Derived>& X) {
-  A_llt.solve_lower_in_place(X.derived());
+auto compliance_diagonal(const TreeLDLT& A_factor, Eigen::MatrixBase<Derived>& X) {
+  A_factor.half_solve_in_place(X.derived());
   return X.colwise().squaredNorm().transpose();
 }
 
 struct ArticulationTerms {
   MatX A;                        // nv x nv
   VecX r;                        // nv
-  // factored from an empty matrix until computed: a default-constructed LLT leaves its status
-  // uninitialized, and copying the terms of a body without DOFs read it (UBSan, issue 9)
-  SmallLLT A_llt{MatX(0, 0)};
+  TreeLDLT A_factor;             // A's factor, along the articulation's tree
   std::vector<JointRow> joint_rows;
   VecX v_free;                   // nv: the free (unconstrained) motion A^-1 r
   // working storage: bias forces
   VecX c;
 
   // (A^-1)_kk, the effective compliance of DOF k (1 / (kg m^2) or 1 / kg). The whole diagonal is
-  // computed at the first call after articulation_terms(), from A_llt, and read by later calls.
+  // computed at the first call after articulation_terms(), from A_factor, and read by later calls.
   real inverse_diagonal(int k) const;
 
  private:
   friend void articulation_terms(const Articulation&, const Vec3&, real, const StepSettings&, ArticulationTerms&);
-  // cache of inverse_diagonal(): A's inverse Cholesky factor and the diagonal of A^-1
-  mutable MatX L_inv_;
+  // cache of inverse_diagonal(): H (A_factor's, H^T H = A^-1) and the diagonal of A^-1
+  mutable MatX H_;
   mutable VecX A_inv_diagonal_;
   mutable bool have_inverse_diagonal_ = false;
 };

@@ -120,6 +120,7 @@ StepSettings step_settings_from(const SolverParams& params) {
   out.drift_correction_iterations = s.drift_correction_iterations;
   out.dense_island_max_dofs = s.dense_island_max_dofs;
   out.defer_inactive_joint_limits = s.defer_inactive_joint_limits;
+  out.defer_separating_contacts = s.defer_separating_contacts;
   out.soft_hessian_reuse_strain = s.soft_hessian_reuse_strain;
   return out;
 }

@@ -60,6 +60,11 @@ struct StepSettings {
   /// them. The result is the same (a left-out row contributes nothing where it is inactive);
   /// only the cost differs. false keeps every limit row in every solve.
   bool defer_inactive_joint_limits = true;
+  /// Leave out of the solve the rigid contacts that neither the current nor the free motion
+  /// brings within half their gap (friction's reach included), and check them on its result:
+  /// when one would close, the island is solved again with it. The result is the same; most
+  /// speculative contacts of a grasp or of links near each other cost nothing.
+  bool defer_separating_contacts = true;
   /// Soft bodies: a Newton iteration after the first recomputes the Hessian only of the elements
   /// whose deformation gradient changed by more than this (in any entry, dimensionless) since
   /// the start of the step; the others keep their Hessian there. The problem and its tolerance

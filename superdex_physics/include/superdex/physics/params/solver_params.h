@@ -128,6 +128,9 @@ struct ImplicitStepParams {
   /// Leave out of the solve the joint-limit rows the free motion keeps well inside their limits,
   /// and solve again with them when one would act (the same result at less cost).
   bool defer_inactive_joint_limits = true;
+  /// Leave out of the solve the rigid contacts the motion keeps more than half their gap apart,
+  /// solving again with those its result would close (the same result at less cost).
+  bool defer_separating_contacts = true;
   /// Soft bodies: after a Newton iteration's first, recompute the Hessian only of elements whose
   /// deformation gradient changed by more than this since the start of the step.
   real soft_hessian_reuse_strain = real(1e-3);
