@@ -1,10 +1,16 @@
 /// @file contact_reduction_test.cpp
 /// A shape pair's contacts cut down to a manifold: a flat patch keeps its corners and its
-/// deepest point, points facing other ways are kept apart, small sets are untouched.
+/// deepest point, points facing other ways are kept apart, small sets are untouched. Thousands of
+/// points are first thinned to the deepest per grid cell and normal direction (the earliest of
+/// equally deep ones, a NaN depth the shallowest), in their order: checked against a reference
+/// that groups them in a std::map.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
 
 #include "collision/collision_detection.h"
 
@@ -53,6 +59,49 @@ TEST(ContactReduction, SmallSetsAreUntouched) {
   reduce_contacts(points, 12);
   ASSERT_EQ(points.size(), 2u);
   EXPECT_EQ(points[1].phi, real(-0.002));
+}
+
+TEST(ContactReduction, ThinningKeepsTheDeepestPerCellAndDirection) {
+  // 5000 points on a 0.2 m x 0.1 m patch at z = 0, normals up or down, depths on a few levels
+  // (ties), a few NaN; at most 17 x 17 x 2 keys survive, fewer than max_points, so the thinned
+  // set is the result
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<ShapeContact> points;
+  for (int i = 0; i < 5000; ++i) {
+    const real phi = i % 97 == 0 ? std::numeric_limits<real>::quiet_NaN() : real(-0.001 * std::floor(4 * u(rng)));
+    points.push_back({Vec3(real(0.2 * u(rng)), real(0.1 * u(rng)), 0), u(rng) < 0.5 ? Vec3::UnitZ() : Vec3(-Vec3::UnitZ()), phi});
+  }
+  // the reference: per key the first point of least depth
+  Vec3 lo = points[0].p_W, hi = points[0].p_W;
+  for (const ShapeContact& p : points) lo = lo.cwiseMin(p.p_W), hi = hi.cwiseMax(p.p_W);
+  const real cell = (hi - lo).norm() / 16;
+  std::map<std::array<int, 4>, size_t> deepest;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ShapeContact& p = points[i];
+    std::array<int, 4> key{};
+    for (int a = 0; a < 3; ++a) key[a] = std::min(16, static_cast<int>(std::floor((p.p_W[a] - lo[a]) / cell)));
+    key[3] = p.n_W.z() < 0;
+    const auto depth = [](real phi) { return std::isnan(phi) ? std::numeric_limits<real>::infinity() : phi; };
+    auto [it, fresh] = deepest.emplace(key, i);
+    if (!fresh && depth(p.phi) < depth(points[it->second].phi)) it->second = i;
+  }
+  std::vector<size_t> kept;
+  for (const auto& [key, i] : deepest) kept.push_back(i);
+  std::sort(kept.begin(), kept.end());
+  ASSERT_LE(kept.size(), 600u);
+  std::vector<ShapeContact> reduced = points;
+  reduce_contacts(reduced, 600);
+  ASSERT_EQ(reduced.size(), kept.size());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    EXPECT_EQ(reduced[k].p_W, points[kept[k]].p_W) << k;
+    EXPECT_EQ(reduced[k].n_W, points[kept[k]].n_W) << k;
+  }
+  // a second call (the working storage reused) gives the same
+  std::vector<ShapeContact> again = points;
+  reduce_contacts(again, 600);
+  ASSERT_EQ(again.size(), reduced.size());
+  for (size_t k = 0; k < again.size(); ++k) EXPECT_EQ(again[k].p_W, reduced[k].p_W) << k;
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <tuple>
 
 #include "collision/collision_detection.h"
 
@@ -21,25 +20,39 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
   // cell of a 16^3 grid over the patch and per direction of the normal, in their order
   if (points.size() > std::max<size_t>(8 * max_points, kThinningThreshold) && extent > 0) {
     const real cell = extent / 16;
-    // (cell and direction, depth, index) of each point; sorted, each key's first is its deepest
-    // (the earliest of equally deep ones)
-    thread_local std::vector<std::tuple<std::uint64_t, real, size_t>> keyed;
-    keyed.clear();
+    // the deepest point of each (cell, direction) key (the earliest of equally deep ones; a NaN
+    // depth counts as the shallowest), found in one pass: per key the generation that last wrote
+    // it and its point, kept per thread so that no call clears them
+    constexpr size_t kKeys = 17 * 17 * 17 * 6;
+    thread_local std::vector<std::uint32_t> stamp(kKeys, 0);
+    thread_local std::vector<std::uint32_t> best(kKeys, 0);
+    thread_local std::uint32_t generation = 0;
+    if (++generation == 0) std::fill(stamp.begin(), stamp.end(), 0), generation = 1;
+    auto depth = [](const ShapeContact& p) { return std::isnan(p.phi) ? std::numeric_limits<real>::infinity() : p.phi; };
+    thread_local std::vector<std::uint32_t> key_of;
+    key_of.resize(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
       const ShapeContact& p = points[i];
-      const Eigen::Array3i c = ((p.p_W - box.min) / cell).array().floor().cast<int>().min(16);
+      // the cell, clamped to the grid (a non-finite coordinate to its first cell)
+      int c[3];
+      for (int a = 0; a < 3; ++a) {
+        const real x = (p.p_W[a] - box.min[a]) / cell;
+        c[a] = x >= 16 ? 16 : x >= 0 ? static_cast<int>(x) : 0;
+      }
       // the normal's dominant axis and its sign: six directions
       int axis = 0;
       p.n_W.cwiseAbs().maxCoeff(&axis);
-      const std::uint64_t key = static_cast<std::uint64_t>(c.x() + 17 * (c.y() + 17 * c.z())) * 6 + 2 * axis + (p.n_W[axis] < 0);
-      // (a NaN depth sorts last, so that the order stays strict)
-      keyed.emplace_back(key, std::isnan(p.phi) ? std::numeric_limits<real>::infinity() : p.phi, i);
+      const std::uint32_t key = static_cast<std::uint32_t>(c[0] + 17 * (c[1] + 17 * c[2])) * 6 + 2 * axis + (p.n_W[axis] < 0);
+      key_of[i] = key;
+      if (stamp[key] != generation) {
+        stamp[key] = generation, best[key] = static_cast<std::uint32_t>(i);
+      } else if (depth(p) < depth(points[best[key]])) {
+        best[key] = static_cast<std::uint32_t>(i);
+      }
     }
-    std::sort(keyed.begin(), keyed.end());
     thread_local std::vector<char> keep;
     keep.assign(points.size(), 0);
-    for (size_t k = 0; k < keyed.size(); ++k)
-      if (k == 0 || std::get<0>(keyed[k]) != std::get<0>(keyed[k - 1])) keep[std::get<2>(keyed[k])] = 1;
+    for (size_t i = 0; i < points.size(); ++i) keep[i] = best[key_of[i]] == i;
     size_t k = 0;
     for (size_t i = 0; i < points.size(); ++i)
       if (keep[i]) points[k++] = points[i];
@@ -62,9 +75,13 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
     if ((points[i].p_W - centre).squaredNorm() > (points[first].p_W - centre).squaredNorm()) first = i;
     if (points[i].phi < points[deepest].phi) deepest = i;
   }
-  std::vector<real> nearest(n, std::numeric_limits<real>::infinity());
-  std::vector<char> kept(n, 0);
-  std::vector<size_t> chosen{first};
+  // working storage kept per thread: a pair's reduction runs for most shape pairs of a step
+  thread_local std::vector<real> nearest;
+  thread_local std::vector<char> kept;
+  thread_local std::vector<size_t> chosen;
+  nearest.assign(n, std::numeric_limits<real>::infinity());
+  kept.assign(n, 0);
+  chosen.assign(1, first);
   kept[first] = 1;
   // the point not kept farthest from those kept (after the last one kept); false when none is apart
   auto keep_farthest = [&] {
@@ -88,12 +105,11 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
   } else if (chosen.size() < max_points) {
     keep_farthest();
   }
-  // kept in their original order: the contact list stays deterministic and ordered
+  // kept in their original order (the contact list stays deterministic and ordered): moved
+  // forward in place, each to a place at or before its own
   std::sort(chosen.begin(), chosen.end());
-  std::vector<ShapeContact> out;
-  out.reserve(chosen.size());
-  for (size_t i : chosen) out.push_back(points[i]);
-  points.swap(out);
+  for (size_t k = 0; k < chosen.size(); ++k) points[k] = points[chosen[k]];
+  points.resize(chosen.size());
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

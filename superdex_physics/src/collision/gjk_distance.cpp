@@ -125,8 +125,11 @@ ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_
   const Vec3 start = (X_WA.R * fa.centre + X_WA.p) - (X_WB.R * fb.centre + X_WB.p);
   s[0] = support(start.squaredNorm() > 0 ? Vec3(-start) : Vec3(-Vec3::UnitX()));
   Vec3 v = s[0].w;
-  // converged when the next support point brings the origin no nearer than this (relative)
+  // converged when the next support point brings the origin no nearer than this (relative), or
+  // the distance is within a millionth of the shapes' size of its lower bound (curved surfaces
+  // meshed finely converge slowly, and contacts need no finer distances)
   const real eps = 64 * std::numeric_limits<real>::epsilon();
+  const real tolerance = real(1e-6) * std::max(fa.radius, fb.radius);
   for (int iter = 0; iter < 64; ++iter) {
     const real vv = v.squaredNorm();
     if (!(vv > 0)) {
@@ -143,7 +146,7 @@ ConvexDistance convex_distance(const ConvexFaces& fa, const SpatialTransform& X_
       out.normal = v / std::sqrt(vv);
       return out;
     }
-    if (vv - v.dot(p.w) <= eps * vv) break;
+    if (vv - v.dot(p.w) <= eps * vv || std::sqrt(vv) - lower_bound <= tolerance) break;
     bool repeated = false;
     for (int i = 0; i < n; ++i) repeated |= (s[i].w - p.w).squaredNorm() == 0;
     if (repeated) break;
