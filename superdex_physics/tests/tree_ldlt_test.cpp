@@ -88,15 +88,17 @@ TEST(TreeLDLT, HalfSolveOfALinksJacobianStaysOnItsAncestors) {
     for (int i = k; i >= 0; i = parent[i]) on_chain[i] = 1, x[i] = 1 + i;
     MatX X = x;
     f.half_solve_in_place(X);
-    for (int i = 0; i < n; ++i)
-      if (!on_chain[i]) EXPECT_EQ(X(i, 0), 0) << "DOF " << k << ", entry " << i;
+    for (int i = 0; i < n; ++i) {
+      if (!on_chain[i]) {
+        EXPECT_EQ(X(i, 0), 0) << "DOF " << k << ", entry " << i;
+      }
+    }
     EXPECT_NEAR(X.col(0).squaredNorm(), x.dot(Eigen::LLT<MatX>(A).solve(x)), 1e-9 * X.col(0).squaredNorm());
   }
 }
 
 TEST(TreeLDLT, MatricesOffTheTreeAreFactoredDensely) {
   std::mt19937 rng(41);
-  const int n = 12;
   std::vector<int> parent = {-1, 0, 1, 2, 0, 4, 5, 1, 7, -1, 9, 10};
   // a tendon between two branches (DOFs 3 and 6): an entry off the tree's pattern
   MatX A = tree_matrix(parent, rng);

@@ -50,12 +50,10 @@ void reduce_contacts(std::vector<ShapeContact>& points, size_t max_points) {
         best[key] = static_cast<std::uint32_t>(i);
       }
     }
-    thread_local std::vector<char> keep;
-    keep.assign(points.size(), 0);
-    for (size_t i = 0; i < points.size(); ++i) keep[i] = best[key_of[i]] == i;
+    // each key's point kept, in their order (moved forward in place: best holds original indices)
     size_t k = 0;
     for (size_t i = 0; i < points.size(); ++i)
-      if (keep[i]) points[k++] = points[i];
+      if (best[key_of[i]] == i) points[k++] = points[i];
     points.resize(k);
     if (points.size() <= max_points) return;
   }

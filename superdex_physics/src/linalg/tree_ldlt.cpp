@@ -58,17 +58,22 @@ TreeLDLT& TreeLDLT::compute(const MatX& A, std::span<const int> parent) {
   return *this;
 }
 
-void TreeLDLT::solve_in_place(VecX& x) const {
-  if (!tree_) {
-    dense_.solve_in_place(x);
-    return;
-  }
-  // x <- L^-T x, from the leaves (a zero entry passes nothing on)
+void TreeLDLT::leaves_to_roots(real* x) const {
+  // L^T's rows are a DOF's and its ancestors': each solved entry taken out of its ancestors' (a
+  // zero entry passes nothing on)
   for (Eigen::Index k = n_ - 1; k > 0; --k) {
     const real x_k = x[k];
     if (x_k == 0) continue;
     for (int i = parent_[k]; i >= 0; i = parent_[i]) x[i] -= F_(k, i) * x_k;
   }
+}
+
+void TreeLDLT::solve_in_place(VecX& x) const {
+  if (!tree_) {
+    dense_.solve_in_place(x);
+    return;
+  }
+  leaves_to_roots(x.data());
   for (Eigen::Index k = 0; k < n_; ++k) x[k] *= inverse_sqrt_D_[k] * inverse_sqrt_D_[k];
   // x <- L^-1 x, from the roots
   for (Eigen::Index k = 1; k < n_; ++k) {
@@ -85,11 +90,7 @@ void TreeLDLT::half_solve_in_place(Eigen::Ref<MatX> X) const {
   }
   for (Eigen::Index c = 0; c < X.cols(); ++c) {
     real* x = X.col(c).data();
-    for (Eigen::Index k = n_ - 1; k > 0; --k) {
-      const real x_k = x[k];
-      if (x_k == 0) continue;
-      for (int i = parent_[k]; i >= 0; i = parent_[i]) x[i] -= F_(k, i) * x_k;
-    }
+    leaves_to_roots(x);
     for (Eigen::Index k = 0; k < n_; ++k) x[k] *= inverse_sqrt_D_[k];
   }
 }

@@ -34,6 +34,9 @@ class TreeLDLT {
   void half_solve_in_place(Eigen::Ref<MatX> X) const;
 
  private:
+  // x <- L^-T x (n entries), from the leaves to the roots
+  void leaves_to_roots(real* x) const;
+
   Eigen::Index n_ = 0;
   bool tree_ = false;
   Eigen::ComputationInfo info_ = Eigen::Success;
