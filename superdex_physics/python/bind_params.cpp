@@ -97,6 +97,7 @@ void export_solver_params(nb::module_& m) {
       .field("num_contacts", &SolverStats::num_contacts)
       .field("soft_element_hessians", &SolverStats::soft_element_hessians)
       .field("soft_factorizations", &SolverStats::soft_factorizations)
+      .field("num_island_solves", &SolverStats::num_island_solves)
       .done();
   StructBinder<PerformanceStats>(m, "PerformanceStats", "How long the last step took (s).")
       .field("total_step_duration_sec", &PerformanceStats::total_step_duration_sec)

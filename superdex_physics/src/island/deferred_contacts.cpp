@@ -26,14 +26,15 @@ Vec3 relative_velocity(const IslandInputs& in, const Contact& c, IslandWorkspace
 }
 
 // Whether a contact with a gap stays clear of acting at relative velocity v_rel: its normal
-// velocity leaves half the allowed closing open beyond friction's reach. The block's target is
-// then at most -allowed (the free motion keeps it clear too), and vn >= vhat + mu |vt| holds
-// with room: the block is inactive.
-bool stays_clear(const Contact& c, const Vec3& v_rel, real dt) {
+// velocity leaves the fraction `open` of the allowed closing open beyond friction's reach. A
+// deferred contact's block has a target of at most -allowed (the free motion keeps it clear), so
+// at open = 1 the block is inactive (vn >= vhat + mu |vt|, with the drift corrections too, which
+// lower vhat by mu |vt|); the deferral asks for open = 1/2, room for the solve to move it.
+bool stays_clear(const Contact& c, const Vec3& v_rel, real dt, real open) {
   if (!(c.phi > 0)) return false;
   const real vn = c.n_W.dot(v_rel);
   const real vt = (v_rel - vn * c.n_W).norm();
-  return vn + allowed_closing_speed(c.material, c.phi, dt) / 2 >= c.material.friction * vt;
+  return vn + open * allowed_closing_speed(c.material, c.phi, dt) >= c.material.friction * vt;
 }
 
 // A body's DOF velocities in the island's solution `out` (none for a body outside the island:
@@ -55,8 +56,8 @@ void select_rigid_contacts(const IslandInputs& in, IslandWorkspace& w) {
   for (size_t j = 0; j < contacts.size(); ++j) {
     const Contact& c = in.contacts[contacts[j]];
     if (!(c.phi > 0)) continue;
-    w.contact_takes_part[j] = !(stays_clear(c, relative_velocity(in, c, w, LinkMotion::Current, current), in.dt) &&
-                                stays_clear(c, relative_velocity(in, c, w, LinkMotion::Free, free_motion), in.dt));
+    w.contact_takes_part[j] = !(stays_clear(c, relative_velocity(in, c, w, LinkMotion::Current, current), in.dt, real(0.5)) &&
+                                stays_clear(c, relative_velocity(in, c, w, LinkMotion::Free, free_motion), in.dt, real(0.5)));
   }
 }
 
@@ -66,7 +67,8 @@ int admit_closing_rigid_contacts(const IslandInputs& in, const IslandSolution& o
   for (size_t j = 0; j < in.island.contacts.size(); ++j) {
     if (w.contact_takes_part[j]) continue;
     const Contact& c = in.contacts[in.island.contacts[j]];
-    if (!stays_clear(c, relative_velocity(in, c, w, LinkMotion::Solution, solution), in.dt)) w.contact_takes_part[j] = 1, ++count;
+    // only a contact the solution would make act changes it
+    if (!stays_clear(c, relative_velocity(in, c, w, LinkMotion::Solution, solution), in.dt, 1)) w.contact_takes_part[j] = 1, ++count;
   }
   return count;
 }

@@ -29,10 +29,16 @@ namespace {
 
 // the solve's start: the free motion A^-1 r, or, when bodies touch, their current velocities:
 // resting and pressing contacts change little from one step to the next, and the problem is
-// convex, so any start converges
-void warm_start(const IslandInputs& in, const IslandLayout& layout, IslandWorkspace& w) {
-  if (layout.num_contacts == 0) return;
+// convex, so any start converges. A solve again with deferred rows or contacts admitted starts
+// from the last solve's solution (`previous`), which they mostly leave as it is.
+void warm_start(const IslandInputs& in, const IslandLayout& layout, const IslandSolution* previous, IslandWorkspace& w) {
+  if (layout.num_contacts == 0 && previous == nullptr) return;
   const SceneData& s = in.s;
+  if (previous != nullptr && w.soft.empty() && w.reduced.empty()) {
+    for (size_t j = 0; j < in.island.bodies.size(); ++j) w.v_start.segment(w.body_offset[in.island.bodies[j]], previous->v[j].size()) = previous->v[j];
+    return;
+  }
+  if (layout.num_contacts == 0) return;
   for (int b : in.island.bodies) w.v_start.segment(w.body_offset[b], s.articulations[b]->model.nv) = s.articulations[b]->state.v;
   // a reduced body: its modes' velocities, and contact nodes that keep their residual
   for (const ReducedVariables& rv : w.reduced) {
@@ -55,8 +61,8 @@ const ConvexResult& solve_problem(const IslandInputs& in, bool sparse, SparseNew
 
 // One solve of the island, with or without the deferred joint-limit rows, with the rigid contacts
 // w.contact_takes_part flags and the deferred soft contacts `admitted` flags (per island soft
-// contact).
-void solve_island_once(const IslandInputs& in, bool include_deferred, const std::vector<char>& admitted, IslandWorkspace& w,
+// contact); `out` holds the last solve's solution when `again`.
+void solve_island_once(const IslandInputs& in, bool include_deferred, const std::vector<char>& admitted, bool again, IslandWorkspace& w,
                        SparseNewtonSystem* system, IslandSolution& out) {
   const IslandLayout layout = lay_out_variables(in, include_deferred, admitted, w);
   // small islands: dense algebra; large ones: sparse, on a pattern kept from step to step
@@ -68,7 +74,7 @@ void solve_island_once(const IslandInputs& in, bool include_deferred, const std:
   contact_rows.add_rigid();
   contact_rows.add_soft();
   J.finish(layout.n, w.rows.J);
-  warm_start(in, layout, w);
+  warm_start(in, layout, again ? &out : nullptr, w);
   const ConvexResult& sol = solve_problem(in, sparse, system, w);
   pack_solution(in, layout, sol, w, out);
 }
@@ -94,7 +100,8 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
   select_rigid_contacts(in, w);
   std::vector<char>& admitted = w.admitted_soft_contacts;
   admitted.assign(island.soft_contacts.size(), 0);
-  solve_island_once(in, false, admitted, w, system, out);
+  solve_island_once(in, false, admitted, false, w, system, out);
+  out.solves = 1;
   // a deferred limit row or contact is inactive at the solution unless it says otherwise: then
   // the same problem with every limit row and the contacts the solution would close, until no
   // other would (rare: the motion kept them far from acting)
@@ -113,8 +120,9 @@ void solve_island(const SceneData& s, const Island& island, const std::vector<Ar
       all_rows = true;
     }
     const int iterations = out.iterations;
-    solve_island_once(in, all_rows, admitted, w, system, out);
+    solve_island_once(in, all_rows, admitted, true, w, system, out);
     out.iterations += iterations;
+    ++out.solves;
     if (round == kLastRound) break;
   }
   out.ticks = ticks_now() - t0;

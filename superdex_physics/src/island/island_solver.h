@@ -24,7 +24,8 @@ struct IslandSolution {
   std::vector<VecX> soft_v;         // next node velocities (3N), per island soft body
   std::vector<SoftState> soft_reduced;  // next states of reduced soft bodies, per island soft body (empty for full ones)
   std::vector<Vec3> soft_contact_force;  // per island soft contact: force on the node (N), world
-  int iterations = 0;
+  int iterations = 0;               // Newton iterations, summed over the solves
+  int solves = 0;                   // solves of the island: 1, and 1 more per round of deferred rows or contacts joining
   real residual = 0;
   bool converged = true;
   ConvergenceStatus status = ConvergenceStatus::None;

@@ -54,6 +54,7 @@ SolverStats Scene::solver_stats() const {
   out.num_contacts = st.num_contacts;
   out.soft_element_hessians = st.soft_element_hessians;
   out.soft_factorizations = st.soft_factorizations;
+  out.num_island_solves = st.island_solves;
   return out;
 }
 

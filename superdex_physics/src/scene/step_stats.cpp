@@ -28,6 +28,7 @@ void step_stats(Step& step, const StepClock& clock) {
   for (const IslandSolution& sol : step.ws.solutions) {
     stats.newton_iterations = std::max(stats.newton_iterations, sol.iterations);
     stats.total_newton_iterations += sol.iterations;
+    stats.island_solves += sol.solves;
     stats.residual = std::max(stats.residual, sol.residual);
     stats.converged = stats.converged && sol.converged;
     stats.status = std::max(stats.status, sol.status);

@@ -257,6 +257,13 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
         out.status = ConvergenceStatus::Converged;
         break;
       }
+    } else if (!kUsesDoublePrecision && !correcting) {
+      // in float, within 100 times the tolerance, three iterations in a row that do not halve the
+      // residual have reached its round-off floor (that of stiff contacts can lie above the
+      // tolerance): more only repeat it, and the solve ends Stopped
+      stalled = out.residual < real(0.5) * best ? 0 : stalled + 1;
+      best = std::min(best, out.residual);
+      if (stalled >= 3 && out.residual <= 100 * tolerance) break;
     }
     if (it == params.max_newton_iterations) break;
     // Newton direction from the Hessian A + J^T G J (+ the smooth term's)

@@ -89,6 +89,7 @@ struct StepStats {
   /// of a solve is solved by conjugate gradients preconditioned by the last factorization, and
   /// factors its matrix only when they do not converge in a few iterations.
   int soft_factorizations = 0;
+  int island_solves = 0;          ///< convex solves of islands, those again with deferred rows or contacts included
   double time_kinematics = 0;     ///< seconds in kinematics and dynamics terms
   double time_collision = 0;      ///< seconds in collision detection
   double time_solve = 0;          ///< seconds in the implicit solves

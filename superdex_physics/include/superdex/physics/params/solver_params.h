@@ -169,6 +169,10 @@ struct SolverStats {
   int num_contacts = 0;
   int soft_element_hessians = 0;   ///< element Hessians of soft bodies computed
   int soft_factorizations = 0;     ///< sparse factorizations of soft bodies' Newton matrices
+  /// Convex solves of islands: one per island, and one more each time deferred joint-limit rows
+  /// or contacts turn out to act at a solve's result and join the next
+  /// (ImplicitStepParams::defer_inactive_joint_limits, defer_separating_contacts).
+  int num_island_solves = 0;
   bool operator==(const SolverStats&) const = default;
 };
 
