@@ -35,7 +35,8 @@ void warm_start(const IslandInputs& in, const IslandLayout& layout, const Island
   if (layout.num_contacts == 0 && previous == nullptr) return;
   const SceneData& s = in.s;
   if (previous != nullptr && w.soft.empty() && w.reduced.empty()) {
-    for (size_t j = 0; j < in.island.bodies.size(); ++j) w.v_start.segment(w.body_offset[in.island.bodies[j]], previous->v[j].size()) = previous->v[j];
+    for (size_t j = 0; j < in.island.bodies.size(); ++j)
+      w.v_start.segment(w.body_offset[in.island.bodies[j]], previous->v[j].size()) = previous->v[j];
     return;
   }
   if (layout.num_contacts == 0) return;
