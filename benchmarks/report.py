@@ -731,6 +731,16 @@ this run's.
   corrections of a heap with more than 8 sliding contacts fall back to the plain fixed point
   (linear convergence, up to its 20 iterations), and each Newton iteration of the G1's 35 DOFs
   costs some 25 microseconds.
+  Found next: the face clipping of every hull pair scanned all faces of both hulls for the one
+  most aligned with the normal, three scans per pair (a G1 hull has up to 4000 faces); and the
+  Newton matrix's dense diagonal blocks (the hand's 24 DOFs, the G1's 35) were factored by
+  scalar loops. Fixed: hulls of 64 faces or more group their faces by the direction of their
+  normals (a cube map of 216 cells, each with the cone that holds its normals), and the search
+  scans the cells whose cone could hold a better face than the best found (the same face:
+  checked against a scan of every face); blocks of 20 DOFs or more are factored and solved by
+  Eigen's kernels. Measured alone: a pair of 3000-corner hulls within a few millimetres of
+  touching, 30-39 to 19-20 microseconds per pair (the same contacts); the factorization of a
+  24 + 6 DOF system 2.9 to 2.0 microseconds, of 35 DOFs 4.1-6.5 to 3.6-5.5.
 """
 
 

@@ -1,8 +1,8 @@
 /// @file convex_contact_test.cpp
 /// Convex-convex contact (GJK/EPA and face clipping) against references that do not share its
 /// code: the separating-axis box-box test for random overlapping boxes, analytic gaps for
-/// stacked, edge-crossed and vertex-down shapes, and a brute-force scan for the hill-climbing
-/// support search. Also the faces read back from a hull, and hulls of near-duplicate points.
+/// stacked, edge-crossed and vertex-down shapes, and brute-force scans for the hill-climbing
+/// support search and the face search through cells of face normals. Also the faces read back from a hull, and hulls of near-duplicate points.
 
 #include <gtest/gtest.h>
 
@@ -74,6 +74,39 @@ TEST(ConvexFaces, HillClimbingSupportEqualsBruteForce) {
     start = f.support(d, start);
     EXPECT_NEAR(f.corners[start].dot(d), best, 1e-12) << "trial " << trial;
   }
+}
+
+// The face most aligned with a direction, found through the cube map of face normals, against
+// a scan of every face: on an icosphere's hull (faces in every cell), on a hull squashed to a
+// disc (faces crowded into few cells, the others empty) and on the directions of face normals
+// themselves and next to them (alignment 1 and ties within a cell).
+TEST(ConvexFaces, FaceTowardsThroughTheCellsEqualsAScanOfEveryFace) {
+  std::vector<Vec3> disc = icosphere(3, 0.05).vertices;
+  for (Vec3& v : disc) v.z() *= real(0.05);
+  int checked = 0;
+  for (const MeshShape& s : {make_convex_hull_shape(icosphere(3, 0.05).vertices, "icosphere"), make_convex_hull_shape(disc, "disc")}) {
+    const ConvexFaces& f = *s.faces;
+    ASSERT_GT(f.num_faces(), 256);
+    ASSERT_FALSE(f.cell_start.empty());
+    std::mt19937 rng(41);
+    std::normal_distribution<double> g;
+    std::vector<Vec3> dirs;
+    for (int trial = 0; trial < 400; ++trial) dirs.push_back(Vec3(real(g(rng)), real(g(rng)), real(g(rng))).normalized());
+    for (int k = 0; k < f.num_faces(); k += 7) {
+      dirs.push_back(f.normals[k]);
+      dirs.push_back((f.normals[k] + real(1e-3) * Vec3(real(g(rng)), real(g(rng)), real(g(rng)))).normalized());
+    }
+    for (const Vec3& d : dirs) {
+      real best = -2;
+      for (const Vec3& n : f.normals) best = std::max(best, n.dot(d));
+      real alignment = 0;
+      const int face = f.face_towards(d, alignment);
+      EXPECT_EQ(alignment, f.normals[face].dot(d));
+      EXPECT_EQ(alignment, best) << s.source << ", direction " << d.transpose();
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
 }
 
 TEST(ConvexHull, NearDuplicatePointsAreWeldedIntoOneCorner) {

@@ -39,16 +39,10 @@ void centre(const void* obj, ccd_vec3_t* out) {
   to_ccd(c.X_WS->R * c.faces->centre + c.X_WS->p, out);
 }
 
-// The face of `f` whose outward normal (world) is most aligned with `dir_W`, and that alignment.
+// The face of `f` whose outward normal (world) is most aligned with the unit `dir_W`, and that
+// alignment.
 int face_towards(const ConvexFaces& f, const Mat3& R_WS, const Vec3& dir_W, real& alignment) {
-  const Vec3 d_S = R_WS.transpose() * dir_W;
-  int best = 0;
-  alignment = -2;
-  for (int k = 0; k < f.num_faces(); ++k) {
-    const real a = f.normals[k].dot(d_S);
-    if (a > alignment) alignment = a, best = k;
-  }
-  return best;
+  return f.face_towards(R_WS.transpose() * dir_W, alignment);
 }
 
 // The edge of `f` (posed by X_WS) farthest along `dir_W`: the farthest corner and, of its

@@ -30,6 +30,26 @@ const std::array<Vec3, kNumSeeds>& seed_directions() {
   return table;
 }
 
+// Face cells: a cube map of kCellSide x kCellSide cells on each of its 6 faces.
+constexpr int kCellSide = 6, kNumCells = 6 * kCellSide * kCellSide;
+
+// The cell of a direction: the cube face of its largest component, and the other two components
+// over it, each in kCellSide bins.
+int cell_of(const Vec3& n) {
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(n[i]) > std::abs(n[axis])) axis = i;
+  const int side = 2 * axis + (n[axis] < 0 ? 1 : 0);
+  const real m = std::abs(n[axis]);
+  int bins[2];
+  for (int j = 0, i = 0; i < 3; ++i) {
+    if (i == axis) continue;
+    const real u = m > 0 ? n[i] / m : real(0);  // in [-1, 1]
+    bins[j++] = std::clamp(static_cast<int>((u + 1) / 2 * kCellSide), 0, kCellSide - 1);
+  }
+  return (side * kCellSide + bins[0]) * kCellSide + bins[1];
+}
+
 }  // namespace
 
 int ConvexFaces::support(const Vec3& dir, int start) const {
@@ -67,6 +87,78 @@ int ConvexFaces::support(const Vec3& dir, int start) const {
     at_dot = best_dot;
   }
   return at;
+}
+
+int ConvexFaces::face_towards(const Vec3& dir, real& alignment) const {
+  int best = 0;
+  alignment = -2;
+  auto scan = [&](const int* faces, int count) {
+    for (int k = 0; k < count; ++k) {
+      const real a = normals[faces[k]].dot(dir);
+      if (a > alignment) alignment = a, best = faces[k];
+    }
+  };
+  if (cell_start.empty()) {
+    for (int k = 0; k < num_faces(); ++k) {
+      const real a = normals[k].dot(dir);
+      if (a > alignment) alignment = a, best = k;
+    }
+    return best;
+  }
+  // a cell's normals are at least (angle to its axis) - (its half-angle) from dir, their
+  // alignment at most the cosine of that: after dir's own cell, only the cells whose bound is
+  // not below the best found are scanned (with the bound's round-off: unit vectors to a few
+  // epsilons)
+  const int own = cell_of(dir);
+  scan(face_order.data() + cell_start[own], cell_start[own + 1] - cell_start[own]);
+  const real slack = 16 * std::numeric_limits<real>::epsilon();
+  for (int c = 0; c < kNumCells; ++c) {
+    if (c == own || cell_start[c] == cell_start[c + 1]) continue;
+    const real ca = cell_axis[c].dot(dir);
+    if (ca < cell_cos[c]) {
+      // dir outside the cone: cos(angle - half-angle)
+      const real sa = std::sqrt(std::max(real(0), 1 - ca * ca));
+      if (ca * cell_cos[c] + sa * cell_sin[c] + slack < alignment) continue;
+    }
+    scan(face_order.data() + cell_start[c], cell_start[c + 1] - cell_start[c]);
+  }
+  return best;
+}
+
+void build_face_cells(ConvexFaces& f) {
+  f.face_order.clear();
+  f.cell_start.clear();
+  f.cell_axis.clear();
+  f.cell_cos.clear();
+  f.cell_sin.clear();
+  // a scan of a few dozen normals is cheaper than the cells' bounds
+  constexpr int kMinFaces = 64;
+  const int nf = f.num_faces();
+  if (nf < kMinFaces) return;
+  const int num_cells = kNumCells;
+  std::vector<int> cell(nf), count(num_cells + 1, 0);
+  for (int k = 0; k < nf; ++k) ++count[(cell[k] = cell_of(f.normals[k])) + 1];
+  for (int c = 0; c < num_cells; ++c) count[c + 1] += count[c];
+  f.cell_start = count;
+  f.face_order.resize(nf);
+  for (int k = 0; k < nf; ++k) f.face_order[count[cell[k]]++] = k;
+  // each cell's cone: about its normals' mean direction, out to the farthest of them
+  f.cell_axis.assign(num_cells, Vec3::UnitZ());
+  f.cell_cos.assign(num_cells, real(1));
+  f.cell_sin.assign(num_cells, real(0));
+  for (int c = 0; c < num_cells; ++c) {
+    const int s = f.cell_start[c], e = f.cell_start[c + 1];
+    if (s == e) continue;
+    Vec3 axis = Vec3::Zero();
+    for (int k = s; k < e; ++k) axis += f.normals[f.face_order[k]];
+    axis = axis.norm() > 0 ? Vec3(axis.normalized()) : f.normals[f.face_order[s]];
+    real cos_half = 1;
+    for (int k = s; k < e; ++k) cos_half = std::min(cos_half, axis.dot(f.normals[f.face_order[k]]));
+    cos_half = std::clamp(cos_half, real(-1), real(1));
+    f.cell_axis[c] = axis;
+    f.cell_cos[c] = cos_half;
+    f.cell_sin[c] = std::sqrt(std::max(real(0), 1 - cos_half * cos_half));
+  }
 }
 
 void build_corner_graph(ConvexFaces& f) {
@@ -185,6 +277,7 @@ ConvexFaces convex_faces_of(const TriangleMesh& mesh, real angle_tolerance) {
   if (!out.corners.empty()) out.centre /= static_cast<real>(out.corners.size());
   for (const Vec3& c : out.corners) out.radius = std::max(out.radius, (c - out.centre).norm());
   build_corner_graph(out);
+  build_face_cells(out);
   return out;
 }
 

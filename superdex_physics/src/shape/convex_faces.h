@@ -23,12 +23,23 @@ struct ConvexFaces {
   // on polyhedra of many corners, the farthest corner along each of the 26 directions to the
   // faces, edges and corners of a cube: where a support search without a start begins
   std::vector<int> seeds;
+  // on polyhedra of many faces, the faces grouped by the direction of their normals (the cells of
+  // a cube map): face_order lists them cell by cell, cell c's from cell_start[c]; the normals of
+  // cell c lie within the cone about the unit cell_axis[c] whose half-angle has cosine
+  // cell_cos[c] and sine cell_sin[c]
+  std::vector<int> face_order, cell_start;
+  std::vector<Vec3> cell_axis;
+  std::vector<real> cell_cos, cell_sin;
 
   int num_faces() const { return static_cast<int>(normals.size()); }
   // The corner farthest along `dir` (shape frame): by hill climbing along the edges from `start`
   // (on a convex polyhedron a corner no neighbour improves on is the farthest), from the seed
   // nearest `dir` when start is -1, or by scanning every corner when there is no edge graph.
   int support(const Vec3& dir, int start = -1) const;
+  // The face whose outward normal is most aligned with the unit `dir` (shape frame), and that
+  // alignment (the cosine of their angle): every face's, or, with cells, those of the cells whose
+  // cone could hold a better one than the best found.
+  int face_towards(const Vec3& dir, real& alignment) const;
 };
 
 // The faces of a closed, convex, outward-oriented triangle mesh: triangles that share an edge and
@@ -38,6 +49,10 @@ ConvexFaces convex_faces_of(const TriangleMesh& mesh, real angle_tolerance = rea
 
 // Fills f.neighbour_start and f.neighbours from its faces' edges.
 void build_corner_graph(ConvexFaces& f);
+
+// Fills f's face cells (face_order, cell_start, cell_axis, cell_cos, cell_sin) from its normals,
+// when it has enough faces for them to pay off; clears them otherwise.
+void build_face_cells(ConvexFaces& f);
 
 // The 8 corners and 6 faces of a box centred on its frame, into `out` (its storage kept).
 void box_convex_faces(const Vec3& half_extents, ConvexFaces& out);
