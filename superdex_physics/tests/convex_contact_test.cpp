@@ -105,6 +105,10 @@ TEST(ConvexFaces, FaceTowardsThroughTheCellsEqualsAScanOfEveryFace) {
       EXPECT_EQ(alignment, best) << s.source << ", direction " << d.transpose();
       ++checked;
     }
+    // a direction that is not finite finds no face better than none
+    real alignment = 0;
+    EXPECT_EQ(f.face_towards(Vec3(std::numeric_limits<real>::quiet_NaN(), 0, 1), alignment), 0);
+    EXPECT_EQ(alignment, -2);
   }
   EXPECT_GT(checked, 1000);
 }

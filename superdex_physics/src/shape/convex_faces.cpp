@@ -98,7 +98,7 @@ int ConvexFaces::face_towards(const Vec3& dir, real& alignment) const {
       if (a > alignment) alignment = a, best = faces[k];
     }
   };
-  if (cell_start.empty()) {
+  if (cell_start.empty() || !dir.allFinite()) {
     for (int k = 0; k < num_faces(); ++k) {
       const real a = normals[k].dot(dir);
       if (a > alignment) alignment = a, best = k;

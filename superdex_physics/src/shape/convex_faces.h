@@ -38,7 +38,7 @@ struct ConvexFaces {
   int support(const Vec3& dir, int start = -1) const;
   // The face whose outward normal is most aligned with the unit `dir` (shape frame), and that
   // alignment (the cosine of their angle): every face's, or, with cells, those of the cells whose
-  // cone could hold a better one than the best found.
+  // cone could hold a better one than the best found (face 0 and -2 for a direction not finite).
   int face_towards(const Vec3& dir, real& alignment) const;
 };
 
