@@ -22,8 +22,9 @@ inline bool soft_contact_deferred(const SoftContact& c) { return c.phi > c.sweep
 void select_rigid_contacts(const IslandInputs& in, IslandWorkspace& w);
 
 // Admits the deferred rigid contacts that the solution `out` would make act (their gap closing
-// faster than their target allows, friction's reach included); returns how many. The links' velocities at LinkMotion::Solution must be those of `out` (forgotten since the
-// last solve: forget_link_velocities), as for admit_closing_soft_contacts.
+// faster than their target allows, friction's reach included); returns how many. The links'
+// velocities at LinkMotion::Solution must be those of `out` (forgotten since the last solve:
+// forget_link_velocities), as for admit_closing_soft_contacts.
 int admit_closing_rigid_contacts(const IslandInputs& in, const IslandSolution& out, IslandWorkspace& w);
 
 // Admits the deferred soft contacts not yet `admitted` whose gap the island's solution would close

@@ -32,7 +32,6 @@ namespace {
 // convex, so any start converges. A solve again with deferred rows or contacts admitted starts
 // from the last solve's solution (`previous`), which they mostly leave as it is.
 void warm_start(const IslandInputs& in, const IslandLayout& layout, const IslandSolution* previous, IslandWorkspace& w) {
-  if (layout.num_contacts == 0 && previous == nullptr) return;
   const SceneData& s = in.s;
   if (previous != nullptr && w.soft.empty() && w.reduced.empty()) {
     for (size_t j = 0; j < in.island.bodies.size(); ++j)

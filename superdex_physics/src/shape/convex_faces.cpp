@@ -92,17 +92,15 @@ int ConvexFaces::support(const Vec3& dir, int start) const {
 int ConvexFaces::face_towards(const Vec3& dir, real& alignment) const {
   int best = 0;
   alignment = -2;
+  auto consider = [&](int face) {
+    const real a = normals[face].dot(dir);
+    if (a > alignment) alignment = a, best = face;
+  };
   auto scan = [&](const int* faces, int count) {
-    for (int k = 0; k < count; ++k) {
-      const real a = normals[faces[k]].dot(dir);
-      if (a > alignment) alignment = a, best = faces[k];
-    }
+    for (int k = 0; k < count; ++k) consider(faces[k]);
   };
   if (cell_start.empty() || !dir.allFinite()) {
-    for (int k = 0; k < num_faces(); ++k) {
-      const real a = normals[k].dot(dir);
-      if (a > alignment) alignment = a, best = k;
-    }
+    for (int k = 0; k < num_faces(); ++k) consider(k);
     return best;
   }
   // a cell's normals are at least (angle to its axis) - (its half-angle) from dir, their
