@@ -122,6 +122,10 @@ void export_context(nb::module_& m);
 void export_constants(nb::module_& m);
 void export_debug_server(nb::module_& m);
 void export_debug_draw(nb::module_& m);  // before export_scene: Scene.get_debug_draw returns a DebugDraw
+// bind_constraint.cpp: ConstraintType, the constraint params and Constraint (before export_scene), and
+// the Scene's constraint methods (added by export_scene)
+void export_constraints(nb::module_& m);
+void add_constraint_methods(nb::class_<Scene>& scene);
 void export_scene(nb::module_& m);
 void export_actor(nb::module_& m);
 void export_experimental(nb::module_& m);

@@ -43,7 +43,8 @@ void export_handles(nb::module_& m) {
   bind_typed<ActorTag>(m, "ActorHandle", "Names an actor of a scene.");
   bind_typed<CallbackTag>(m, "CallbackHandle", "Names a step callback of a scene.");
   bind_typed<StateTag>(m, "StateHandle", "Names a state captured by Scene.capture_state.");
-  bind_typed<QueryTag>(m, "QueryHandle", "Names a query registered on an actor.");
+  bind_typed<QueryTag>(m, "QueryHandle", "Names a query registered on an actor or a constraint.");
+  bind_typed<ConstraintTag>(m, "ConstraintHandle", "Names a constraint of a scene.");
 
   // a counted reference: a copy (params.shape = handle) takes a reference, and garbage collection
   // of the Python object drops one; release_shape() releases the shape at once

@@ -90,6 +90,7 @@ ActorHandle actor_handle_of(nb::handle obj, const std::string& arg) {
 void export_scene(nb::module_& m) {
   nb::class_<Scene> scene(m, "Scene", "A set of actors stepped together. Not thread-safe: use one scene from one thread at a time.");
   add_recording_methods(scene);
+  add_constraint_methods(scene);
   nb::class_<StepInfo>(m, "StepInfo", "What a step callback receives.")
       .def_ro("scene", &StepInfo::scene)
       .def_ro("time_step_sec", &StepInfo::time_step_sec, "s");

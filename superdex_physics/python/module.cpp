@@ -19,6 +19,7 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_constants(m);
   export_context(m);
   export_debug_draw(m);
+  export_constraints(m);
   export_scene(m);
   export_actor(m);
   export_experimental(m);

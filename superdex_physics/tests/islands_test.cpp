@@ -1,12 +1,13 @@
 /// @file islands_test.cpp
-/// Islands: the bodies with DOFs that contacts connect, against an independent reference
-/// (breadth-first search over the contact graph), for random scenes; and the same islands when
+/// Islands: the bodies with DOFs that contacts and constraints connect, against an independent
+/// reference (breadth-first search over the graph of contacts and constraints), for random scenes; and the same islands when
 /// the output storage is reused from a call on a different scene (as a scene's step workspace
 /// reuses it from step to step).
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <queue>
 #include <random>
 
@@ -18,11 +19,11 @@ namespace {
 // Nodes: articulations 0..na-1, then soft bodies. Islands as sorted node lists, ordered by their
 // smallest node; contacts listed by island in ascending order.
 struct Reference {
-  std::vector<std::vector<int>> nodes, contacts, soft_contacts;
+  std::vector<std::vector<int>> nodes, contacts, soft_contacts, constraints;
 };
 
 Reference reference_islands(const std::vector<int>& dofs_a, const std::vector<Contact>& contacts, const std::vector<int>& dofs_s,
-                            const std::vector<SoftContact>& soft_contacts) {
+                            const std::vector<SoftContact>& soft_contacts, const std::vector<std::array<int, 2>>& constraints) {
   const int na = static_cast<int>(dofs_a.size()), n = na + static_cast<int>(dofs_s.size());
   auto dofs = [&](int node) { return node < na ? dofs_a[node] : dofs_s[node - na]; };
   std::vector<std::vector<int>> adjacent(n);
@@ -31,6 +32,9 @@ Reference reference_islands(const std::vector<int>& dofs_a, const std::vector<Co
   };
   for (const Contact& c : contacts) link(c.body_a, c.body_b);
   for (const SoftContact& c : soft_contacts) link(na + c.soft, c.body);
+  // a constraint with the world (-1) links nothing
+  for (const auto& [a, b] : constraints)
+    if (a >= 0 && b >= 0) link(a, b);
   Reference ref;
   std::vector<int> island_of(n, -1);
   for (int start = 0; start < n; ++start) {
@@ -51,6 +55,7 @@ Reference reference_islands(const std::vector<int>& dofs_a, const std::vector<Co
   }
   ref.contacts.resize(ref.nodes.size());
   ref.soft_contacts.resize(ref.nodes.size());
+  ref.constraints.resize(ref.nodes.size());
   for (size_t k = 0; k < contacts.size(); ++k) {
     const int body = dofs(contacts[k].body_a) > 0 ? contacts[k].body_a : contacts[k].body_b;
     if (dofs(body) > 0) ref.contacts[island_of[body]].push_back(static_cast<int>(k));
@@ -58,6 +63,15 @@ Reference reference_islands(const std::vector<int>& dofs_a, const std::vector<Co
   for (size_t k = 0; k < soft_contacts.size(); ++k) {
     const int node = na + soft_contacts[k].soft;
     if (dofs(node) > 0) ref.soft_contacts[island_of[node]].push_back(static_cast<int>(k));
+  }
+  for (size_t k = 0; k < constraints.size(); ++k) {
+    // in the island of a side with DOFs; none when neither has any
+    for (int body : constraints[k]) {
+      if (body >= 0 && dofs(body) > 0) {
+        ref.constraints[island_of[body]].push_back(static_cast<int>(k));
+        break;
+      }
+    }
   }
   return ref;
 }
@@ -70,6 +84,7 @@ void expect_matches(const std::vector<Island>& islands, const Reference& ref, in
     EXPECT_EQ(nodes, ref.nodes[k]) << "trial " << trial << ", island " << k;
     EXPECT_EQ(islands[k].contacts, ref.contacts[k]) << "trial " << trial << ", island " << k;
     EXPECT_EQ(islands[k].soft_contacts, ref.soft_contacts[k]) << "trial " << trial << ", island " << k;
+    EXPECT_EQ(islands[k].constraints, ref.constraints[k]) << "trial " << trial << ", island " << k;
   }
 }
 
@@ -87,9 +102,12 @@ TEST(Islands, MatchConnectedComponentsAndReuseStorageAcrossScenes) {
     for (Contact& c : contacts) c.body_a = uniform(0, na - 1), c.body_b = uniform(0, na - 1);
     std::vector<SoftContact> soft_contacts(ns > 0 ? uniform(0, 6) : 0);
     for (SoftContact& c : soft_contacts) c.soft = uniform(0, ns - 1), c.body = uniform(0, na - 1);
-    const Reference ref = reference_islands(dofs_a, contacts, dofs_s, soft_contacts);
-    expect_matches(build_islands(dofs_a, contacts, dofs_s, soft_contacts), ref, na, trial);
-    build_islands(dofs_a, contacts, dofs_s, soft_contacts, reused, scratch);
+    // constraints between bodies, or between a body and the world (-1)
+    std::vector<std::array<int, 2>> constraints(uniform(0, na));
+    for (auto& c : constraints) c = {uniform(-1, na - 1), uniform(-1, na - 1)};
+    const Reference ref = reference_islands(dofs_a, contacts, dofs_s, soft_contacts, constraints);
+    expect_matches(build_islands(dofs_a, contacts, dofs_s, soft_contacts, constraints), ref, na, trial);
+    build_islands(dofs_a, contacts, dofs_s, soft_contacts, constraints, reused, scratch);
     expect_matches(reused, ref, na, trial);
   }
 }

@@ -82,6 +82,7 @@ IslandLayout lay_out_variables(const IslandInputs& in, bool include_deferred, co
   layout.n_rigid = n_rigid;
   layout.joint_rows = static_cast<int>(solved_rows.size());
   layout.num_contacts = static_cast<int>(solved_rigid.size() + solved_soft.size());
+  for (int k : island.constraints) layout.constraint_rows += static_cast<int>(in.constraints[k].rows.size());
   return layout;
 }
 

@@ -57,6 +57,17 @@ void pack_solution(const IslandInputs& in, const IslandLayout& layout, const Con
   out.soft_contact_force.assign(island.soft_contacts.size(), Vec3::Zero());
   for (size_t k = rigid; k < w.frames.size(); ++k)
     out.soft_contact_force[w.solved_soft_contacts[k - rigid]] = w.frames[k] * sol.gamma.segment<3>(joint_rows + 3 * k) / dt;
+  // constraint rows after the contacts': each row's force along its sides' rows
+  out.constraint_force_a.assign(island.constraints.size(), Vec6::Zero());
+  out.constraint_force_b.assign(island.constraints.size(), Vec6::Zero());
+  int row = joint_rows + 3 * layout.num_contacts;
+  for (size_t k = 0; k < island.constraints.size(); ++k) {
+    for (const ConstraintRow& r : in.constraints[island.constraints[k]].rows) {
+      const real force = sol.gamma[row++] / dt;
+      out.constraint_force_a[k] += force * r.g_a;
+      out.constraint_force_b[k] += force * r.g_b;
+    }
+  }
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

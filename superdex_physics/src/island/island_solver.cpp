@@ -73,6 +73,7 @@ void solve_island_once(const IslandInputs& in, bool include_deferred, const std:
   ContactRows contact_rows(in, w, J);
   contact_rows.add_rigid();
   contact_rows.add_soft();
+  add_constraint_rows(in, w, J);
   J.finish(layout.n, w.rows.J);
   warm_start(in, layout, again ? &out : nullptr, w);
   const ConvexResult& sol = solve_problem(in, sparse, system, w);
@@ -91,10 +92,10 @@ bool violates_deferred_rows(const Island& island, const std::vector<Articulation
 
 void solve_island(const SceneData& s, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
-                  const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const StepSettings& params,
+                  const std::vector<ConstraintTerms>& constraints, const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const StepSettings& params,
                   IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out) {
   const Ticks t0 = ticks_now();
-  const IslandInputs in{s, island, terms, contacts, soft_contacts, soft_steps, dt, params};
+  const IslandInputs in{s, island, terms, contacts, soft_contacts, soft_steps, constraints, dt, params};
   // the links' Jacobians and compliances serve every solve of the island below
   reset_link_jacobians(s, island, w);
   select_rigid_contacts(in, w);

@@ -5,6 +5,7 @@
 
 #include <array>
 
+#include "constraint/constraint_terms.h"
 #include "multibody/articulation_step.h"
 #include "multibody/body_jacobian.h"
 #include "island/islands.h"
@@ -24,6 +25,9 @@ struct IslandSolution {
   std::vector<VecX> soft_v;         // next node velocities (3N), per island soft body
   std::vector<SoftState> soft_reduced;  // next states of reduced soft bodies, per island soft body (empty for full ones)
   std::vector<Vec3> soft_contact_force;  // per island soft contact: force on the node (N), world
+  // per island constraint: the spatial force (N, and N m about the link origin; world) on its
+  // sides a and b
+  std::vector<Vec6> constraint_force_a, constraint_force_b;
   int iterations = 0;               // Newton iterations, summed over the solves
   int solves = 0;                   // solves of the island: 1, and 1 more per round of deferred rows or contacts joining
   real residual = 0;
@@ -100,6 +104,7 @@ bool island_is_sparse(const SceneData& scene, const Island& island, const StepSe
 // the other islands.
 void solve_island(const SceneData& scene, const Island& island, const std::vector<ArticulationTerms>& terms,
                   const std::vector<Contact>& contacts, const std::vector<SoftContact>& soft_contacts,
+                  const std::vector<ConstraintTerms>& constraints,
                   const std::vector<std::unique_ptr<SoftStep>>& soft_steps, real dt, const StepSettings& params,
                   IslandWorkspace& w, SparseNewtonSystem* system, IslandSolution& out);
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "constraint/constraint_terms.h"
 #include "island/island_solver.h"
 #include "solver/step_settings.h"
 
@@ -24,6 +25,7 @@ struct IslandInputs {
   const std::vector<Contact>& contacts;         // the scene's contact list
   const std::vector<SoftContact>& soft_contacts;
   const std::vector<std::unique_ptr<SoftStep>>& soft_steps;  // per soft body
+  const std::vector<ConstraintTerms>& constraints;  // the scene's constraint list (Island::constraints index it)
   real dt;
   const StepSettings& params;
 };
@@ -35,6 +37,7 @@ struct IslandLayout {
   int n_rigid = 0;       // of which the articulations' DOFs and the reduced soft bodies' variables (A's dense part)
   int joint_rows = 0;    // joint rows that take part (J's first rows)
   int num_contacts = 0;  // contacts that take part, rigid and soft (three rows each)
+  int constraint_rows = 0;  // rows of the island's constraints (after the contacts')
 };
 
 // v <- n copies of `value`, inline (vector::assign calls out to a general routine, a dozen
@@ -53,6 +56,8 @@ IslandLayout lay_out_variables(const IslandInputs& in, bool include_deferred, co
 void assemble_momentum(const IslandInputs& in, const IslandLayout& layout, bool sparse, IslandWorkspace& w);
 // J's joint rows, and their constraint blocks (joint_rows.cpp).
 void add_joint_rows(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J);
+// J's constraint rows after the contacts', and their blocks (constraint_rows.cpp).
+void add_constraint_rows(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J);
 // The solution's velocities, drive efforts, soft states and contact forces into `out` (island_solution.cpp).
 void pack_solution(const IslandInputs& in, const IslandLayout& layout, const ConvexResult& sol, const IslandWorkspace& w,
                    IslandSolution& out);

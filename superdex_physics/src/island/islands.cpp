@@ -1,4 +1,4 @@
-// Union-find over bodies linked by contacts.
+// Union-find over bodies linked by contacts and constraints.
 
 #include "island/islands.h"
 
@@ -8,15 +8,17 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 std::vector<Island> build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts,
-                                  const std::vector<int>& soft_free_dofs, const std::vector<SoftContact>& soft_contacts) {
+                                  const std::vector<int>& soft_free_dofs, const std::vector<SoftContact>& soft_contacts,
+                                  const std::vector<std::array<int, 2>>& constraints) {
   std::vector<Island> islands;
   IslandScratch scratch;
-  build_islands(num_dofs, contacts, soft_free_dofs, soft_contacts, islands, scratch);
+  build_islands(num_dofs, contacts, soft_free_dofs, soft_contacts, constraints, islands, scratch);
   return islands;
 }
 
 void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts, const std::vector<int>& soft_free_dofs,
-                   const std::vector<SoftContact>& soft_contacts, std::vector<Island>& islands, IslandScratch& scratch) {
+                   const std::vector<SoftContact>& soft_contacts, const std::vector<std::array<int, 2>>& constraints,
+                   std::vector<Island>& islands, IslandScratch& scratch) {
   // nodes: articulations, then soft bodies
   const int na = static_cast<int>(num_dofs.size());
   const int n = na + static_cast<int>(soft_free_dofs.size());
@@ -37,6 +39,8 @@ void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>&
   };
   for (const Contact& c : contacts) join(c.body_a, c.body_b);
   for (const SoftContact& c : soft_contacts) join(na + c.soft, c.body);
+  for (const auto& [a, b] : constraints)
+    if (a >= 0 && b >= 0) join(a, b);
   // islands ordered by their smallest node, so the result is deterministic; the islands' lists
   // keep their storage from the last call
   std::vector<int>& index_of_root = scratch.index_of_root;
@@ -51,6 +55,7 @@ void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>&
       fresh.contacts.clear();
       fresh.soft_bodies.clear();
       fresh.soft_contacts.clear();
+      fresh.constraints.clear();
     }
     return islands[index_of_root[root]];
   };
@@ -71,6 +76,12 @@ void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>&
     const int node = na + soft_contacts[k].soft;
     if (dofs[node] == 0) continue;
     islands[index_of_root[find(node)]].soft_contacts.push_back(static_cast<int>(k));
+  }
+  for (size_t k = 0; k < constraints.size(); ++k) {
+    const auto [a, b] = constraints[k];
+    const int body = a >= 0 && dofs[a] > 0 ? a : b;
+    if (body < 0 || dofs[body] == 0) continue;
+    islands[index_of_root[find(body)]].constraints.push_back(static_cast<int>(k));
   }
 }
 

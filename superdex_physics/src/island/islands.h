@@ -1,6 +1,8 @@
 #pragma once
-// Islands: bodies coupled by contacts solve together; bodies without DOFs never join.
+// Islands: bodies coupled by contacts or constraints solve together; bodies without DOFs never
+// join.
 
+#include <array>
 #include <vector>
 
 #include "collision/collision_detection.h"
@@ -14,13 +16,16 @@ struct Island {
   std::vector<int> contacts;       // indices into the contact list, ascending
   std::vector<int> soft_bodies;    // soft body indices, ascending
   std::vector<int> soft_contacts;  // indices into the soft contact list, ascending
+  std::vector<int> constraints;    // indices into the constraint list, ascending
 };
 
 // Groups the articulations with DOFs (num_dofs[b] > 0) and the soft bodies with free DOFs
-// (soft_free_dofs[k] > 0) into islands connected by contacts.
+// (soft_free_dofs[k] > 0) into islands connected by contacts and by constraints (the two
+// articulations each joins; -1 for the world).
 std::vector<Island> build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts,
                                   const std::vector<int>& soft_free_dofs = {},
-                                  const std::vector<SoftContact>& soft_contacts = {});
+                                  const std::vector<SoftContact>& soft_contacts = {},
+                                  const std::vector<std::array<int, 2>>& constraints = {});
 
 // Working storage of build_islands.
 struct IslandScratch {
@@ -28,7 +33,8 @@ struct IslandScratch {
 };
 // The same into `islands`, whose elements keep their lists' storage across calls.
 void build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts, const std::vector<int>& soft_free_dofs,
-                   const std::vector<SoftContact>& soft_contacts, std::vector<Island>& islands, IslandScratch& scratch);
+                   const std::vector<SoftContact>& soft_contacts, const std::vector<std::array<int, 2>>& constraints,
+                   std::vector<Island>& islands, IslandScratch& scratch);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

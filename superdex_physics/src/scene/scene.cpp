@@ -168,6 +168,7 @@ void Scene::destroy_actor(ActorHandle actor) {
   if (SoftBody* soft = it->second.soft) {
     s.actors.erase(it);
     std::erase_if(s.queries, [&](const auto& q) { return q.second.actor == actor; });
+    std::erase_if(s.constraints, [&](const auto& c) { return c.second.actor_a == actor || c.second.actor_b == actor; });
     // contact records refer to soft bodies by -1 - index: drop this one's and renumber the rest
     const int index = static_cast<int>(std::find_if(s.soft_bodies.begin(), s.soft_bodies.end(),
                                                     [&](const auto& p) { return p.get() == soft; }) - s.soft_bodies.begin());
@@ -186,6 +187,8 @@ void Scene::destroy_actor(ActorHandle actor) {
   for (ActorHandle h : gone) s.actors.erase(h);
   std::erase_if(s.queries, [&](const auto& q) { return gone.count(q.second.actor) > 0; });
   std::erase_if(s.actor_contact, [&](const auto& p) { return gone.count(p.first.first) || gone.count(p.first.second); });
+  // constraints on the actor or its links go with it
+  std::erase_if(s.constraints, [&](const auto& c) { return gone.count(c.second.actor_a) || gone.count(c.second.actor_b); });
   // contact records refer to bodies by index: drop this body's and renumber the rest
   const int index = static_cast<int>(std::find_if(s.articulations.begin(), s.articulations.end(),
                                                   [&](const auto& p) { return p.get() == a; }) - s.articulations.begin());
@@ -319,6 +322,7 @@ void Scene::step_dynamics(real dt) {
   find_step_contact_pairs(step);
   prepare_step_items(step);
   gather_contacts(step);
+  constraint_step_terms(step);
   // 2. islands, each one implicit solve, the costliest first
   build_step_islands(step);
   assign_sparse_systems(step);
@@ -333,6 +337,7 @@ void Scene::step_dynamics(real dt) {
   commit_next_states(step);
   // 4. contact results for queries, the scene's time, statistics
   contact_records(step);
+  constraint_records(step);
   s.time += dt;
   s.step_count += 1;
   step_stats(step, clock);

@@ -14,6 +14,7 @@
 
 #include <oneapi/tbb/task_arena.h>
 
+#include "constraint/constraint_record.h"
 #include "multibody/articulation_model.h"
 #include "output/debug_draw_features.h"
 #include "scene/actor_records.h"
@@ -120,6 +121,8 @@ struct SceneData {
   // results of the last step and the queries that read them
   std::vector<ContactRecord> contacts;
   std::map<std::int64_t, QueryRecord> queries;
+  // constraints by handle (creation order)
+  std::map<ConstraintHandle, ConstraintRecord> constraints;
   std::map<CallbackHandle, StepCallbackRecord> callbacks;  // by handle: registration order
   std::array<CachedCallbackOrder, 2> callback_order;  // pre, post
   std::uint64_t callbacks_version = 0;                // counts the changes to `callbacks`

@@ -20,7 +20,7 @@ void build_step_islands(Step& step) {
   std::vector<int>& num_dofs = ws.num_dofs;
   num_dofs.resize(n);
   for (size_t i = 0; i < n; ++i) num_dofs[i] = s.articulations[i]->model.nv;
-  build_islands(num_dofs, ws.contacts, ws.soft_free, step.soft_contacts, ws.islands, ws.island_scratch);
+  build_islands(num_dofs, ws.contacts, ws.soft_free, step.soft_contacts, ws.constraint_bodies, ws.islands, ws.island_scratch);
   // Scene::set_force_single_island: every island's bodies and contacts in the first
   if (s.force_single_island && ws.islands.size() > 1) {
     Island& all = ws.islands[0];
@@ -30,8 +30,9 @@ void build_step_islands(Step& step) {
       all.contacts.insert(all.contacts.end(), o.contacts.begin(), o.contacts.end());
       all.soft_bodies.insert(all.soft_bodies.end(), o.soft_bodies.begin(), o.soft_bodies.end());
       all.soft_contacts.insert(all.soft_contacts.end(), o.soft_contacts.begin(), o.soft_contacts.end());
+      all.constraints.insert(all.constraints.end(), o.constraints.begin(), o.constraints.end());
     }
-    for (auto* list : {&all.bodies, &all.contacts, &all.soft_bodies, &all.soft_contacts}) std::sort(list->begin(), list->end());
+    for (auto* list : {&all.bodies, &all.contacts, &all.soft_bodies, &all.soft_contacts, &all.constraints}) std::sort(list->begin(), list->end());
     ws.islands.resize(1);
   }
 }
@@ -82,7 +83,7 @@ void solve_islands(Step& step) {
   ws.efforts_next.resize(n);
   ws.kin_next.resize(n);
   const auto solve = [&](size_t k) {
-    solve_island(s, islands[k], ws.terms, ws.contacts, step.soft_contacts, step.soft_steps, step.dt, s.params, *s.island_workspaces[k],
+    solve_island(s, islands[k], ws.terms, ws.contacts, step.soft_contacts, ws.constraint_terms, step.soft_steps, step.dt, s.params, *s.island_workspaces[k],
                  ws.sparse_cache[k], ws.solutions[k]);
     next_island_states(step, k);
   };

@@ -40,7 +40,9 @@ void find_step_contact_pairs(Step& step);
 void prepare_step_items(Step& step);
 // The contact list from the narrow phase's chunks, and the soft contacts (step_collision.cpp).
 void gather_contacts(Step& step);
-// The islands: bodies coupled by contacts (step_islands.cpp).
+// Each constraint's rows from the state at the step's start (step_constraints.cpp).
+void constraint_step_terms(Step& step);
+// The islands: bodies coupled by contacts and constraints (step_islands.cpp).
 void build_step_islands(Step& step);
 // Each large rigid island's Newton system from the scene's cache, kept by its bodies (step_islands.cpp).
 void assign_sparse_systems(Step& step);
@@ -58,6 +60,8 @@ void next_soft_states(Step& step, StepGuard& guard);
 void commit_next_states(Step& step);
 // The step's contact results for queries, s.contacts (contact_records.cpp).
 void contact_records(Step& step);
+// The constraints' forces of the step, and their targets' motion over it done (step_constraints.cpp).
+void constraint_records(Step& step);
 // The step's statistics, s.stats, with its wall time by `clock` (step_stats.cpp).
 void step_stats(Step& step, const StepClock& clock);
 

@@ -18,6 +18,7 @@
 #include "superdex/physics/debug_draw.h"
 #include "superdex/physics/handles.h"
 #include "superdex/physics/params/actor_params.h"
+#include "superdex/physics/params/constraint_params.h"
 #include "superdex/physics/params/recording_params.h"
 #include "superdex/physics/params/solver_params.h"
 #include "superdex/physics/params/transmission_params.h"
@@ -282,6 +283,52 @@ class Scene {
   int num_transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;
   std::vector<real> transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;
   void set_transmission_actuator_state_variables(ActorHandle articulation, int transmission, std::span<const real> values);
+
+  // ---- Constraints (constraint_params.h): spring-dampers between rigid or link actors, or
+  // between one and a target, in the same implicit solve as contacts. Each create validates its
+  // params (superdex::Error naming the field); a constraint goes with either of its actors.
+  ConstraintHandle create_rigid_spherical_joint_constraint(const RigidSphericalJointConstraintParams& params);
+  ConstraintHandle create_rigid_prismatic_joint_constraint(const RigidPrismaticJointConstraintParams& params);
+  ConstraintHandle create_joint_rotation_range_constraint(const JointRotationRangeConstraintParams& params);
+  ConstraintHandle create_joint_rotation_tracking_constraint(const JointRotationTrackingConstraintParams& params);
+  ConstraintHandle create_rigid_pivot_position_constraint(const RigidPivotPositionConstraintParams& params);
+  ConstraintHandle create_rigid_pivot_to_rigid_target_constraint(const RigidPivotToRigidTargetConstraintParams& params);
+  ConstraintHandle create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& params);
+  void destroy_constraint(ConstraintHandle constraint);
+  bool has_constraint(ConstraintHandle constraint) const;
+  /// The scene's constraints in creation order.
+  std::vector<ConstraintHandle> constraints() const;
+  ConstraintType constraint_type(ConstraintHandle constraint) const;
+  /// Stiffness, damping and saturation as set; set_constraint_params validates them.
+  ConstraintParams constraint_params(ConstraintHandle constraint) const;
+  void set_constraint_params(ConstraintHandle constraint, const ConstraintParams& params);
+  /// Its actors: A, then B for the two-actor kinds.
+  std::vector<ActorHandle> constraint_actors(ConstraintHandle constraint) const;
+  /// The DOFs of actor `actor_index` it acts on (0-2 translation, 3-5 rotation).
+  std::vector<int> constraint_dof_indices(ConstraintHandle constraint, int actor_index) const;
+  /// Target minus current per constrained component, from the current state (m, rad).
+  std::vector<real> constraint_deviation(ConstraintHandle constraint) const;
+  /// The last step's generalized force on each actor's DOFs, actor after actor (N, and N m about
+  /// the centre of mass; world). Needs a ConstraintForce query.
+  std::vector<real> constraint_force(ConstraintHandle constraint) const;
+  /// Moves the target (pivot position, and the pivot to rigid target's translation; world, m).
+  /// The damping follows the target's motion over the next step.
+  void set_constraint_target_position(ConstraintHandle constraint, const Vec3& position);
+  /// Turns the target: world for the pivot rotation and the pivot to rigid target, B relative to
+  /// A for the joint rotation tracking.
+  void set_constraint_target_rotation(ConstraintHandle constraint, const Quat& rotation);
+  /// Forgets the target's motion since the last step (after a jump of the target).
+  void update_constraint_old_target(ConstraintHandle constraint);
+  /// The relative rotation of A and B at the rotations rotation_a and rotation_b becomes the
+  /// reference: the tracking's target, the range's rest.
+  void set_constraint_ref_relative_rotation(ConstraintHandle constraint, const Quat& rotation_a, const Quat& rotation_b);
+  /// The bounds of the prismatic joint (m) and of the rotation range (rad per joint axis).
+  std::vector<real> constraint_limit_min_values(ConstraintHandle constraint) const;
+  std::vector<real> constraint_limit_max_values(ConstraintHandle constraint) const;
+  /// Queries of a constraint: ConstraintForce only.
+  QueryHandle register_constraint_query(ConstraintHandle constraint, QueryType type);
+  void cancel_constraint_query(ConstraintHandle constraint, QueryHandle query);
+  bool is_constraint_query_supported(ConstraintHandle constraint, QueryType type) const;
 
   /// Registers a query on an actor (superdex::Error when the actor does not support it; see
   /// is_query_supported); `compute_now` makes a query computed from the state readable at once.

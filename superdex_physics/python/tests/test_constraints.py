@@ -1,0 +1,229 @@
+"""Constraints between rigid actors and targets, against analytic references: a spring's sag under
+a weight, a physical pendulum's period, the forces a hanging chain carries, a saturated spring's
+acceleration, a slider under tilted gravity and its stop, rotation tracking and range stops; and
+their API (lookup, parameters, queries, errors, destruction with an actor)."""
+
+import math
+
+import numpy as np
+import pytest
+
+import superdex.physics as sdp
+
+G = 9.81
+
+
+def box(scene, name, center, half=(0.05, 0.05, 0.05), mass=1.0, static=False):
+    return scene.create_rigid_actor(name=name, shape=sdp.create_box_shape(half_extents=list(half)), mass=mass, is_static=static,
+                                    world_from_local=sdp.TransformRT(translation=list(center)))
+
+
+def z_of(actor):
+    return float(actor.get_root_transform().translation[2])
+
+
+def test_pivot_sags_by_weight_over_stiffness_and_reports_the_weight(scene):
+    b = box(scene, "b", [0, 0, 1], mass=2.0)
+    K = 2e4
+    c = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), local_position=[0, 0, 0.05], target_position=[0, 0, 1.05],
+                                                     stiffness=K, damping=100)
+    c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(400):
+        scene.step(0.01)
+    deviation = np.asarray(c.get_deviation())
+    np.testing.assert_allclose(deviation, [0, 0, 2.0 * G / K], rtol=1e-3, atol=1e-9)
+    force = np.asarray(c.get_force())
+    assert force.shape == (6,)
+    np.testing.assert_allclose(force, [0, 0, 2.0 * G, 0, 0, 0], rtol=1e-3, atol=1e-6)
+
+
+def test_a_stiff_pivot_swings_with_the_physical_pendulum_period(scene):
+    # a 0.02 x 0.02 x 0.2 m rod pinned at its top end: I_pivot = m (l^2 / 12 + (l/2)^2) = m l^2 / 3
+    length, mass = 0.2, 0.5
+    rod = box(scene, "rod", [0, 0, 1 - length / 2], half=(0.01, 0.01, length / 2), mass=mass)
+    scene.create_rigid_pivot_position_constraint(actor=rod.get_handle(), local_position=[0, 0, length / 2], target_position=[0, 0, 1],
+                                                 stiffness=1e6, damping=0)
+    # the rod's inertia about its top end, and the period of small swings
+    i_pivot = mass * ((0.02**2 + length**2) / 12 + (length / 2) ** 2)
+    period = 2 * math.pi * math.sqrt(i_pivot / (mass * G * length / 2))
+    theta0 = 0.05
+    rod.set_root_transform(sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([1, 0, 0], theta0),
+                                           translation=[0, length / 2 * math.sin(theta0), 1 - length / 2 * math.cos(theta0)]))
+    dt = 5e-4
+    ys, ts = [], []
+    for k in range(int(2.5 * period / dt)):
+        scene.step(dt)
+        ys.append(float(rod.get_root_transform().translation[1]))
+        ts.append((k + 1) * dt)
+    ys = np.asarray(ys)
+    # upward zero crossings of the swing, linearly interpolated
+    crossings = [ts[i] + dt * ys[i] / (ys[i] - ys[i + 1]) for i in range(len(ys) - 1) if ys[i] > 0 >= ys[i + 1]]
+    assert len(crossings) >= 2
+    measured = np.mean(np.diff(crossings))
+    assert measured == pytest.approx(period, rel=0.01)
+
+
+def test_a_hanging_chain_carries_the_weight_below_each_joint(scene):
+    upper = box(scene, "upper", [0, 0, 0.9], mass=1.0)
+    lower = box(scene, "lower", [0, 0, 0.8], mass=0.5)
+    scene.enable_actor_contact_symmetric(upper, lower, False, sdp.IncludeNestedActors.NO)
+    pivot = scene.create_rigid_pivot_position_constraint(actor=upper.get_handle(), local_position=[0, 0, 0.05], target_position=[0, 0, 0.95],
+                                                         stiffness=1e5, damping=50)
+    joint = scene.create_rigid_spherical_joint_constraint(actor_a=upper.get_handle(), actor_b=lower.get_handle(), local_pos_a=[0, 0, -0.05],
+                                                          local_pos_b=[0, 0, 0.05], stiffness=1e5, damping=50)
+    for c in (pivot, joint):
+        c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(300):
+        scene.step(0.01)
+    np.testing.assert_allclose(np.asarray(pivot.get_force())[:3], [0, 0, 1.5 * G], rtol=1e-3, atol=1e-6)
+    joint_force = np.asarray(joint.get_force())
+    assert joint_force.shape == (12,)
+    # the joint pulls the upper link down and the lower one up by the lower one's weight
+    np.testing.assert_allclose(joint_force[:3], [0, 0, -0.5 * G], rtol=1e-3, atol=1e-6)
+    np.testing.assert_allclose(joint_force[6:9], [0, 0, 0.5 * G], rtol=1e-3, atol=1e-6)
+    # stretched: the lower link's point hangs below the upper one's
+    np.testing.assert_allclose(np.asarray(joint.get_deviation()), [0, 0, -0.5 * G / 1e5], rtol=1e-2, atol=1e-9)
+
+
+def test_a_saturated_spring_lets_the_body_fall_at_the_remaining_acceleration(scene):
+    b = box(scene, "b", [0, 0, 1], mass=1.0)
+    cap = 4.0  # N, below the weight
+    c = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), target_position=[0, 0, 1], stiffness=1e5, saturation=cap)
+    c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    t = 0.5
+    for _ in range(int(t / 0.005)):
+        scene.step(0.005)
+    assert float(b.get_linear_velocity()[2]) == pytest.approx(-(G - cap) * t, rel=1e-3)
+    assert np.asarray(c.get_force())[2] == pytest.approx(cap, rel=1e-6)
+
+
+def test_without_stiffness_and_damping_the_constraint_exerts_nothing(scene):
+    b = box(scene, "b", [0, 0, 1])
+    c = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), target_position=[0, 0, 1], stiffness=0, damping=0)
+    c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(50):
+        scene.step(0.01)
+    assert float(b.get_linear_velocity()[2]) == pytest.approx(-G * 0.5, rel=1e-6)
+    assert np.linalg.norm(np.asarray(c.get_force())) == 0
+
+
+def test_the_damping_follows_a_moving_target_without_lag(scene):
+    # no gravity: a body tracking a target moving at constant speed settles on it (a damper that
+    # ignored the target's motion would hold it D u / K behind)
+    scene.set_gravity([0, 0, 0])
+    b = box(scene, "b", [0, 0, 0])
+    K, D, u, dt = 1e3, 200.0, 0.3, 0.01
+    c = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), target_position=[0, 0, 0], stiffness=K, damping=D)
+    for k in range(300):
+        c.set_target_position(sdp.Real3(u * (k + 1) * dt, 0, 0))
+        scene.step(dt)
+    assert abs(float(np.asarray(c.get_deviation())[0])) < 1e-3 * D * u / K
+    assert float(b.get_linear_velocity()[0]) == pytest.approx(u, rel=1e-4)
+
+
+def test_a_slider_moves_along_its_axis_only_and_stops_at_its_bound(scene):
+    # gravity tilted 30 degrees from -z towards +x; the slider's axis is x
+    angle = math.radians(30)
+    scene.set_gravity([G * math.sin(angle), 0, -G * math.cos(angle)])
+    base = box(scene, "base", [0, 0, 0], static=True)
+    slider = box(scene, "slider", [0, 0, 0.2], mass=1.0)
+    scene.enable_actor_contact_symmetric(base, slider, False, sdp.IncludeNestedActors.NO)
+    K = 1e5
+    c = scene.create_rigid_prismatic_joint_constraint(actor_a=base.get_handle(), actor_b=slider.get_handle(), free_axis=[1, 0, 0],
+                                                      stiffness=K, damping=20)
+    t = 0.3
+    for _ in range(int(t / 0.005)):
+        scene.step(0.005)
+    x = float(slider.get_root_transform().translation[0])
+    # free along x: x = g sin(angle) t^2 / 2 (the damping acts across the axis only)
+    assert x == pytest.approx(0.5 * G * math.sin(angle) * t * t, rel=0.02)
+    assert z_of(slider) == pytest.approx(0.2 - G * math.cos(angle) / K, abs=2e-5)
+    scene.destroy_constraint(c)
+    slider.set_root_transform(sdp.TransformRT(translation=[0, 0, 0.2]))
+    slider.set_velocity([0, 0, 0], [0, 0, 0])
+    stop = scene.create_rigid_prismatic_joint_constraint(actor_a=base.get_handle(), actor_b=slider.get_handle(), free_axis=[1, 0, 0],
+                                                         stiffness=K, damping=200, max=0.05)
+    assert list(stop.get_limit_max_values()) == [pytest.approx(0.05)]
+    for _ in range(400):
+        scene.step(0.005)
+    assert float(slider.get_root_transform().translation[0]) == pytest.approx(0.05 + G * math.sin(angle) / K, abs=2e-5)
+
+
+def test_rotation_tracking_turns_a_body_to_its_target_relative_to_another(scene):
+    scene.set_gravity([0, 0, 0])
+    base = box(scene, "base", [0, 0, 0], static=True)
+    b = box(scene, "b", [0, 0, 0.5])
+    c = scene.create_joint_rotation_tracking_constraint(actor_a=base.get_handle(), actor_b=b.get_handle(), stiffness=50, damping=2)
+    target = sdp.Quaternion.from_axis_angle([0, 0, 1], math.radians(40))
+    c.set_target_rotation(target)
+    for _ in range(400):
+        scene.step(0.01)
+    q = b.get_root_transform().rotation
+    angle = 2 * math.degrees(math.atan2(q[2], q[3]))
+    assert angle == pytest.approx(40, abs=0.01)
+    assert np.linalg.norm(np.asarray(c.get_deviation())) < 1e-4
+
+
+def test_a_pivot_rotation_holds_a_target_rotation_against_a_torque(scene):
+    scene.set_gravity([0, 0, 0])
+    b = box(scene, "b", [0, 0, 0])
+    K, torque = 200.0, 1.5
+    c = scene.create_rigid_pivot_rotation_constraint(actor=b.get_handle(), target_rotation=[0, 0, 0], stiffness=K, damping=5)
+    c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    # a rigid actor's DOFs 3-5: the torque about its centre of mass (N m, world), kept until cleared
+    b.set_external_forces_on_dofs([5], [torque])
+    for _ in range(600):
+        scene.step(0.01)
+    tz = float(np.asarray(c.get_force())[2])
+    assert tz == pytest.approx(-torque, rel=1e-3)
+    assert float(np.asarray(c.get_deviation())[2]) == pytest.approx(-torque / K, rel=1e-2)
+
+
+def test_a_rotation_range_stops_a_spinning_body_at_its_bound(scene):
+    scene.set_gravity([0, 0, 0])
+    base = box(scene, "base", [0, 0, 0], static=True)
+    b = box(scene, "b", [0, 0, 0.5])
+    c = scene.create_joint_rotation_range_constraint(actor_a=base.get_handle(), actor_b=b.get_handle(), angle_range_z=[-0.5, 0.5],
+                                                     stiffness=1e4, damping=20)
+    assert list(c.get_limit_min_values()) == pytest.approx([-2 * math.pi, -2 * math.pi, -0.5])
+    b.set_velocity([0, 0, 0], [0, 0, 2.0])
+    for _ in range(300):
+        scene.step(0.005)
+    q = b.get_root_transform().rotation
+    angle = 2 * math.atan2(q[2], q[3])
+    assert angle == pytest.approx(0.5, abs=0.01)
+    assert abs(float(b.get_angular_velocity()[2])) < 1e-3
+
+
+def test_constraint_api_lookup_queries_errors_and_destruction(scene):
+    a = box(scene, "a", [0, 0, 1])
+    b = box(scene, "b", [0, 0, 2])
+    c = scene.create_rigid_spherical_joint_constraint(actor_a=a.get_handle(), actor_b=b.get_handle(), stiffness=10, damping=1)
+    assert c.get_type() == sdp.ConstraintType.RIGID_SPHERICAL_JOINT
+    assert scene.get_constraint(c.get_handle()) == c
+    assert [a.get_handle(), b.get_handle()] == [c.get_actor(actor_index=i).get_handle() for i in range(c.get_num_actors())]
+    assert list(c.get_dof_indices_for_actor(actor_index=1)) == [0, 1, 2, 3, 4, 5]
+    with pytest.raises(sdp.Error, match="CONSTRAINT_FORCE"):
+        c.get_force()
+    with pytest.raises(sdp.Error, match="saturation"):
+        c.set_saturation(0)
+    with pytest.raises(sdp.Error, match="stiffness"):
+        c.set_stiffness(-1)
+    with pytest.raises(sdp.Error, match="RIGID_SPHERICAL_JOINT"):
+        c.set_target_position(sdp.Real3(0, 0, 0))
+    with pytest.raises(sdp.Error, match="actor_b"):
+        scene.create_rigid_spherical_joint_constraint(actor_a=a.get_handle(), actor_b=a.get_handle())
+    with pytest.raises(sdp.Error, match="free_axis"):
+        scene.create_rigid_prismatic_joint_constraint(actor_a=a.get_handle(), actor_b=b.get_handle(), free_axis=[0, 0, 0])
+    soft = scene.create_soft_actor(shape=sdp.create_tet_mesh_shape([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 1, 2, 3]]))
+    with pytest.raises(sdp.Error, match="rigid actor"):
+        scene.create_rigid_pivot_position_constraint(actor=soft.get_handle())
+    pivot = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), target_position=[0, 0, 2])
+    seen = []
+    scene.for_each_constraint(lambda k: seen.append(k.get_type()))
+    assert seen == [sdp.ConstraintType.RIGID_SPHERICAL_JOINT, sdp.ConstraintType.RIGID_PIVOT_POSITION]
+    # a constraint goes with either of its actors
+    scene.destroy_actor(b)
+    assert scene.get_constraint(c.get_handle()) is None and scene.get_constraint(pivot.get_handle()) is None
+    with pytest.raises(sdp.Error, match="does not exist"):
+        c.get_stiffness()

@@ -1,0 +1,49 @@
+#pragma once
+// A constraint's part of one step's convex problem: its rows on the spatial velocities of the
+// links it joins, each an implicit spring-damper block (constraint_params.h), from the state at
+// the step's start. Also its deviation now.
+
+#include <vector>
+
+#include "constraint/constraint_record.h"
+#include "solver/newton_solver.h"
+#include "superdex/physics/transform.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+// One side of a constraint: a link of an articulation (rigid actors are one-link ones), or none.
+struct ConstraintSide {
+  int body = -1;  // articulation index; -1: the world
+  int link = 0;
+  Transform X_WL;                // the link's frame now
+  Vec3 com_W = Vec3::Zero();     // its centre of mass (m, world)
+};
+
+// One row: its rate is g_a . V_a + g_b . V_b with V = (v, w) a side's spatial velocity (its
+// link origin's velocity, m/s, and angular velocity, rad/s; world). `block` is Bounded
+// (equalities) or Unilateral (limits), R not yet floored against ill-conditioning.
+struct ConstraintRow {
+  Vec6 g_a = Vec6::Zero(), g_b = Vec6::Zero();
+  ConstraintBlock block;
+};
+
+struct ConstraintTerms {
+  ConstraintSide a, b;
+  std::vector<ConstraintRow> rows;  // none when the spring-damper has no stiffness and no damping
+};
+
+// The rows of `c` for a step of dt (s) from sides a and b (b unused by one-actor kinds).
+void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t);
+
+// The deviation of `c` with its sides at the given frames: per constrained component, target
+// minus current (m; rad for rotations, as a rotation vector: world for the pivot rotation, joint
+// axes for the joint rotations).
+std::vector<real> constraint_deviation(const ConstraintRecord& c, const Transform& X_WA, const Transform& X_WB);
+
+// A side's generalized force on its DOFs (constraint_dof_indices) from the spatial force
+// (force, torque about the link origin; world) the rows put on it.
+void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, const std::vector<int>& dofs, std::vector<real>& out);
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,356 @@
+// The scene's constraint API (scene.h, constraint_params.h): creation with validation, lookup,
+// parameters, targets, deviation and forces.
+
+#include <cmath>
+#include <string>
+
+#include "constraint/constraint_terms.h"
+#include "core/spatial.h"
+#include "scene/actor_lookup.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+const char* constraint_type_name(ConstraintType type) {
+  switch (type) {
+    case ConstraintType::RigidSphericalJoint: return "RIGID_SPHERICAL_JOINT";
+    case ConstraintType::RigidPrismaticJoint: return "RIGID_PRISMATIC_JOINT";
+    case ConstraintType::JointRotationRange: return "JOINT_ROTATION_RANGE";
+    case ConstraintType::JointRotationTracking: return "JOINT_ROTATION_TRACKING";
+    case ConstraintType::RigidPivotPosition: return "RIGID_PIVOT_POSITION";
+    case ConstraintType::RigidPivotToRigidTarget: return "RIGID_PIVOT_TO_RIGID_TARGET";
+    case ConstraintType::RigidPivotRotation: return "RIGID_PIVOT_ROTATION";
+  }
+  return "?";
+}
+
+namespace {
+
+void check(bool ok, const std::string& what, const std::string& message) {
+  if (!ok) throw Error(what + ": " + message);
+}
+
+template <class V>
+void check_finite(const V& v, const std::string& what, const char* field) {
+  check(v.allFinite(), what, std::string(field) + " must be finite");
+}
+
+void check_spring(const ConstraintParams& p, const std::string& what) {
+  check(std::isfinite(p.stiffness) && p.stiffness >= 0, what, "stiffness must be finite and >= 0 (N/m or N m/rad), got " + std::to_string(p.stiffness));
+  check(std::isfinite(p.damping) && p.damping >= 0, what, "damping must be finite and >= 0, got " + std::to_string(p.damping));
+  check(std::isfinite(p.saturation) && p.saturation != 0, what,
+        "saturation must be finite and not 0 (negative: no cap; positive: the force cap), got " + std::to_string(p.saturation));
+}
+
+// The frame of a rigid or link actor now; soft and whole articulated actors are refused.
+Transform rigid_frame(SceneData& s, ActorHandle actor, const std::string& what, const char* field) {
+  if (!actor.is_valid()) throw Error(what + ": " + field + " is not set");
+  const ActorRef r = lookup(s, actor, (what + " (" + field + ")").c_str());
+  if (r.soft || (r.link < 0 && !r.articulation->is_rigid))
+    throw Error(what + ": " + field + " (" + describe(actor) + ") must be a rigid actor or an articulation's link");
+  const SpatialTransform& X = r.articulation->kin.X_WL[r.link < 0 ? 0 : r.link];
+  return {Quat(X.R).normalized(), X.p};
+}
+
+ConstraintRecord& record(SceneData& s, ConstraintHandle h, const char* what) {
+  auto it = s.constraints.find(h);
+  if (it == s.constraints.end())
+    throw Error(std::string(what) + ": constraint " + std::to_string(h) + " does not exist in scene '" + s.name + "' (destroyed, or never created here)");
+  return it->second;
+}
+
+ConstraintHandle add(SceneData& s, ConstraintRecord c, const ConstraintParams& p) {
+  c.handle = next_handle();
+  c.stiffness = p.stiffness;
+  c.damping = p.damping;
+  c.saturation = p.saturation;
+  c.old_target_position = c.target_position;
+  c.old_target_rotation = c.target_rotation;
+  c.old_target_transform = c.target_transform;
+  const ConstraintHandle h = c.handle;
+  s.constraints.emplace(h, std::move(c));
+  return h;
+}
+
+Transform frame_of(SceneData& s, ActorHandle actor) {
+  if (!actor.is_valid()) return {};
+  return rigid_frame(s, actor, "constraint", "actor");
+}
+
+[[noreturn]] void unsupported(const ConstraintRecord& c, const char* what) {
+  throw Error(std::string(what) + ": not available for a " + constraint_type_name(c.type) + " constraint");
+}
+
+}  // namespace
+
+ConstraintHandle Scene::create_rigid_spherical_joint_constraint(const RigidSphericalJointConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rigid_spherical_joint_constraint";
+  check_spring(p, what);
+  check_finite(p.local_pos_a, what, "local_pos_a");
+  check_finite(p.local_pos_b, what, "local_pos_b");
+  rigid_frame(s, p.actor_a, what, "actor_a");
+  rigid_frame(s, p.actor_b, what, "actor_b");
+  check(p.actor_a != p.actor_b, what, "actor_a and actor_b must differ");
+  ConstraintRecord c;
+  c.type = ConstraintType::RigidSphericalJoint;
+  c.actor_a = p.actor_a, c.actor_b = p.actor_b;
+  c.p_A = p.local_pos_a, c.p_B = p.local_pos_b;
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_rigid_prismatic_joint_constraint(const RigidPrismaticJointConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rigid_prismatic_joint_constraint";
+  check_spring(p, what);
+  check_finite(p.free_axis, what, "free_axis");
+  check(p.free_axis.norm() > real(1e-6), what, "free_axis must not be zero");
+  check(!p.min || std::isfinite(*p.min), what, "min must be finite");
+  check(!p.max || std::isfinite(*p.max), what, "max must be finite");
+  check(!p.min || !p.max || *p.min <= *p.max, what, "min must not exceed max");
+  const Transform X_WA = rigid_frame(s, p.actor_a, what, "actor_a");
+  const Transform X_WB = rigid_frame(s, p.actor_b, what, "actor_b");
+  check(p.actor_a != p.actor_b, what, "actor_a and actor_b must differ");
+  ConstraintRecord c;
+  c.type = ConstraintType::RigidPrismaticJoint;
+  c.actor_a = p.actor_a, c.actor_b = p.actor_b;
+  c.axis_A = X_WA.rotation.conjugate() * p.free_axis.normalized();
+  c.offset_A = X_WA.rotation.conjugate() * (X_WB.translation - X_WA.translation);
+  c.min = p.min, c.max = p.max;
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_joint_rotation_range_constraint(const JointRotationRangeConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_joint_rotation_range_constraint";
+  check_spring(p, what);
+  check_finite(p.ref_frame_rot_vec, what, "ref_frame_rot_vec");
+  const Real2* ranges[3] = {&p.angle_range_x, &p.angle_range_y, &p.angle_range_z};
+  const char* names[3] = {"angle_range_x", "angle_range_y", "angle_range_z"};
+  for (int i = 0; i < 3; ++i) {
+    check_finite(*ranges[i], what, names[i]);
+    check((*ranges[i])[0] <= (*ranges[i])[1], what, std::string(names[i]) + " must be [min, max] with min <= max");
+  }
+  const Transform X_WA = rigid_frame(s, p.actor_a, what, "actor_a");
+  const Transform X_WB = rigid_frame(s, p.actor_b, what, "actor_b");
+  check(p.actor_a != p.actor_b, what, "actor_a and actor_b must differ");
+  ConstraintRecord c;
+  c.type = ConstraintType::JointRotationRange;
+  c.actor_a = p.actor_a, c.actor_b = p.actor_b;
+  // the joint frame given in the world now, fixed in A; in B the same frame now (the rest is no
+  // rotation) or A's (B's rotation measured against A's own)
+  const Quat joint_W = quat_exp(p.ref_frame_rot_vec);
+  c.J_A = (X_WA.rotation.conjugate() * joint_W).normalized();
+  c.J_B = p.range_around_rest ? (X_WB.rotation.conjugate() * joint_W).normalized() : c.J_A;
+  for (int i = 0; i < 3; ++i) c.lower[i] = (*ranges[i])[0], c.upper[i] = (*ranges[i])[1];
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_joint_rotation_tracking_constraint(const JointRotationTrackingConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_joint_rotation_tracking_constraint";
+  check_spring(p, what);
+  check_finite(p.ref_frame_rot_vec, what, "ref_frame_rot_vec");
+  const Transform X_WA = rigid_frame(s, p.actor_a, what, "actor_a");
+  const Transform X_WB = rigid_frame(s, p.actor_b, what, "actor_b");
+  check(p.actor_a != p.actor_b, what, "actor_a and actor_b must differ");
+  ConstraintRecord c;
+  c.type = ConstraintType::JointRotationTracking;
+  c.actor_a = p.actor_a, c.actor_b = p.actor_b;
+  c.J_A = (X_WA.rotation.conjugate() * quat_exp(p.ref_frame_rot_vec)).normalized();
+  // the target: the relative rotation now
+  c.target_rotation = (X_WA.rotation.conjugate() * X_WB.rotation).normalized();
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_rigid_pivot_position_constraint(const RigidPivotPositionConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rigid_pivot_position_constraint";
+  check_spring(p, what);
+  check_finite(p.target_position, what, "target_position");
+  check_finite(p.local_position, what, "local_position");
+  rigid_frame(s, p.actor, what, "actor");
+  ConstraintRecord c;
+  c.type = ConstraintType::RigidPivotPosition;
+  c.actor_a = p.actor;
+  c.p_A = p.local_position;
+  c.target_position = p.target_position;
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_rigid_pivot_to_rigid_target_constraint(const RigidPivotToRigidTargetConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rigid_pivot_to_rigid_target_constraint";
+  check_spring(p, what);
+  check_finite(p.local_position, what, "local_position");
+  check_finite(p.target_transform.translation, what, "target_transform.translation");
+  check(p.target_transform.rotation.coeffs().allFinite() && p.target_transform.rotation.norm() > real(1e-6), what,
+        "target_transform.rotation must be a finite, non-zero quaternion");
+  rigid_frame(s, p.actor, what, "actor");
+  ConstraintRecord c;
+  c.type = ConstraintType::RigidPivotToRigidTarget;
+  c.actor_a = p.actor;
+  c.p_A = p.local_position;
+  c.target_transform = {p.target_transform.rotation.normalized(), p.target_transform.translation};
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rigid_pivot_rotation_constraint";
+  check_spring(p, what);
+  check_finite(p.target_rotation, what, "target_rotation");
+  check_finite(p.local_rotation, what, "local_rotation");
+  rigid_frame(s, p.actor, what, "actor");
+  ConstraintRecord c;
+  c.type = ConstraintType::RigidPivotRotation;
+  c.actor_a = p.actor;
+  c.local_rotation = quat_exp(p.local_rotation);
+  c.target_rotation = quat_exp(p.target_rotation);
+  return add(s, std::move(c), p);
+}
+
+void Scene::destroy_constraint(ConstraintHandle h) {
+  SceneData& s = scene_data(handle_);
+  record(s, h, "destroy_constraint");
+  s.constraints.erase(h);
+}
+
+bool Scene::has_constraint(ConstraintHandle h) const { return scene_data(handle_).constraints.count(h) > 0; }
+
+std::vector<ConstraintHandle> Scene::constraints() const {
+  std::vector<ConstraintHandle> out;
+  for (const auto& [h, c] : scene_data(handle_).constraints) out.push_back(h);
+  return out;
+}
+
+ConstraintType Scene::constraint_type(ConstraintHandle h) const { return record(scene_data(handle_), h, "get_type").type; }
+
+ConstraintParams Scene::constraint_params(ConstraintHandle h) const {
+  const ConstraintRecord& c = record(scene_data(handle_), h, "constraint_params");
+  return {c.stiffness, c.damping, c.saturation};
+}
+
+void Scene::set_constraint_params(ConstraintHandle h, const ConstraintParams& p) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "set_constraint_params");
+  check_spring(p, "set_constraint_params");
+  c.stiffness = p.stiffness, c.damping = p.damping, c.saturation = p.saturation;
+}
+
+std::vector<ActorHandle> Scene::constraint_actors(ConstraintHandle h) const {
+  const ConstraintRecord& c = record(scene_data(handle_), h, "get_actor");
+  if (c.actor_b.is_valid()) return {c.actor_a, c.actor_b};
+  return {c.actor_a};
+}
+
+std::vector<int> Scene::constraint_dof_indices(ConstraintHandle h, int actor_index) const {
+  const ConstraintRecord& c = record(scene_data(handle_), h, "get_dof_indices_for_actor");
+  const int n = c.actor_b.is_valid() ? 2 : 1;
+  if (actor_index < 0 || actor_index >= n)
+    throw Error("get_dof_indices_for_actor: actor_index " + std::to_string(actor_index) + " out of range [0, " + std::to_string(n) + ")");
+  return physics::constraint_dof_indices(c.type, actor_index);
+}
+
+std::vector<real> Scene::constraint_deviation(ConstraintHandle h) const {
+  SceneData& s = scene_data(handle_);
+  const ConstraintRecord& c = record(s, h, "get_deviation");
+  return physics::constraint_deviation(c, frame_of(s, c.actor_a), frame_of(s, c.actor_b));
+}
+
+std::vector<real> Scene::constraint_force(ConstraintHandle h) const {
+  const SceneData& s = scene_data(handle_);
+  const ConstraintRecord& c = record(const_cast<SceneData&>(s), h, "get_force");
+  if (c.queries.empty())
+    throw Error("get_force: constraint " + std::to_string(h) + " has no CONSTRAINT_FORCE query; call register_query(QueryType.CONSTRAINT_FORCE) on it first");
+  if (c.force_step < c.query_since)
+    throw Error("get_force: the CONSTRAINT_FORCE query of constraint " + std::to_string(h) + " has no result yet; results are valid after the next scene.step()");
+  return c.force;
+}
+
+void Scene::set_constraint_target_position(ConstraintHandle h, const Vec3& position) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "set_target_position");
+  check_finite(position, "set_target_position", "position");
+  if (c.type == ConstraintType::RigidPivotPosition) {
+    c.target_position = position;
+  } else if (c.type == ConstraintType::RigidPivotToRigidTarget) {
+    c.target_transform.translation = position;
+  } else {
+    unsupported(c, "set_target_position");
+  }
+}
+
+void Scene::set_constraint_target_rotation(ConstraintHandle h, const Quat& rotation) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "set_target_rotation");
+  check(rotation.coeffs().allFinite() && rotation.norm() > real(1e-6), "set_target_rotation", "rotation must be a finite, non-zero quaternion");
+  if (c.type == ConstraintType::RigidPivotRotation || c.type == ConstraintType::JointRotationTracking) {
+    c.target_rotation = rotation.normalized();
+  } else if (c.type == ConstraintType::RigidPivotToRigidTarget) {
+    c.target_transform.rotation = rotation.normalized();
+  } else {
+    unsupported(c, "set_target_rotation");
+  }
+}
+
+void Scene::update_constraint_old_target(ConstraintHandle h) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "update_old_target");
+  if (c.type != ConstraintType::RigidPivotPosition && c.type != ConstraintType::RigidPivotToRigidTarget &&
+      c.type != ConstraintType::RigidPivotRotation && c.type != ConstraintType::JointRotationTracking)
+    unsupported(c, "update_old_target");
+  c.old_target_position = c.target_position;
+  c.old_target_rotation = c.target_rotation;
+  c.old_target_transform = c.target_transform;
+}
+
+void Scene::set_constraint_ref_relative_rotation(ConstraintHandle h, const Quat& rotation_a, const Quat& rotation_b) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "set_ref_relative_rotation");
+  for (const Quat* q : {&rotation_a, &rotation_b})
+    check(q->coeffs().allFinite() && q->norm() > real(1e-6), "set_ref_relative_rotation", "rotations must be finite, non-zero quaternions");
+  const Quat a = rotation_a.normalized(), b = rotation_b.normalized();
+  if (c.type == ConstraintType::JointRotationTracking) {
+    c.target_rotation = (a.conjugate() * b).normalized();
+  } else if (c.type == ConstraintType::JointRotationRange) {
+    // B's joint frame such that the joint frames coincide at these rotations
+    c.J_B = (b.conjugate() * a * c.J_A).normalized();
+  } else {
+    unsupported(c, "set_ref_relative_rotation");
+  }
+}
+
+std::vector<real> Scene::constraint_limit_min_values(ConstraintHandle h) const {
+  const ConstraintRecord& c = record(scene_data(handle_), h, "get_limit_min_values");
+  if (c.type == ConstraintType::JointRotationRange) return {c.lower.x(), c.lower.y(), c.lower.z()};
+  if (c.type == ConstraintType::RigidPrismaticJoint) return {c.min ? *c.min : -std::numeric_limits<real>::infinity()};
+  unsupported(c, "get_limit_min_values");
+}
+
+std::vector<real> Scene::constraint_limit_max_values(ConstraintHandle h) const {
+  const ConstraintRecord& c = record(scene_data(handle_), h, "get_limit_max_values");
+  if (c.type == ConstraintType::JointRotationRange) return {c.upper.x(), c.upper.y(), c.upper.z()};
+  if (c.type == ConstraintType::RigidPrismaticJoint) return {c.max ? *c.max : std::numeric_limits<real>::infinity()};
+  unsupported(c, "get_limit_max_values");
+}
+
+QueryHandle Scene::register_constraint_query(ConstraintHandle h, QueryType type) {
+  SceneData& s = scene_data(handle_);
+  ConstraintRecord& c = record(s, h, "register_query");
+  if (type != QueryType::ConstraintForce)
+    throw Error(std::string("register_query: ") + query_type_name(type) + " is not available for a constraint (CONSTRAINT_FORCE is)");
+  const QueryHandle q = next_handle();
+  if (c.queries.empty()) c.query_since = s.step_count;
+  c.queries.insert(q);
+  return q;
+}
+
+void Scene::cancel_constraint_query(ConstraintHandle h, QueryHandle query) {
+  SceneData& s = scene_data(handle_);
+  auto it = s.constraints.find(h);
+  if (it != s.constraints.end()) it->second.queries.erase(query);
+}
+
+bool Scene::is_constraint_query_supported(ConstraintHandle h, QueryType type) const {
+  record(scene_data(handle_), h, "is_query_supported");
+  return type == QueryType::ConstraintForce;
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics

@@ -1,0 +1,74 @@
+// The step's constraints: their rows from the state at the step's start, and afterwards their
+// forces and the end of their targets' motion over the step.
+
+#include <unordered_map>
+
+#include "constraint/constraint_terms.h"
+#include "scene/step_stages.h"
+
+namespace superdex::physics {
+inline namespace SUPERDEX_REAL_NAMESPACE {
+
+namespace {
+
+// The side of a constraint on `actor` (a rigid or link actor; invalid: the world).
+ConstraintSide side_of(const SceneData& s, ActorHandle actor, const std::unordered_map<const Articulation*, int>& index) {
+  ConstraintSide side;
+  if (!actor.is_valid()) return side;
+  const ActorRef& r = s.actors.at(actor);
+  const Articulation& a = *r.articulation;
+  side.body = index.at(&a);
+  side.link = r.link < 0 ? 0 : r.link;
+  const SpatialTransform& X = a.kin.X_WL[side.link];
+  side.X_WL = {Quat(X.R).normalized(), X.p};
+  side.com_W = X.R * a.model.inertia[side.link].com + X.p;
+  return side;
+}
+
+}  // namespace
+
+void constraint_step_terms(Step& step) {
+  SceneData& s = step.s;
+  StepWorkspace& ws = step.ws;
+  ws.constraint_terms.resize(s.constraints.size());
+  ws.constraint_bodies.resize(s.constraints.size());
+  if (s.constraints.empty()) return;
+  std::unordered_map<const Articulation*, int> index;
+  for (size_t i = 0; i < s.articulations.size(); ++i) index[s.articulations[i].get()] = static_cast<int>(i);
+  size_t k = 0;
+  for (const auto& [handle, c] : s.constraints) {
+    ConstraintTerms& t = ws.constraint_terms[k];
+    t.a = side_of(s, c.actor_a, index);
+    t.b = side_of(s, c.actor_b, index);
+    constraint_terms(c, step.dt, t);
+    ws.constraint_bodies[k] = {t.a.body, t.b.body};
+    ++k;
+  }
+}
+
+void constraint_records(Step& step) {
+  SceneData& s = step.s;
+  StepWorkspace& ws = step.ws;
+  // each constraint's place among its island's
+  std::vector<std::pair<int, int>> place(s.constraints.size(), {-1, -1});
+  for (size_t k = 0; k < ws.islands.size(); ++k)
+    for (size_t j = 0; j < ws.islands[k].constraints.size(); ++j) place[ws.islands[k].constraints[j]] = {static_cast<int>(k), static_cast<int>(j)};
+  size_t i = 0;
+  for (auto& [handle, c] : s.constraints) {
+    const ConstraintTerms& t = ws.constraint_terms[i];
+    const auto [k, j] = place[i++];
+    const Vec6 F_a = k >= 0 ? ws.solutions[k].constraint_force_a[j] : Vec6::Zero();
+    const Vec6 F_b = k >= 0 ? ws.solutions[k].constraint_force_b[j] : Vec6::Zero();
+    c.force.clear();
+    side_generalized_force(t.a, F_a, constraint_dof_indices(c.type, 0), c.force);
+    if (c.actor_b.is_valid()) side_generalized_force(t.b, F_b, constraint_dof_indices(c.type, 1), c.force);
+    c.force_step = s.step_count;
+    // the target's motion over this step is done: the next step's damping follows only its next
+    c.old_target_position = c.target_position;
+    c.old_target_rotation = c.target_rotation;
+    c.old_target_transform = c.target_transform;
+  }
+}
+
+}  // namespace SUPERDEX_REAL_NAMESPACE
+}  // namespace superdex::physics
