@@ -27,7 +27,9 @@ void export_constraints(nb::module_& m) {
       .value("JOINT_ROTATION_TRACKING", ConstraintType::JointRotationTracking)
       .value("RIGID_PIVOT_POSITION", ConstraintType::RigidPivotPosition)
       .value("RIGID_PIVOT_TO_RIGID_TARGET", ConstraintType::RigidPivotToRigidTarget)
-      .value("RIGID_PIVOT_ROTATION", ConstraintType::RigidPivotRotation);
+      .value("RIGID_PIVOT_ROTATION", ConstraintType::RigidPivotRotation)
+      .value("DEFORMABLE_NODE_POSITION", ConstraintType::DeformableNodePosition)
+      .value("DEFORMABLE_NODE_TO_RIGID", ConstraintType::DeformableNodeToRigid);
 
   StructBinder<ConstraintParams>(m, "ConstraintParams",
                                  "An implicit spring-damper on a constraint's deviation, per component: stiffness (N/m or N m/rad),\n"
@@ -92,6 +94,23 @@ void export_constraints(nb::module_& m) {
       .field("local_rotation", &RigidPivotRotationConstraintParams::local_rotation)
       .field("actor", &RigidPivotRotationConstraintParams::actor)
       .done(false);
+  StructBinder<DeformableNodePositionConstraintParams, ConstraintParams>(
+      m, "DeformableNodePositionConstraintParams", "Pulls node node_index of a soft actor to position (m, world).")
+      .field("node_index", &DeformableNodePositionConstraintParams::node_index)
+      .field("position", &DeformableNodePositionConstraintParams::position)
+      .field("actor", &DeformableNodePositionConstraintParams::actor)
+      .done(false);
+  StructBinder<DeformableNodeToRigidConstraintParams, ConstraintParams>(
+      m, "DeformableNodeToRigidConstraintParams",
+      "Ties node deformable_node_index of a soft actor to a point of a rigid actor: where the node is at creation\n"
+      "(fix_to_deformable_pos), else rigid_local_pos (m, rigid actor frame); find_closest: the surface node nearest that point.")
+      .field("rigid_local_pos", &DeformableNodeToRigidConstraintParams::rigid_local_pos)
+      .field("deformable_node_index", &DeformableNodeToRigidConstraintParams::deformable_node_index)
+      .field("rigid_actor", &DeformableNodeToRigidConstraintParams::rigid_actor)
+      .field("deformable_actor", &DeformableNodeToRigidConstraintParams::deformable_actor)
+      .field("find_closest", &DeformableNodeToRigidConstraintParams::find_closest)
+      .field("fix_to_deformable_pos", &DeformableNodeToRigidConstraintParams::fix_to_deformable_pos)
+      .done(false);
 
   nb::class_<Constraint>(m, "Constraint",
                          "A constraint of a scene, by handle. Methods that do not apply to its type raise superdex.physics.Error.")
@@ -131,7 +150,7 @@ void export_constraints(nb::module_& m) {
              return SpanOf<const int>::owning(c.scene.constraint_dof_indices(c.handle, actor_index));
            }, "actor_index"_a, "0-2: translation, 3-5: rotation.")
       .def("set_target_position", [](Constraint& c, const Real3& position) { c.scene.set_constraint_target_position(c.handle, position); },
-           "position"_a, "RIGID_PIVOT_POSITION and RIGID_PIVOT_TO_RIGID_TARGET (m, world).")
+           "position"_a, "RIGID_PIVOT_POSITION, DEFORMABLE_NODE_POSITION and RIGID_PIVOT_TO_RIGID_TARGET (m, world).")
       .def("set_target_rotation", [](Constraint& c, const Quaternion& rotation) { c.scene.set_constraint_target_rotation(c.handle, rotation); },
            "rotation"_a, "RIGID_PIVOT_ROTATION, RIGID_PIVOT_TO_RIGID_TARGET (world) and JOINT_ROTATION_TRACKING (B relative to A).")
       .def("set_target_dof", [](Constraint& c, real) {
@@ -176,6 +195,10 @@ void add_constraint_methods(nb::class_<Scene>& scene) {
   add_create(scene, "create_rigid_pivot_to_rigid_target_constraint", "RigidPivotToRigidTargetConstraintParams",
              &Scene::create_rigid_pivot_to_rigid_target_constraint);
   add_create(scene, "create_rigid_pivot_rotation_constraint", "RigidPivotRotationConstraintParams", &Scene::create_rigid_pivot_rotation_constraint);
+  add_create(scene, "create_deformable_node_position_constraint", "DeformableNodePositionConstraintParams",
+             &Scene::create_deformable_node_position_constraint);
+  add_create(scene, "create_deformable_node_to_rigid_constraint", "DeformableNodeToRigidConstraintParams",
+             &Scene::create_deformable_node_to_rigid_constraint);
   scene.def("destroy_constraint", [](Scene& s, const Constraint& c) { s.destroy_constraint(c.handle); }, "constraint"_a)
       .def("get_constraint", [](Scene& s, ConstraintHandle h) -> std::optional<Constraint> {
              if (!s.has_constraint(h)) return std::nullopt;

@@ -227,3 +227,58 @@ def test_constraint_api_lookup_queries_errors_and_destruction(scene):
     assert scene.get_constraint(c.get_handle()) is None and scene.get_constraint(pivot.get_handle()) is None
     with pytest.raises(sdp.Error, match="does not exist"):
         c.get_stiffness()
+
+
+def soft_block(scene, name, center, size=0.1, density=500.0):
+    from conftest import soft_actor, soft_material
+    from test_soft_bodies import box_tet_mesh
+
+    nodes, tets = box_tet_mesh([size] * 3, [2, 2, 2])
+    nodes = np.asarray(nodes, dtype=float) - size / 2
+    return soft_actor(scene, name, sdp.create_tet_mesh_shape(nodes, tets),
+                      material=soft_material(youngs_modulus=1e5, poisson_ratio=0.3, density=density, stiffness_damping=0.01),
+                      world_from_local=sdp.TransformRT(translation=list(center)))
+
+
+def test_a_soft_block_hanging_by_a_node_carries_its_weight_on_it(scene):
+    from conftest import node_positions_world
+
+    block = soft_block(scene, "block", [0, 0, 1])
+    top = int(np.argmax(node_positions_world(block)[:, 2] * 10 - np.abs(node_positions_world(block)[:, :2]).sum(axis=1)))
+    x_top = node_positions_world(block)[top]
+    K = 1e5
+    c = scene.create_deformable_node_position_constraint(actor=block.get_handle(), node_index=top, position=list(x_top), stiffness=K,
+                                                         damping=20)
+    assert list(c.get_dof_indices_for_actor(actor_index=0)) == [3 * top, 3 * top + 1, 3 * top + 2]
+    c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(300):
+        scene.step(0.01)
+    weight = block.get_mass() * G
+    # (sideways: the tetrahedra's split of the cells leans the stretched block a little)
+    np.testing.assert_allclose(np.asarray(c.get_force()), [0, 0, weight], rtol=1e-3, atol=1e-4 * weight)
+    np.testing.assert_allclose(np.asarray(c.get_deviation()), [0, 0, weight / K], rtol=1e-2, atol=1e-8)
+
+
+def test_a_soft_block_tied_under_a_rigid_box_hangs_from_it(scene):
+    from conftest import node_positions_world
+
+    box_actor = box(scene, "box", [0, 0, 1.0], mass=1.0)
+    block = soft_block(scene, "block", [0, 0, 0.9])
+    scene.enable_actor_contact_symmetric(box_actor, block, False, sdp.IncludeNestedActors.NO)
+    pivot = scene.create_rigid_pivot_position_constraint(actor=box_actor.get_handle(), target_position=[0, 0, 1.0], stiffness=1e5, damping=50)
+    # the block's top-centre surface node, found by find_closest from the box's bottom centre
+    tie = scene.create_deformable_node_to_rigid_constraint(rigid_actor=box_actor.get_handle(), deformable_actor=block.get_handle(),
+                                                           rigid_local_pos=[0, 0, -0.05], find_closest=True, stiffness=1e5, damping=20)
+    node = int(tie.get_dof_indices_for_actor(actor_index=1)[0]) // 3
+    np.testing.assert_allclose(node_positions_world(block)[node], [0, 0, 0.95], atol=1e-9)
+    for c in (pivot, tie):
+        c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(300):
+        scene.step(0.01)
+    soft_weight = block.get_mass() * G
+    np.testing.assert_allclose(np.asarray(pivot.get_force())[:3], [0, 0, G * 1.0 + soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)
+    force = np.asarray(tie.get_force())
+    assert force.shape == (9,)
+    # down on the box, up on the node, each the block's weight
+    np.testing.assert_allclose(force[:3], [0, 0, -soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)
+    np.testing.assert_allclose(force[6:], [0, 0, soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)

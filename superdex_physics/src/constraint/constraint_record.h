@@ -16,6 +16,7 @@ struct ConstraintRecord {
   ConstraintType type = ConstraintType::RigidPivotPosition;
   real stiffness = 0, damping = 0, saturation = -1;
   ActorHandle actor_a, actor_b;  // actor_b invalid for the one-actor kinds
+  int node_a = -1, node_b = -1;  // the constrained node of a soft actor A or B
   // the constrained points (m): on A in frame A, on B in frame B
   Vec3 p_A = Vec3::Zero(), p_B = Vec3::Zero();
   // prismatic: the free axis in frame A (unit), B's origin relative to A's at creation (frame A),
@@ -42,9 +43,9 @@ struct ConstraintRecord {
   long long force_step = -1;           // the step count when `force` was written
 };
 
-// The DOF indices of actor `index` (0: A, 1: B) a constraint acts on: 0-2 the translation, 3-5
-// the rotation of a rigid body.
-std::vector<int> constraint_dof_indices(ConstraintType type, int index);
+// The DOF indices of actor `index` (0: A, 1: B) a constraint acts on: 0-2 the translation and
+// 3-5 the rotation of a rigid body; 3 n + 0-2 node n's position on a soft body.
+std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -11,8 +11,13 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-std::vector<int> constraint_dof_indices(ConstraintType type, int index) {
-  switch (type) {
+std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index) {
+  const auto node = [](int n) { return std::vector<int>{3 * n, 3 * n + 1, 3 * n + 2}; };
+  switch (c.type) {
+    case ConstraintType::DeformableNodePosition:
+      return node(c.node_a);
+    case ConstraintType::DeformableNodeToRigid:
+      return index == 0 ? std::vector<int>{0, 1, 2, 3, 4, 5} : node(c.node_b);
     case ConstraintType::RigidPivotRotation:
     case ConstraintType::JointRotationRange:
     case ConstraintType::JointRotationTracking:
@@ -32,6 +37,13 @@ namespace {
 Vec6 point_row(const Vec3& d, const Vec3& p_W, const Transform& X_WL) {
   Vec6 g;
   g << d, (p_W - X_WL.translation).cross(d);
+  return g;
+}
+
+// The row of a direction d (world) on a node's velocity.
+Vec6 node_row(const Vec3& d) {
+  Vec6 g;
+  g << d, Vec3::Zero();
   return g;
 }
 
@@ -155,6 +167,22 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
       }
       break;
     }
+    case ConstraintType::DeformableNodePosition: {
+      const Vec3& x = t.a.node_W;
+      for (int i = 0; i < 3; ++i)
+        w.equality(node_row(Vec3::Unit(i)), none, c.target_position[i] - x[i], (c.target_position[i] - c.old_target_position[i]) / dt);
+      break;
+    }
+    case ConstraintType::DeformableNodeToRigid: {
+      // the node (B) onto the rigid actor's point (A)
+      const Vec3 p = X_WA * c.p_A;
+      const Vec3& x = t.b.node_W;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3 d = Vec3::Unit(i);
+        w.equality(-point_row(d, p, X_WA), node_row(d), p[i] - x[i], 0);
+      }
+      break;
+    }
     case ConstraintType::JointRotationRange: {
       Mat3 F_A;
       const Vec3 phi = joint_rotation(c, X_WA, X_WB, F_A);
@@ -170,7 +198,9 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
   }
 }
 
-std::vector<real> constraint_deviation(const ConstraintRecord& c, const Transform& X_WA, const Transform& X_WB) {
+std::vector<real> constraint_deviation(const ConstraintRecord& c, const ConstraintSide& a, const ConstraintSide& b) {
+  const Transform& X_WA = a.X_WL;
+  const Transform& X_WB = b.X_WL;
   auto out = [](const Vec3& v) { return std::vector<real>{v.x(), v.y(), v.z()}; };
   switch (c.type) {
     case ConstraintType::RigidPivotPosition:
@@ -201,12 +231,21 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Transfor
       for (int i = 0; i < 3; ++i) beyond[i] = phi[i] < c.lower[i] ? c.lower[i] - phi[i] : phi[i] > c.upper[i] ? c.upper[i] - phi[i] : 0;
       return out(beyond);
     }
+    case ConstraintType::DeformableNodePosition:
+      return out(c.target_position - a.node_W);
+    case ConstraintType::DeformableNodeToRigid:
+      return out(X_WA * c.p_A - b.node_W);
   }
   return {};
 }
 
 void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, const std::vector<int>& dofs, std::vector<real>& out) {
   const Vec3 f = F_origin.head<3>();
+  // a node: the force on it, by the node's DOFs (3 n + 0-2)
+  if (side.soft >= 0) {
+    for (int k : dofs) out.push_back(f[k % 3]);
+    return;
+  }
   // torque about the centre of mass: tau_o + (o - c) x f
   const Vec3 tau = F_origin.tail<3>() + (side.X_WL.translation - side.com_W).cross(f);
   for (int k : dofs) out.push_back(k < 3 ? f[k] : tau[k - 3]);

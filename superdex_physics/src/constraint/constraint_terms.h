@@ -12,16 +12,21 @@
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
-// One side of a constraint: a link of an articulation (rigid actors are one-link ones), or none.
+// One side of a constraint: a link of an articulation (rigid actors are one-link ones), a node
+// of a soft body, or none.
 struct ConstraintSide {
-  int body = -1;  // articulation index; -1: the world
+  int body = -1;  // articulation index; -1: none
   int link = 0;
   Transform X_WL;                // the link's frame now
   Vec3 com_W = Vec3::Zero();     // its centre of mass (m, world)
+  int soft = -1, node = -1;      // soft body index and node; -1: none
+  Vec3 node_W = Vec3::Zero();    // the node's position now (m, world)
 };
 
+
 // One row: its rate is g_a . V_a + g_b . V_b with V = (v, w) a side's spatial velocity (its
-// link origin's velocity, m/s, and angular velocity, rad/s; world). `block` is Bounded
+// link origin's velocity, m/s, and angular velocity, rad/s; world; a node side: its velocity, and
+// g's angular part zero). `block` is Bounded
 // (equalities) or Unilateral (limits), R not yet floored against ill-conditioning.
 struct ConstraintRow {
   Vec6 g_a = Vec6::Zero(), g_b = Vec6::Zero();
@@ -39,7 +44,7 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t);
 // The deviation of `c` with its sides at the given frames: per constrained component, target
 // minus current (m; rad for rotations, as a rotation vector: world for the pivot rotation, joint
 // axes for the joint rotations).
-std::vector<real> constraint_deviation(const ConstraintRecord& c, const Transform& X_WA, const Transform& X_WB);
+std::vector<real> constraint_deviation(const ConstraintRecord& c, const ConstraintSide& a, const ConstraintSide& b);
 
 // A side's generalized force on its DOFs (constraint_dof_indices) from the spatial force
 // (force, torque about the link origin; world) the rows put on it.

@@ -15,6 +15,19 @@ namespace {
 // Adds one side's part g . V of the open row (V its link's spatial velocity, J_WL v), and returns
 // its compliance g^T W_L g.
 real add_side(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J, const ConstraintSide& side, const Vec6& g) {
+  // a node of a full soft body: its free DOFs (compliance: their lumped masses)
+  if (side.soft >= 0) {
+    const SoftStep* st = in.soft_steps[side.soft].get();
+    if (st == nullptr || w.soft_offset[side.soft] < 0) return 0;
+    real compliance = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int f = st->pattern.free_of_dof[3 * side.node + a];
+      if (f < 0 || g[a] == 0) continue;
+      J.add_column(w.soft_offset[side.soft] + f, &g[a]);
+      compliance += g[a] * g[a] / st->mass[f];
+    }
+    return compliance;
+  }
   if (side.body < 0) return 0;
   const int nb = in.s.articulations[side.body]->model.nv;
   if (nb == 0) return 0;

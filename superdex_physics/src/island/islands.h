@@ -20,8 +20,9 @@ struct Island {
 };
 
 // Groups the articulations with DOFs (num_dofs[b] > 0) and the soft bodies with free DOFs
-// (soft_free_dofs[k] > 0) into islands connected by contacts and by constraints (the two
-// articulations each joins; -1 for the world).
+// (soft_free_dofs[k] > 0) into islands connected by contacts and by constraints (the two nodes
+// each joins: an articulation index, or the number of articulations plus a soft body index; -1
+// for none).
 std::vector<Island> build_islands(const std::vector<int>& num_dofs, const std::vector<Contact>& contacts,
                                   const std::vector<int>& soft_free_dofs = {},
                                   const std::vector<SoftContact>& soft_contacts = {},

@@ -7,6 +7,7 @@
 #include "constraint/constraint_terms.h"
 #include "core/spatial.h"
 #include "scene/actor_lookup.h"
+#include "scene/step_stages.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -20,6 +21,8 @@ const char* constraint_type_name(ConstraintType type) {
     case ConstraintType::RigidPivotPosition: return "RIGID_PIVOT_POSITION";
     case ConstraintType::RigidPivotToRigidTarget: return "RIGID_PIVOT_TO_RIGID_TARGET";
     case ConstraintType::RigidPivotRotation: return "RIGID_PIVOT_ROTATION";
+    case ConstraintType::DeformableNodePosition: return "DEFORMABLE_NODE_POSITION";
+    case ConstraintType::DeformableNodeToRigid: return "DEFORMABLE_NODE_TO_RIGID";
   }
   return "?";
 }
@@ -52,6 +55,32 @@ Transform rigid_frame(SceneData& s, ActorHandle actor, const std::string& what, 
   return {Quat(X.R).normalized(), X.p};
 }
 
+// The soft body of a soft actor whose node a constraint holds (full bodies: a reduced body's
+// nodes are not variables of its solve).
+const SoftBody& node_body(SceneData& s, ActorHandle actor, const std::string& what, const char* field) {
+  if (!actor.is_valid()) throw Error(what + ": " + field + " is not set");
+  const ActorRef r = lookup(s, actor, (what + " (" + field + ")").c_str());
+  if (!r.soft) throw Error(what + ": " + field + " (" + describe(actor) + ") must be a soft actor");
+  if (r.soft->reduced) throw Error(what + ": " + field + " (" + describe(actor) + ") is a reduced soft actor; node constraints need a full one");
+  return *r.soft;
+}
+
+void check_node(const SoftBody& b, int node, const std::string& what, const char* field) {
+  const int n = static_cast<int>(b.state.x.size() / 3);
+  check(node >= 0 && node < n, what, std::string(field) + " " + std::to_string(node) + " out of range [0, " + std::to_string(n) + ")");
+}
+
+// The surface node of a soft body nearest a world point.
+int closest_surface_node(const SoftBody& b, const Vec3& p_W) {
+  int best = -1;
+  real best_d2 = std::numeric_limits<real>::infinity();
+  for (int n : b.model.surface_nodes) {
+    const real d2 = (b.state.x.segment<3>(3 * n) - p_W).squaredNorm();
+    if (d2 < best_d2) best = n, best_d2 = d2;
+  }
+  return best;
+}
+
 ConstraintRecord& record(SceneData& s, ConstraintHandle h, const char* what) {
   auto it = s.constraints.find(h);
   if (it == s.constraints.end())
@@ -72,10 +101,6 @@ ConstraintHandle add(SceneData& s, ConstraintRecord c, const ConstraintParams& p
   return h;
 }
 
-Transform frame_of(SceneData& s, ActorHandle actor) {
-  if (!actor.is_valid()) return {};
-  return rigid_frame(s, actor, "constraint", "actor");
-}
 
 [[noreturn]] void unsupported(const ConstraintRecord& c, const char* what) {
   throw Error(std::string(what) + ": not available for a " + constraint_type_name(c.type) + " constraint");
@@ -210,6 +235,38 @@ ConstraintHandle Scene::create_rigid_pivot_rotation_constraint(const RigidPivotR
   return add(s, std::move(c), p);
 }
 
+ConstraintHandle Scene::create_deformable_node_position_constraint(const DeformableNodePositionConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_deformable_node_position_constraint";
+  check_spring(p, what);
+  check_finite(p.position, what, "position");
+  check_node(node_body(s, p.actor, what, "actor"), p.node_index, what, "node_index");
+  ConstraintRecord c;
+  c.type = ConstraintType::DeformableNodePosition;
+  c.actor_a = p.actor;
+  c.node_a = p.node_index;
+  c.target_position = p.position;
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_deformable_node_to_rigid_constraint(const DeformableNodeToRigidConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_deformable_node_to_rigid_constraint";
+  check_spring(p, what);
+  check_finite(p.rigid_local_pos, what, "rigid_local_pos");
+  const Transform X_WA = rigid_frame(s, p.rigid_actor, what, "rigid_actor");
+  const SoftBody& body = node_body(s, p.deformable_actor, what, "deformable_actor");
+  ConstraintRecord c;
+  c.type = ConstraintType::DeformableNodeToRigid;
+  c.actor_a = p.rigid_actor, c.actor_b = p.deformable_actor;
+  c.node_b = p.find_closest ? closest_surface_node(body, X_WA * p.rigid_local_pos) : p.deformable_node_index;
+  check_node(body, c.node_b, what, "deformable_node_index");
+  // the rigid actor's point: where the node is now, or as given
+  c.p_A = p.fix_to_deformable_pos ? Vec3(X_WA.rotation.conjugate() * (body.state.x.segment<3>(3 * c.node_b) - X_WA.translation))
+                                  : Vec3(p.rigid_local_pos);
+  return add(s, std::move(c), p);
+}
+
 void Scene::destroy_constraint(ConstraintHandle h) {
   SceneData& s = scene_data(handle_);
   record(s, h, "destroy_constraint");
@@ -248,13 +305,13 @@ std::vector<int> Scene::constraint_dof_indices(ConstraintHandle h, int actor_ind
   const int n = c.actor_b.is_valid() ? 2 : 1;
   if (actor_index < 0 || actor_index >= n)
     throw Error("get_dof_indices_for_actor: actor_index " + std::to_string(actor_index) + " out of range [0, " + std::to_string(n) + ")");
-  return physics::constraint_dof_indices(c.type, actor_index);
+  return physics::constraint_dof_indices(c, actor_index);
 }
 
 std::vector<real> Scene::constraint_deviation(ConstraintHandle h) const {
   SceneData& s = scene_data(handle_);
   const ConstraintRecord& c = record(s, h, "get_deviation");
-  return physics::constraint_deviation(c, frame_of(s, c.actor_a), frame_of(s, c.actor_b));
+  return physics::constraint_deviation(c, constraint_side(s, c.actor_a, c.node_a), constraint_side(s, c.actor_b, c.node_b));
 }
 
 std::vector<real> Scene::constraint_force(ConstraintHandle h) const {
@@ -270,7 +327,7 @@ std::vector<real> Scene::constraint_force(ConstraintHandle h) const {
 void Scene::set_constraint_target_position(ConstraintHandle h, const Vec3& position) {
   ConstraintRecord& c = record(scene_data(handle_), h, "set_target_position");
   check_finite(position, "set_target_position", "position");
-  if (c.type == ConstraintType::RigidPivotPosition) {
+  if (c.type == ConstraintType::RigidPivotPosition || c.type == ConstraintType::DeformableNodePosition) {
     c.target_position = position;
   } else if (c.type == ConstraintType::RigidPivotToRigidTarget) {
     c.target_transform.translation = position;
@@ -293,7 +350,8 @@ void Scene::set_constraint_target_rotation(ConstraintHandle h, const Quat& rotat
 
 void Scene::update_constraint_old_target(ConstraintHandle h) {
   ConstraintRecord& c = record(scene_data(handle_), h, "update_old_target");
-  if (c.type != ConstraintType::RigidPivotPosition && c.type != ConstraintType::RigidPivotToRigidTarget &&
+  if (c.type != ConstraintType::RigidPivotPosition && c.type != ConstraintType::DeformableNodePosition &&
+      c.type != ConstraintType::RigidPivotToRigidTarget &&
       c.type != ConstraintType::RigidPivotRotation && c.type != ConstraintType::JointRotationTracking)
     unsupported(c, "update_old_target");
   c.old_target_position = c.target_position;

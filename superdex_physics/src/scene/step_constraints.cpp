@@ -11,13 +11,29 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// The side of a constraint on `actor` (a rigid or link actor; invalid: the world).
-ConstraintSide side_of(const SceneData& s, ActorHandle actor, const std::unordered_map<const Articulation*, int>& index) {
+// The index of a body in `list` (articulations or soft bodies), from the map when given.
+template <class T>
+int index_in(const std::vector<std::unique_ptr<T>>& list, const T* body, const std::unordered_map<const void*, int>* index) {
+  if (index) return index->at(body);
+  for (size_t i = 0; i < list.size(); ++i)
+    if (list[i].get() == body) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace
+
+ConstraintSide constraint_side(const SceneData& s, ActorHandle actor, int node, const std::unordered_map<const void*, int>* index) {
   ConstraintSide side;
   if (!actor.is_valid()) return side;
   const ActorRef& r = s.actors.at(actor);
+  if (r.soft) {
+    side.soft = index_in(s.soft_bodies, r.soft, index);
+    side.node = node;
+    side.node_W = r.soft->state.x.segment<3>(3 * node);
+    return side;
+  }
   const Articulation& a = *r.articulation;
-  side.body = index.at(&a);
+  side.body = index_in(s.articulations, &a, index);
   side.link = r.link < 0 ? 0 : r.link;
   const SpatialTransform& X = a.kin.X_WL[side.link];
   side.X_WL = {Quat(X.R).normalized(), X.p};
@@ -25,23 +41,25 @@ ConstraintSide side_of(const SceneData& s, ActorHandle actor, const std::unorder
   return side;
 }
 
-}  // namespace
-
 void constraint_step_terms(Step& step) {
   SceneData& s = step.s;
   StepWorkspace& ws = step.ws;
   ws.constraint_terms.resize(s.constraints.size());
   ws.constraint_bodies.resize(s.constraints.size());
   if (s.constraints.empty()) return;
-  std::unordered_map<const Articulation*, int> index;
+  std::unordered_map<const void*, int> index;
   for (size_t i = 0; i < s.articulations.size(); ++i) index[s.articulations[i].get()] = static_cast<int>(i);
+  for (size_t i = 0; i < s.soft_bodies.size(); ++i) index[s.soft_bodies[i].get()] = static_cast<int>(i);
+  // the islands' nodes: articulations, then soft bodies
+  const int na = static_cast<int>(s.articulations.size());
+  const auto island_node = [na](const ConstraintSide& side) { return side.soft >= 0 ? na + side.soft : side.body; };
   size_t k = 0;
   for (const auto& [handle, c] : s.constraints) {
     ConstraintTerms& t = ws.constraint_terms[k];
-    t.a = side_of(s, c.actor_a, index);
-    t.b = side_of(s, c.actor_b, index);
+    t.a = constraint_side(s, c.actor_a, c.node_a, &index);
+    t.b = constraint_side(s, c.actor_b, c.node_b, &index);
     constraint_terms(c, step.dt, t);
-    ws.constraint_bodies[k] = {t.a.body, t.b.body};
+    ws.constraint_bodies[k] = {island_node(t.a), island_node(t.b)};
     ++k;
   }
 }
@@ -60,8 +78,8 @@ void constraint_records(Step& step) {
     const Vec6 F_a = k >= 0 ? ws.solutions[k].constraint_force_a[j] : Vec6::Zero();
     const Vec6 F_b = k >= 0 ? ws.solutions[k].constraint_force_b[j] : Vec6::Zero();
     c.force.clear();
-    side_generalized_force(t.a, F_a, constraint_dof_indices(c.type, 0), c.force);
-    if (c.actor_b.is_valid()) side_generalized_force(t.b, F_b, constraint_dof_indices(c.type, 1), c.force);
+    side_generalized_force(t.a, F_a, constraint_dof_indices(c, 0), c.force);
+    if (c.actor_b.is_valid()) side_generalized_force(t.b, F_b, constraint_dof_indices(c, 1), c.force);
     c.force_step = s.step_count;
     // the target's motion over this step is done: the next step's damping follows only its next
     c.old_target_position = c.target_position;

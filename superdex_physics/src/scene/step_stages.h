@@ -4,6 +4,7 @@
 // step's statistics count its part (StepStats::time_*).
 
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "core/step_ticks.h"
@@ -40,6 +41,10 @@ void find_step_contact_pairs(Step& step);
 void prepare_step_items(Step& step);
 // The contact list from the narrow phase's chunks, and the soft contacts (step_collision.cpp).
 void gather_contacts(Step& step);
+// The side of a constraint on `actor` (invalid: none) at `node` (soft actors), from the scene's
+// current state; `index` maps the scene's articulations and soft bodies to their indices (built
+// once per step), or null to search them (step_constraints.cpp).
+ConstraintSide constraint_side(const SceneData& s, ActorHandle actor, int node, const std::unordered_map<const void*, int>* index = nullptr);
 // Each constraint's rows from the state at the step's start (step_constraints.cpp).
 void constraint_step_terms(Step& step);
 // The islands: bodies coupled by contacts and constraints (step_islands.cpp).

@@ -35,7 +35,7 @@ struct StepWorkspace {
   std::vector<int> num_dofs;                           // DOFs per articulation
   std::vector<ArticulationTerms> terms;                // per articulation
   std::vector<ConstraintTerms> constraint_terms;       // per scene constraint, in handle order: this step's rows
-  std::vector<std::array<int, 2>> constraint_bodies;   // per scene constraint: the articulations it joins (-1: none)
+  std::vector<std::array<int, 2>> constraint_bodies;   // per scene constraint: the island nodes it joins (build_islands; -1: none)
   std::vector<Island> islands;
   IslandScratch island_scratch;
   std::vector<SparseNewtonSystem*> sparse_cache;  // per island: its Newton system when sparse

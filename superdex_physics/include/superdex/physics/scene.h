@@ -284,8 +284,8 @@ class Scene {
   std::vector<real> transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;
   void set_transmission_actuator_state_variables(ActorHandle articulation, int transmission, std::span<const real> values);
 
-  // ---- Constraints (constraint_params.h): spring-dampers between rigid or link actors, or
-  // between one and a target, in the same implicit solve as contacts. Each create validates its
+  // ---- Constraints (constraint_params.h): spring-dampers between rigid or link actors and the
+  // nodes of soft actors, or between one and a target, in the same implicit solve as contacts. Each create validates its
   // params (superdex::Error naming the field); a constraint goes with either of its actors.
   ConstraintHandle create_rigid_spherical_joint_constraint(const RigidSphericalJointConstraintParams& params);
   ConstraintHandle create_rigid_prismatic_joint_constraint(const RigidPrismaticJointConstraintParams& params);
@@ -294,6 +294,8 @@ class Scene {
   ConstraintHandle create_rigid_pivot_position_constraint(const RigidPivotPositionConstraintParams& params);
   ConstraintHandle create_rigid_pivot_to_rigid_target_constraint(const RigidPivotToRigidTargetConstraintParams& params);
   ConstraintHandle create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& params);
+  ConstraintHandle create_deformable_node_position_constraint(const DeformableNodePositionConstraintParams& params);
+  ConstraintHandle create_deformable_node_to_rigid_constraint(const DeformableNodeToRigidConstraintParams& params);
   void destroy_constraint(ConstraintHandle constraint);
   bool has_constraint(ConstraintHandle constraint) const;
   /// The scene's constraints in creation order.
@@ -311,7 +313,8 @@ class Scene {
   /// The last step's generalized force on each actor's DOFs, actor after actor (N, and N m about
   /// the centre of mass; world). Needs a ConstraintForce query.
   std::vector<real> constraint_force(ConstraintHandle constraint) const;
-  /// Moves the target (pivot position, and the pivot to rigid target's translation; world, m).
+  /// Moves the target (pivot position, node position, and the pivot to rigid target's
+  /// translation; world, m).
   /// The damping follows the target's motion over the next step.
   void set_constraint_target_position(ConstraintHandle constraint, const Vec3& position);
   /// Turns the target: world for the pivot rotation and the pivot to rigid target, B relative to

@@ -26,6 +26,8 @@ enum class ConstraintType {
   RigidPivotPosition,
   RigidPivotToRigidTarget,
   RigidPivotRotation,
+  DeformableNodePosition,
+  DeformableNodeToRigid,
 };
 const char* constraint_type_name(ConstraintType type);
 
@@ -97,6 +99,24 @@ struct RigidPivotRotationConstraintParams : ConstraintParams {
   Real3 target_rotation = Real3::Zero();
   Real3 local_rotation = Real3::Zero();
   ActorHandle actor;
+};
+
+/// Pulls node node_index of a soft actor to `position` (world, m).
+struct DeformableNodePositionConstraintParams : ConstraintParams {
+  int node_index = -1;
+  Real3 position = Real3::Zero();
+  ActorHandle actor;
+};
+
+/// Ties node deformable_node_index of a soft actor to a point of a rigid or link actor: where the
+/// node is at creation (fix_to_deformable_pos), else rigid_local_pos (frame of the rigid actor,
+/// m). find_closest: the soft actor's surface node nearest that point instead of the index.
+struct DeformableNodeToRigidConstraintParams : ConstraintParams {
+  Real3 rigid_local_pos = Real3::Zero();
+  int deformable_node_index = -1;
+  ActorHandle rigid_actor, deformable_actor;
+  bool find_closest = false;
+  bool fix_to_deformable_pos = true;
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
