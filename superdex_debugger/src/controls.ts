@@ -8,6 +8,7 @@ export interface ToolbarHandlers {
   control(action: ControlAction): void;
   setFramesVisible(v: boolean): void;
   setContactsVisible(v: boolean): void;
+  setConstraintsVisible(v: boolean): void;
   /** Also draw the colliders of links shown with a render model. */
   setCollidersVisible(v: boolean): void;
   /** Force arrow scale, m/N. */
@@ -47,6 +48,7 @@ export class Toolbar {
         <label class="toggle" data-id="colliders-toggle" title="Also draw the colliders of links shown with a render model" hidden><input type="checkbox" data-id="colliders"><span>Colliders</span></label>
         <label class="toggle"><input type="checkbox" data-id="frames"><span>Frames</span></label>
         <label class="toggle"><input type="checkbox" data-id="contacts" checked><span>Contacts</span></label>
+        <label class="toggle"><input type="checkbox" data-id="constraints" checked><span>Constraints</span></label>
         <label class="scale" title="Force arrow length per newton">
           <input type="range" data-id="fscale" min="${FORCE_EXP.min}" max="${FORCE_EXP.max}" step="0.05" value="${FORCE_EXP.initial}">
           <span data-id="fscale-label"></span>
@@ -66,6 +68,7 @@ export class Toolbar {
     q<HTMLInputElement>('frames').addEventListener('change', (e) => h.setFramesVisible((e.target as HTMLInputElement).checked));
     q<HTMLInputElement>('colliders').addEventListener('change', (e) => h.setCollidersVisible((e.target as HTMLInputElement).checked));
     q<HTMLInputElement>('contacts').addEventListener('change', (e) => h.setContactsVisible((e.target as HTMLInputElement).checked));
+    q<HTMLInputElement>('constraints').addEventListener('change', (e) => h.setConstraintsVisible((e.target as HTMLInputElement).checked));
     const fs = q<HTMLInputElement>('fscale');
     const fsLabel = q('fscale-label');
     const onScale = () => {

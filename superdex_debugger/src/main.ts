@@ -58,6 +58,7 @@ class App {
       control: (a) => this.control(a),
       setFramesVisible: (v) => this.view.setFramesVisible(v),
       setContactsVisible: (v) => this.view.setContactsVisible(v),
+      setConstraintsVisible: (v) => this.view.setConstraintsVisible(v),
       setCollidersVisible: (v) => this.view.setCollidersVisible(v),
       setForceScale: (s) => this.view.setForceScale(s),
     });

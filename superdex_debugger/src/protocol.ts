@@ -139,6 +139,17 @@ export interface Contact {
   f: Vec3;
 }
 
+/** A constraint as drawn: its point on its first actor and its target or its point on the second. */
+export interface ConstraintMarker {
+  /** The constraint's handle. */
+  h: number;
+  /** Its type, e.g. "RIGID_SPHERICAL_JOINT". */
+  type: string;
+  /** m, world frame. */
+  a: Vec3;
+  b: Vec3;
+}
+
 /** Generalized positions and velocities of one actor. */
 export interface JointState {
   q: number[];
@@ -158,6 +169,8 @@ export interface FrameMsg {
   /** Node positions per soft actor handle, flat [x0, y0, z0, x1, ...], m. */
   soft?: Record<string, number[]>;
   contacts?: Contact[];
+  /** The scene's constraints (optional). */
+  constraints?: ConstraintMarker[];
   /** Joint state per actor handle (optional). */
   joints?: Record<string, JointState>;
   /** Named scalar or vector signals to plot (optional). */

@@ -2,6 +2,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { RoomEnvironment } from 'three/examples/jsm/environments/RoomEnvironment.js';
 import { ActorVisual, type PickInfo } from './actorVisual';
+import { ConstraintsView } from './constraintsView';
 import { ContactsView } from './contactsView';
 import type { ActorMsg, Axes, FrameMsg } from './protocol';
 
@@ -34,6 +35,7 @@ export class SceneView {
   private readonly actorsRoot = new THREE.Group();
   private readonly visuals = new Map<number, ActorVisual>();
   private readonly contacts = new ContactsView();
+  private readonly constraints = new ConstraintsView();
   private grid: THREE.GridHelper | null = null;
   private readonly hemi = new THREE.HemisphereLight('#dfe8ff', '#2a2e36', 1.6);
   private readonly sun = new THREE.DirectionalLight('#ffffff', 2.4);
@@ -76,7 +78,7 @@ export class SceneView {
     this.sun.shadow.mapSize.setScalar(software ? 1024 : 2048);
     this.sun.shadow.bias = -0.0004;
     this.sun.shadow.normalBias = 0.01;
-    this.scene.add(this.hemi, this.sun, this.sun.target, this.actorsRoot, this.contacts.root);
+    this.scene.add(this.hemi, this.sun, this.sun.target, this.actorsRoot, this.contacts.root, this.constraints.root);
 
     this.controls = this.makeControls();
     this.setAxes('FLU');
@@ -195,6 +197,7 @@ export class SceneView {
     this.lastFrame = frame;
     for (const v of this.visuals.values()) v.applyFrame(frame);
     this.contacts.update(frame?.contacts);
+    this.constraints.update(frame?.constraints);
     if (!this.fitted && frame && this.visuals.size > 0) {
       this.fitted = true;
       this.fit();
@@ -270,6 +273,11 @@ export class SceneView {
     this.requestRender();
   }
 
+  setConstraintsVisible(v: boolean): void {
+    this.constraints.root.visible = v;
+    this.requestRender();
+  }
+
   /** Force arrow length per newton, m/N. */
   setForceScale(mPerN: number): void {
     this.contacts.scale = mPerN;
@@ -317,6 +325,8 @@ export class SceneView {
     this.contacts.pointRadius = r * 0.012;
     this.contacts.maxLength = r * 1.2;
     this.contacts.update(this.lastFrame?.contacts);
+    this.constraints.pointRadius = r * 0.025;
+    this.constraints.update(this.lastFrame?.constraints);
     for (const v of this.visuals.values()) v.setFrameSize(r * 0.25);
     this.rebuildGrid();
     this.requestRender();

@@ -339,6 +339,14 @@ def test_runs_as_a_script(name, args, tmp_path):
     assert lines[0]["type"] == "header"
     frames = [line for line in lines if line["type"] == "frame"]
     assert frames and frames[-1]["t"] == pytest.approx(float(args[1]), abs=1e-4)
+    if name == "constraints_double_pendulum":
+        # the frames carry the constraints' points: the pivot's target on the anchor's circle
+        # (5 cm around the anchor), each constraint's two points within a millimetre
+        first = frames[0]["constraints"]
+        assert [c["type"] for c in first] == ["RIGID_PIVOT_POSITION", "RIGID_SPHERICAL_JOINT"]
+        assert np.linalg.norm(np.subtract(first[0]["b"], [0, 0, 1])) < 0.051
+        assert all(np.linalg.norm(np.subtract(c["a"], c["b"])) < 1e-3 for c in first)
+        assert frames[-1]["constraints"] == []  # the upper box and its pivot are gone by the end
 
 
 def test_constraints_double_pendulum_swings_as_the_jointed_one():

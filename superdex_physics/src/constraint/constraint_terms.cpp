@@ -239,6 +239,33 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Constrai
   return {};
 }
 
+void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a, const ConstraintSide& b, Vec3& p_a, Vec3& p_b) {
+  const Transform& X_WA = a.X_WL;
+  const Transform& X_WB = b.X_WL;
+  switch (c.type) {
+    case ConstraintType::RigidPivotPosition:
+      p_a = X_WA * c.p_A, p_b = c.target_position;
+      return;
+    case ConstraintType::RigidPivotToRigidTarget:
+      p_a = X_WA * c.p_A, p_b = c.target_transform * c.p_A;
+      return;
+    case ConstraintType::RigidSphericalJoint:
+      p_a = X_WA * c.p_A, p_b = X_WB * c.p_B;
+      return;
+    case ConstraintType::DeformableNodePosition:
+      p_a = a.node_W, p_b = c.target_position;
+      return;
+    case ConstraintType::DeformableNodeToRigid:
+      p_a = X_WA * c.p_A, p_b = b.node_W;
+      return;
+    case ConstraintType::RigidPivotRotation:
+      p_a = p_b = X_WA.translation;
+      return;
+    default:
+      p_a = X_WA.translation, p_b = X_WB.translation;
+  }
+}
+
 void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, const std::vector<int>& dofs, std::vector<real>& out) {
   const Vec3 f = F_origin.head<3>();
   // a node: the force on it, by the node's DOFs (3 n + 0-2)

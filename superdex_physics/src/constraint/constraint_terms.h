@@ -46,6 +46,11 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t);
 // axes for the joint rotations).
 std::vector<real> constraint_deviation(const ConstraintRecord& c, const ConstraintSide& a, const ConstraintSide& b);
 
+// The two points a constraint draws between (m, world): its point on A and its target or its
+// point on B (the actors' origins for the joint rotations and the slider, the origin twice for
+// the pivot rotation).
+void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a, const ConstraintSide& b, Vec3& p_a, Vec3& p_b);
+
 // A side's generalized force on its DOFs (constraint_dof_indices) from the spatial force
 // (force, torque about the link origin; world) the rows put on it.
 void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, const std::vector<int>& dofs, std::vector<real>& out);

@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "constraint/constraint_terms.h"
 #include "core/base64.h"
+#include "scene/step_stages.h"
 
 namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
@@ -203,8 +205,15 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
   for (const auto& b : s.soft_bodies) soft[std::to_string(b->handle)] = values(b->state.x);
   for (const ContactRecord& c : s.contacts)
     contacts.push_back({{"a", c.actor_a}, {"b", c.actor_b}, {"p", vec(c.position)}, {"n", vec(c.normal)}, {"f", vec(c.force)}});
+  // constraints: the two points each draws between
+  json constraints = json::array();
+  for (const auto& [h, c] : s.constraints) {
+    Vec3 p_a, p_b;
+    constraint_anchor_points(c, constraint_side(s, c.actor_a, c.node_a), constraint_side(s, c.actor_b, c.node_b), p_a, p_b);
+    constraints.push_back({{"h", h}, {"type", constraint_type_name(c.type)}, {"a", vec(p_a)}, {"b", vec(p_b)}});
+  }
   line({{"type", "frame"}, {"scene", s.handle}, {"step", s.step_count}, {"t", s.time}, {"links", links}, {"joints", joints},
-        {"soft", soft}, {"contacts", contacts}, {"signals", signals}});
+        {"soft", soft}, {"contacts", contacts}, {"constraints", constraints}, {"signals", signals}});
   state.last_frame[s.handle] = s.time;
 }
 
