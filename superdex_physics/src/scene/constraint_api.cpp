@@ -38,6 +38,11 @@ void check_finite(const V& v, const std::string& what, const char* field) {
   check(v.allFinite(), what, std::string(field) + " must be finite");
 }
 
+// A rotation given as a quaternion: finite and not zero (it is normalized where kept).
+void check_rotation(const Quat& q, const std::string& what, const char* field) {
+  check(q.coeffs().allFinite() && q.norm() > real(1e-6), what, std::string(field) + " must be a finite, non-zero quaternion");
+}
+
 void check_spring(const ConstraintParams& p, const std::string& what) {
   check(std::isfinite(p.stiffness) && p.stiffness >= 0, what, "stiffness must be finite and >= 0 (N/m or N m/rad), got " + std::to_string(p.stiffness));
   check(std::isfinite(p.damping) && p.damping >= 0, what, "damping must be finite and >= 0, got " + std::to_string(p.damping));
@@ -81,7 +86,8 @@ int closest_surface_node(const SoftBody& b, const Vec3& p_W) {
   return best;
 }
 
-ConstraintRecord& record(SceneData& s, ConstraintHandle h, const char* what) {
+template <class Data>  // SceneData, const or not
+auto& record(Data& s, ConstraintHandle h, const char* what) {
   auto it = s.constraints.find(h);
   if (it == s.constraints.end())
     throw Error(std::string(what) + ": constraint " + std::to_string(h) + " does not exist in scene '" + s.name + "' (destroyed, or never created here)");
@@ -209,8 +215,7 @@ ConstraintHandle Scene::create_rigid_pivot_to_rigid_target_constraint(const Rigi
   check_spring(p, what);
   check_finite(p.local_position, what, "local_position");
   check_finite(p.target_transform.translation, what, "target_transform.translation");
-  check(p.target_transform.rotation.coeffs().allFinite() && p.target_transform.rotation.norm() > real(1e-6), what,
-        "target_transform.rotation must be a finite, non-zero quaternion");
+  check_rotation(p.target_transform.rotation, what, "target_transform.rotation");
   rigid_frame(s, p.actor, what, "actor");
   ConstraintRecord c;
   c.type = ConstraintType::RigidPivotToRigidTarget;
@@ -316,7 +321,7 @@ std::vector<real> Scene::constraint_deviation(ConstraintHandle h) const {
 
 std::vector<real> Scene::constraint_force(ConstraintHandle h) const {
   const SceneData& s = scene_data(handle_);
-  const ConstraintRecord& c = record(const_cast<SceneData&>(s), h, "get_force");
+  const ConstraintRecord& c = record(s, h, "get_force");
   if (c.queries.empty())
     throw Error("get_force: constraint " + std::to_string(h) + " has no CONSTRAINT_FORCE query; call register_query(QueryType.CONSTRAINT_FORCE) on it first");
   if (c.force_step < c.query_since)
@@ -338,7 +343,7 @@ void Scene::set_constraint_target_position(ConstraintHandle h, const Vec3& posit
 
 void Scene::set_constraint_target_rotation(ConstraintHandle h, const Quat& rotation) {
   ConstraintRecord& c = record(scene_data(handle_), h, "set_target_rotation");
-  check(rotation.coeffs().allFinite() && rotation.norm() > real(1e-6), "set_target_rotation", "rotation must be a finite, non-zero quaternion");
+  check_rotation(rotation, "set_target_rotation", "rotation");
   if (c.type == ConstraintType::RigidPivotRotation || c.type == ConstraintType::JointRotationTracking) {
     c.target_rotation = rotation.normalized();
   } else if (c.type == ConstraintType::RigidPivotToRigidTarget) {
@@ -361,8 +366,8 @@ void Scene::update_constraint_old_target(ConstraintHandle h) {
 
 void Scene::set_constraint_ref_relative_rotation(ConstraintHandle h, const Quat& rotation_a, const Quat& rotation_b) {
   ConstraintRecord& c = record(scene_data(handle_), h, "set_ref_relative_rotation");
-  for (const Quat* q : {&rotation_a, &rotation_b})
-    check(q->coeffs().allFinite() && q->norm() > real(1e-6), "set_ref_relative_rotation", "rotations must be finite, non-zero quaternions");
+  check_rotation(rotation_a, "set_ref_relative_rotation", "rotation_a");
+  check_rotation(rotation_b, "set_ref_relative_rotation", "rotation_b");
   const Quat a = rotation_a.normalized(), b = rotation_b.normalized();
   if (c.type == ConstraintType::JointRotationTracking) {
     c.target_rotation = (a.conjugate() * b).normalized();
