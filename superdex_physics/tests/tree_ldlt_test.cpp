@@ -59,6 +59,13 @@ void expect_matches_dense(const TreeLDLT& f, const MatX& A, const std::string& w
   const MatX compliance_ref = X.transpose() * reference.solve(X);
   f.half_solve_in_place(X);
   EXPECT_LT((X.transpose() * X - compliance_ref).norm(), 1e-9 * (1 + compliance_ref.norm())) << what;
+  // twice: the second use must find its working column clean
+  const VecX diagonal_ref = reference.solve(MatX::Identity(n, n)).diagonal();
+  for (int pass = 0; pass < 2; ++pass) {
+    VecX d;
+    f.inverse_diagonal(d);
+    EXPECT_LT((d - diagonal_ref).norm(), 1e-9 * (1 + diagonal_ref.norm())) << what << ", diag(A^-1), pass " << pass;
+  }
 }
 
 TEST(TreeLDLT, SolvesLikeADenseCholeskyOnRandomTrees) {

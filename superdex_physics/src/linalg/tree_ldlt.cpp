@@ -95,5 +95,30 @@ void TreeLDLT::half_solve_in_place(Eigen::Ref<MatX> X) const {
   }
 }
 
+void TreeLDLT::inverse_diagonal(VecX& d) const {
+  d.resize(n_);
+  if (!tree_) {
+    MatX H = MatX::Identity(n_, n_);
+    dense_.solve_lower_in_place(H);
+    d = H.colwise().squaredNorm().transpose();
+    return;
+  }
+  // column k of L^-T: leaves_to_roots of e_k, which only passes values up k's ancestor chain;
+  // diag(A^-1)_k = sum over the chain of x_i^2 / D_i
+  VecX& x = scratch_;
+  if (x.size() != n_) x.setZero(n_);
+  for (Eigen::Index k = 0; k < n_; ++k) {
+    x[k] = 1;
+    real sum = 0;
+    for (int m = static_cast<int>(k); m >= 0; m = parent_[m]) {
+      const real x_m = x[m];
+      for (int i = parent_[m]; i >= 0; i = parent_[i]) x[i] -= F_(m, i) * x_m;
+      sum += x_m * x_m * inverse_sqrt_D_[m] * inverse_sqrt_D_[m];
+      x[m] = 0;
+    }
+    d[k] = sum;
+  }
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -32,6 +32,9 @@ class TreeLDLT {
   // D^-1/2 L^-T on the tree, L^-1 of A = L L^T on the dense path. (H X)^T (H X) = X^T A^-1 X:
   // compliances without forming A^-1.
   void half_solve_in_place(Eigen::Ref<MatX> X) const;
+  // d <- diag(A^-1). On the tree, column k of L^-T is non-zero only on DOF k and its ancestors:
+  // the sum over DOFs of their depth squared; the dense factor solves the identity.
+  void inverse_diagonal(VecX& d) const;
 
  private:
   // x <- L^-T x (n entries), from the leaves to the roots
@@ -43,6 +46,7 @@ class TreeLDLT {
   std::vector<int> parent_;
   MatX F_;                  // L below the diagonal (column-major), D on it
   VecX inverse_sqrt_D_;
+  mutable VecX scratch_;    // inverse_diagonal's column, zero between uses
   SmallLLT dense_{MatX(0, 0)};
 };
 

@@ -267,9 +267,7 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
 
 real ArticulationTerms::inverse_diagonal(int k) const {
   if (!have_inverse_diagonal_) {
-    // diagonal of A^-1 = L^-T L^-1
-    H_.setIdentity(A.rows(), A.cols());
-    A_inv_diagonal_ = compliance_diagonal(A_factor, H_);
+    A_factor.inverse_diagonal(A_inv_diagonal_);
     have_inverse_diagonal_ = true;
   }
   return A_inv_diagonal_[k];

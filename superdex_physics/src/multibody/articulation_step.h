@@ -50,8 +50,7 @@ struct ArticulationTerms {
 
  private:
   friend void articulation_terms(const Articulation&, const Vec3&, real, const StepSettings&, ArticulationTerms&);
-  // cache of inverse_diagonal(): H (A_factor's, H^T H = A^-1) and the diagonal of A^-1
-  mutable MatX H_;
+  // cache of inverse_diagonal(): the diagonal of A^-1
   mutable VecX A_inv_diagonal_;
   mutable bool have_inverse_diagonal_ = false;
 };
