@@ -37,29 +37,40 @@ def test_pivot_sags_by_weight_over_stiffness_and_reports_the_weight(scene):
     np.testing.assert_allclose(force, [0, 0, 2.0 * G, 0, 0, 0], rtol=1e-3, atol=1e-6)
 
 
-def test_a_stiff_pivot_swings_with_the_physical_pendulum_period(scene):
-    # a 0.02 x 0.02 x 0.2 m rod pinned at its top end: I_pivot = m (l^2 / 12 + (l/2)^2) = m l^2 / 3
-    length, mass = 0.2, 0.5
+def swing_period(ys, dt):
+    """The mean period (s) between downward zero crossings of a swing sampled every dt."""
+    ys = np.asarray(ys)
+    crossings = [(i + 1) * dt + dt * ys[i] / (ys[i] - ys[i + 1]) for i in range(len(ys) - 1) if ys[i] > 0 >= ys[i + 1]]
+    assert len(crossings) >= 2
+    return float(np.mean(np.diff(crossings)))
+
+
+def test_a_stiff_pivot_swings_with_the_period_of_the_jointed_pendulum(scene):
+    # a 0.02 x 0.02 x 0.2 m rod pinned at its top end, released 0.05 rad from hanging: as a free
+    # box on a pivot constraint, and as a one-link articulation on a revolute joint
+    length, mass, theta0, dt = 0.2, 0.5, 0.05, 5e-4
+    i_com = mass * (0.02**2 + length**2) / 12
+    i_pivot = i_com + mass * (length / 2) ** 2
+    period = 2 * math.pi * math.sqrt(i_pivot / (mass * G * length / 2))  # small swings
     rod = box(scene, "rod", [0, 0, 1 - length / 2], half=(0.01, 0.01, length / 2), mass=mass)
     scene.create_rigid_pivot_position_constraint(actor=rod.get_handle(), local_position=[0, 0, length / 2], target_position=[0, 0, 1],
                                                  stiffness=1e6, damping=0)
-    # the rod's inertia about its top end, and the period of small swings
-    i_pivot = mass * ((0.02**2 + length**2) / 12 + (length / 2) ** 2)
-    period = 2 * math.pi * math.sqrt(i_pivot / (mass * G * length / 2))
-    theta0 = 0.05
     rod.set_root_transform(sdp.TransformRT(rotation=sdp.Quaternion.from_axis_angle([1, 0, 0], theta0),
                                            translation=[0, length / 2 * math.sin(theta0), 1 - length / 2 * math.cos(theta0)]))
-    dt = 5e-4
-    ys, ts = [], []
-    for k in range(int(2.5 * period / dt)):
+    jointed = scene.create_articulated_actor(
+        name="jointed", links=[sdp.ArticulatedLinkParams(name="rod", mass=mass, center_of_mass=[0, 0, -length / 2],
+                                                          moment_of_inertia=[i_com, 0, 0, i_com, 0, mass * 0.02**2 / 6])],
+        joints=[sdp.ArticulatedJointParams(name="pivot", type=sdp.ArticulatedJointType.REVOLUTE, axis=[1, 0, 0],
+                                           parent_link_from_joint=sdp.TransformRT(translation=[5, 0, 1]))])
+    jointed.set_articulated_pose_from_joints([theta0])
+    ys, ys_jointed = [], []
+    for _ in range(int(2.5 * period / dt)):
         scene.step(dt)
         ys.append(float(rod.get_root_transform().translation[1]))
-        ts.append((k + 1) * dt)
-    ys = np.asarray(ys)
-    # upward zero crossings of the swing, linearly interpolated
-    crossings = [ts[i] + dt * ys[i] / (ys[i] - ys[i + 1]) for i in range(len(ys) - 1) if ys[i] > 0 >= ys[i + 1]]
-    assert len(crossings) >= 2
-    measured = np.mean(np.diff(crossings))
+        # the jointed rod's centre, sideways: its angle's sine
+        ys_jointed.append(length / 2 * math.sin(float(np.asarray(jointed.get_articulated_pose())[0])))
+    measured, reference = swing_period(ys, dt), swing_period(ys_jointed, dt)
+    assert measured == pytest.approx(reference, rel=1e-3)
     assert measured == pytest.approx(period, rel=0.01)
 
 
