@@ -293,3 +293,32 @@ def test_a_soft_block_tied_under_a_rigid_box_hangs_from_it(scene):
     # down on the box, up on the node, each the block's weight
     np.testing.assert_allclose(force[:3], [0, 0, -soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)
     np.testing.assert_allclose(force[6:], [0, 0, soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)
+
+
+def test_a_restored_state_brings_back_the_constraints_targets_and_springs(scene):
+    # capture, then move the pivot's target and soften it; restoring the capture and stepping
+    # again repeats the first run exactly
+    b = box(scene, "b", [0, 0, 1])
+    c = scene.create_rigid_pivot_position_constraint(actor=b.get_handle(), target_position=[0, 0, 1], stiffness=500, damping=5)
+    for _ in range(10):
+        scene.step(0.01)
+    state = scene.capture_state()
+    run = []
+    for k in range(20):
+        c.set_target_position(sdp.Real3(0.01 * k, 0, 1))
+        scene.step(0.01)
+        run.append(np.asarray(b.get_root_transform().translation, dtype=float))
+    c.set_stiffness(1.0)
+    c.set_target_position(sdp.Real3(3, 3, 3))
+    scene.restore_state(state, release_immediately=False)
+    assert c.get_stiffness() == pytest.approx(500)
+    np.testing.assert_allclose(np.asarray(c.get_deviation()), -np.asarray(b.get_root_transform().translation, dtype=float) + [0, 0, 1],
+                               atol=1e-6)
+    for k in range(20):
+        c.set_target_position(sdp.Real3(0.01 * k, 0, 1))
+        scene.step(0.01)
+        np.testing.assert_array_equal(np.asarray(b.get_root_transform().translation, dtype=float), run[k])
+    # a state of a scene with other constraints does not restore
+    scene.destroy_constraint(c)
+    with pytest.raises(sdp.Error, match="constraints"):
+        scene.restore_state(state, release_immediately=False)

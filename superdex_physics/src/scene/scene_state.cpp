@@ -12,7 +12,13 @@
 // u32 3N, node positions, velocities and forces (3N each),
 // u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
 // velocities (r each) and residual contact displacement (3N).
+// Then u32 constraint count; per constraint (creation order): u8 type, then 35 reals: stiffness,
+// damping, saturation, target position and its value at the last step (3 each), target rotation
+// and its last (xyzw, 4 each), target transform and its last (rotation xyzw, translation: 7
+// each), and B's joint frame (xyzw).
 
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <span>
 
@@ -27,7 +33,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 6;
+constexpr std::uint32_t kVersion = 7;
 
 class Writer {
  public:
@@ -66,6 +72,37 @@ class Reader {
   std::span<const std::uint8_t> bytes_;
   size_t pos_ = 0;
 };
+
+// A constraint's evolving part (the layout above) and its restoration.
+constexpr size_t kConstraintReals = 35;
+std::array<real, kConstraintReals> constraint_state(const ConstraintRecord& c) {
+  std::array<real, kConstraintReals> x;
+  size_t k = 0;
+  const auto put = [&](const auto& v) {
+    for (Eigen::Index i = 0; i < v.size(); ++i) x[k++] = v[i];
+  };
+  put(Vec3(c.stiffness, c.damping, c.saturation));
+  put(c.target_position), put(c.old_target_position);
+  put(c.target_rotation.coeffs()), put(c.old_target_rotation.coeffs());
+  put(c.target_transform.rotation.coeffs()), put(c.target_transform.translation);
+  put(c.old_target_transform.rotation.coeffs()), put(c.old_target_transform.translation);
+  put(c.J_B.coeffs());
+  return x;
+}
+void restore_constraint_state(ConstraintRecord& c, const std::array<real, kConstraintReals>& x) {
+  size_t k = 0;
+  const auto get = [&](auto&& v) {
+    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = x[k++];
+  };
+  Vec3 spring;
+  get(spring);
+  c.stiffness = spring[0], c.damping = spring[1], c.saturation = spring[2];
+  get(c.target_position), get(c.old_target_position);
+  get(c.target_rotation.coeffs()), get(c.old_target_rotation.coeffs());
+  get(c.target_transform.rotation.coeffs()), get(c.target_transform.translation);
+  get(c.old_target_transform.rotation.coeffs()), get(c.old_target_transform.translation);
+  get(c.J_B.coeffs());
+}
 
 }  // namespace
 
@@ -121,6 +158,11 @@ std::vector<std::uint8_t> state_bytes(const SceneData& s) {
     w.put_reals(b->state.q.data(), b->state.q.size());
     w.put_reals(b->state.qd.data(), b->state.qd.size());
     w.put_reals(b->state.u_c.data(), b->state.u_c.size());
+  }
+  w.put(static_cast<std::uint32_t>(s.constraints.size()));
+  for (const auto& [h, c] : s.constraints) {
+    w.put(static_cast<std::uint8_t>(c.type));
+    w.put_reals(constraint_state(c).data(), kConstraintReals);
   }
   return std::move(w.bytes);
 }
@@ -231,7 +273,25 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
     if (!st.x.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: soft actor " + std::to_string(i) + " has non-finite values in the state");
   }
-  if (!r.done()) throw Error("restore_state: unexpected bytes after the last actor");
+  // constraints match by creation order and type
+  const auto constraint_count = r.get<std::uint32_t>("constraint count");
+  if (constraint_count != s.constraints.size())
+    throw Error("restore_state: the state has " + std::to_string(constraint_count) + " constraints but the scene has " +
+                std::to_string(s.constraints.size()));
+  std::vector<std::array<real, kConstraintReals>> constraint_states(constraint_count);
+  auto constraint = s.constraints.begin();
+  for (std::uint32_t i = 0; i < constraint_count; ++i, ++constraint) {
+    const auto type = r.get<std::uint8_t>("constraint type");
+    if (type != static_cast<std::uint8_t>(constraint->second.type))
+      throw Error("restore_state: constraint " + std::to_string(i) + " of the state is not of the type of the scene's (" +
+                  constraint_type_name(constraint->second.type) + ")");
+    r.get_reals(constraint_states[i].data(), kConstraintReals, "constraints");
+    for (real x : constraint_states[i])
+      if (!std::isfinite(x)) throw Error("restore_state: constraint " + std::to_string(i) + " has non-finite values in the state");
+  }
+  if (!r.done()) throw Error("restore_state: unexpected bytes after the last constraint");
+  constraint = s.constraints.begin();
+  for (std::uint32_t i = 0; i < constraint_count; ++i, ++constraint) restore_constraint_state(constraint->second, constraint_states[i]);
   for (std::uint32_t i = 0; i < soft_count; ++i) {
     s.soft_bodies[i]->state = std::move(soft_states[i]);
     s.soft_bodies[i]->X_WL = soft_frames[i];
