@@ -116,6 +116,7 @@ void export_actor(nb::module_& m) {
   add_query_methods(c);
   add_soft_methods(c);
   add_articulated_methods(c);
+  add_pose_controller_methods(c);
 }
 
 }  // namespace superdex::python

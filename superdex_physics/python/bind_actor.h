@@ -17,5 +17,8 @@ void add_soft_methods(ActorClass& c);
 // bind_actor_articulated.cpp: poses, link transforms, joint velocities, Jacobians, dynamics
 // terms, joint parameters and drives.
 void add_articulated_methods(ActorClass& c);
+// bind_pose_controller.cpp: the pose controller's params and info types, and its methods.
+void export_pose_controller(nb::module_& m);
+void add_pose_controller_methods(ActorClass& c);
 
 }  // namespace superdex::python

@@ -65,6 +65,12 @@ struct Actor {
   ActorHandle handle = 0;
 };
 
+// A constraint of a scene (bind_constraint.cpp).
+struct Constraint {
+  Scene scene{SceneHandle()};
+  ConstraintHandle handle = 0;
+};
+
 // A Python object made of dicts, lists, strings, numbers, booleans and None as JSON (numpy
 // arrays through tolist()); non-finite floats are kept so that readers name the field. Errors
 // name `path` (bind_json.cpp).

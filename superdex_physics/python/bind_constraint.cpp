@@ -10,15 +10,6 @@
 
 namespace superdex::python {
 
-namespace {
-
-struct Constraint {
-  Scene scene{SceneHandle()};
-  ConstraintHandle handle = 0;
-};
-
-}  // namespace
-
 void export_constraints(nb::module_& m) {
   nb::enum_<ConstraintType>(m, "ConstraintType", "The kind of a constraint.")
       .value("RIGID_SPHERICAL_JOINT", ConstraintType::RigidSphericalJoint)
@@ -29,6 +20,8 @@ void export_constraints(nb::module_& m) {
       .value("RIGID_PIVOT_TO_RIGID_TARGET", ConstraintType::RigidPivotToRigidTarget)
       .value("RIGID_PIVOT_ROTATION", ConstraintType::RigidPivotRotation)
       .value("DEFORMABLE_NODE_POSITION", ConstraintType::DeformableNodePosition)
+      .value("ARTICULATED_SINGLE_DOF_TARGET", ConstraintType::ArticulatedSingleDofTarget)
+      .value("ARTICULATED_3D_ROTATION_TARGET", ConstraintType::Articulated3dRotationTarget)
       .value("DEFORMABLE_NODE_TO_RIGID", ConstraintType::DeformableNodeToRigid);
 
   StructBinder<ConstraintParams>(m, "ConstraintParams",
@@ -111,6 +104,23 @@ void export_constraints(nb::module_& m) {
       .field("find_closest", &DeformableNodeToRigidConstraintParams::find_closest)
       .field("fix_to_deformable_pos", &DeformableNodeToRigidConstraintParams::fix_to_deformable_pos)
       .done(false);
+  StructBinder<ArticulatedSingleDofTargetConstraintParams, ConstraintParams>(
+      m, "ArticulatedSingleDofTargetConstraintParams",
+      "Pulls DOF dof_index (0) of joint joint_index (a revolute or prismatic joint) of an articulated actor to target_value\n"
+      "(rad or m).")
+      .field("actor", &ArticulatedSingleDofTargetConstraintParams::actor)
+      .field("joint_index", &ArticulatedSingleDofTargetConstraintParams::joint_index)
+      .field("dof_index", &ArticulatedSingleDofTargetConstraintParams::dof_index)
+      .field("target_value", &ArticulatedSingleDofTargetConstraintParams::target_value)
+      .done(false);
+  StructBinder<Articulated3dRotationTargetConstraintParams, ConstraintParams>(
+      m, "Articulated3dRotationTargetConstraintParams",
+      "Turns joint joint_index (a spherical or free joint) of an articulated actor to the rotation target (its child link in\n"
+      "the joint frame).")
+      .field("actor", &Articulated3dRotationTargetConstraintParams::actor)
+      .field("joint_index", &Articulated3dRotationTargetConstraintParams::joint_index)
+      .field("target", &Articulated3dRotationTargetConstraintParams::target)
+      .done(false);
 
   nb::class_<Constraint>(m, "Constraint",
                          "A constraint of a scene, by handle. Methods that do not apply to its type raise superdex.physics.Error.")
@@ -152,10 +162,10 @@ void export_constraints(nb::module_& m) {
       .def("set_target_position", [](Constraint& c, const Real3& position) { c.scene.set_constraint_target_position(c.handle, position); },
            "position"_a, "RIGID_PIVOT_POSITION, DEFORMABLE_NODE_POSITION and RIGID_PIVOT_TO_RIGID_TARGET (m, world).")
       .def("set_target_rotation", [](Constraint& c, const Quaternion& rotation) { c.scene.set_constraint_target_rotation(c.handle, rotation); },
-           "rotation"_a, "RIGID_PIVOT_ROTATION, RIGID_PIVOT_TO_RIGID_TARGET (world) and JOINT_ROTATION_TRACKING (B relative to A).")
-      .def("set_target_dof", [](Constraint& c, real) {
-             throw Error(std::string("set_target_dof: not available for a ") + constraint_type_name(c.scene.constraint_type(c.handle)) + " constraint");
-           }, "target"_a)
+           "rotation"_a, "RIGID_PIVOT_ROTATION, RIGID_PIVOT_TO_RIGID_TARGET (world), JOINT_ROTATION_TRACKING (B relative to A) and\n"
+           "ARTICULATED_3D_ROTATION_TARGET (the joint's).")
+      .def("set_target_dof", [](Constraint& c, real target) { c.scene.set_constraint_target_dof(c.handle, target); }, "target"_a,
+           "ARTICULATED_SINGLE_DOF_TARGET: the joint value (rad or m).")
       .def("update_old_target", [](Constraint& c) { c.scene.update_constraint_old_target(c.handle); },
            "Forgets the target's motion since the last step (after a jump of the target).")
       .def("set_ref_relative_rotation", [](Constraint& c, const Quaternion& a, const Quaternion& b) {
@@ -199,6 +209,10 @@ void add_constraint_methods(nb::class_<Scene>& scene) {
              &Scene::create_deformable_node_position_constraint);
   add_create(scene, "create_deformable_node_to_rigid_constraint", "DeformableNodeToRigidConstraintParams",
              &Scene::create_deformable_node_to_rigid_constraint);
+  add_create(scene, "create_articulated_single_dof_target_constraint", "ArticulatedSingleDofTargetConstraintParams",
+             &Scene::create_articulated_single_dof_target_constraint);
+  add_create(scene, "create_articulated_3d_rotation_target_constraint", "Articulated3dRotationTargetConstraintParams",
+             &Scene::create_articulated_3d_rotation_target_constraint);
   scene.def("destroy_constraint", [](Scene& s, const Constraint& c) { s.destroy_constraint(c.handle); }, "constraint"_a)
       .def("get_constraint", [](Scene& s, ConstraintHandle h) -> std::optional<Constraint> {
              if (!s.has_constraint(h)) return std::nullopt;

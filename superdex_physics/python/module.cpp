@@ -2,7 +2,7 @@
 // the `superdex.physics` package according to SUPERDEX_PRECISION. Types are registered before the
 // functions whose defaults or signatures name them.
 
-#include "bind_common.h"
+#include "bind_actor.h"
 
 NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   using namespace superdex::python;
@@ -20,6 +20,7 @@ NB_MODULE(SUPERDEX_MODULE_NAME, m) {
   export_context(m);
   export_debug_draw(m);
   export_constraints(m);
+  export_pose_controller(m);
   export_scene(m);
   export_actor(m);
   export_experimental(m);

@@ -173,6 +173,46 @@ TEST_F(ConstraintRates, RotationRangeLimitsGrowAtTheirRowsRatesNearTheRest) {
   }
 }
 
+// Joint targets act on the joint's DOF velocities: a 1-DOF joint's value moves at its velocity
+// qdot, a 3-D joint's rotation turns by exp(h w) in its child frame (w its three DOF velocities).
+TEST_F(ConstraintRates, JointTargetsCloseAtTheirRowsRates) {
+  for (int trial = 0; trial < 20; ++trial) {
+    ConstraintSide a = side();
+    a.dof = 2;
+    a.q_dof = uniform(-3, 3);
+    ConstraintRecord single = record(ConstraintType::ArticulatedSingleDofTarget);
+    single.dof = 2;
+    single.target_value = single.old_target_value = uniform(-3, 3);
+    const real qdot = uniform(-1, 1);
+    ConstraintTerms t;
+    t.a = a;
+    constraint_terms(single, real(0.01), t);
+    ASSERT_EQ(t.rows.size(), 1u);
+    const real h = real(1e-6);
+    ConstraintSide plus = a, minus = a;
+    plus.q_dof += h * qdot, minus.q_dof -= h * qdot;
+    const real change = (constraint_deviation(single, plus, {})[0] - constraint_deviation(single, minus, {})[0]) / (2 * h);
+    EXPECT_NEAR(change, -t.rows[0].g_a.dot(Vec6::Unit(0) * qdot), 1e-6);
+    // the ball: about 1e-3 rad from its target
+    ConstraintRecord ball = record(ConstraintType::Articulated3dRotationTarget);
+    ball.dof = 3;
+    a.R_joint = quat_exp(vec(2));
+    ball.target_rotation = ball.old_target_rotation = (a.R_joint * quat_exp(vec(1e-3))).normalized();
+    t.a = a;
+    constraint_terms(ball, real(0.01), t);
+    ASSERT_EQ(t.rows.size(), 3u);
+    const Vec3 w = vec(1);
+    plus = a, minus = a;
+    plus.R_joint = (a.R_joint * quat_exp(h * w)).normalized();
+    minus.R_joint = (a.R_joint * quat_exp(-h * w)).normalized();
+    const std::vector<real> dp = constraint_deviation(ball, plus, {}), dm = constraint_deviation(ball, minus, {});
+    for (int k = 0; k < 3; ++k) {
+      const real rate = t.rows[k].g_a.dot((Vec6() << w, Vec3::Zero()).finished());
+      EXPECT_NEAR((dp[k] - dm[k]) / (2 * h), -rate, 2e-3 * (1 + std::abs(rate))) << "ball row " << k;
+    }
+  }
+}
+
 TEST_F(ConstraintRates, WithoutStiffnessAndDampingAConstraintHasNoRows) {
   ConstraintRecord c = record(ConstraintType::RigidPivotPosition);
   c.stiffness = c.damping = 0;

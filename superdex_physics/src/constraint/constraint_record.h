@@ -27,14 +27,21 @@ struct ConstraintRecord {
   // joint frames is J_A^T R_A^T R_B J_B
   Quat J_A = Quat::Identity(), J_B = Quat::Identity();
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // rotation range (rad) per joint axis
+  // articulated joint targets: the joint (index of the link it attaches) and the first of its
+  // DOFs constrained (the articulation's DOF index: the one DOF, or the first of the rotation)
+  int joint = -1, dof = -1;
+  // the pose controller (pose_controller.h) owning the constraint: its articulated actor
+  ActorHandle owner;
   // pivot rotation: the rotated frame of A that the target turns (frame A)
   Quat local_rotation = Quat::Identity();
   // targets now and at the last step's end (their difference over the step is the target's
   // motion, which the damping follows): a position (world), a rotation (world for the pivot
-  // rotation, of B relative to A for the tracking), a transform (world)
+  // rotation, of B relative to A for the tracking, the joint's for a 3-D joint target), a
+  // transform (world), a joint value (rad or m)
   Vec3 target_position = Vec3::Zero(), old_target_position = Vec3::Zero();
   Quat target_rotation = Quat::Identity(), old_target_rotation = Quat::Identity();
   Transform target_transform, old_target_transform;
+  real target_value = 0, old_target_value = 0;
   // the last step's generalized forces on each actor's DOFs (dof_indices), world frame, torques
   // about the centre of mass; zero before the first step
   std::vector<real> force;
@@ -44,8 +51,12 @@ struct ConstraintRecord {
 };
 
 // The DOF indices of actor `index` (0: A, 1: B) a constraint acts on: 0-2 the translation and
-// 3-5 the rotation of a rigid body; 3 n + 0-2 node n's position on a soft body.
+// 3-5 the rotation of a rigid body; 3 n + 0-2 node n's position on a soft body; an articulated
+// actor's joint DOFs for the joint targets.
 std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index);
+
+// The target's motion over the step is done: the old targets become the current ones.
+void settle_constraint_targets(ConstraintRecord& c);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -25,9 +25,20 @@ std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index) {
     case ConstraintType::RigidPrismaticJoint:
       // B's origin is held on a line fixed in A: B's rotation is free
       return index == 0 ? std::vector<int>{0, 1, 2, 3, 4, 5} : std::vector<int>{0, 1, 2};
+    case ConstraintType::ArticulatedSingleDofTarget:
+      return {c.dof};
+    case ConstraintType::Articulated3dRotationTarget:
+      return {c.dof, c.dof + 1, c.dof + 2};
     default:
       return {0, 1, 2, 3, 4, 5};
   }
+}
+
+void settle_constraint_targets(ConstraintRecord& c) {
+  c.old_target_position = c.target_position;
+  c.old_target_rotation = c.target_rotation;
+  c.old_target_transform = c.target_transform;
+  c.old_target_value = c.target_value;
 }
 
 namespace {
@@ -45,6 +56,17 @@ Vec6 node_row(const Vec3& d) {
   Vec6 g;
   g << d, Vec3::Zero();
   return g;
+}
+
+// The row of DOF i of a joint side (its coefficient on velocity dof + i).
+Vec6 dof_row(int i) {
+  return Vec6::Unit(i);
+}
+
+// A 3-D joint's rotation error: the rotation taking it to the target, in its child link frame
+// (where its velocity lives).
+Vec3 joint_rotation_error(const ConstraintRecord& c, const ConstraintSide& a) {
+  return quat_log(a.R_joint.conjugate() * c.target_rotation);
 }
 
 Vec6 angular_row(const Vec3& d) {
@@ -183,6 +205,16 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
       }
       break;
     }
+    case ConstraintType::ArticulatedSingleDofTarget:
+      w.equality(dof_row(0), none, c.target_value - t.a.q_dof, (c.target_value - c.old_target_value) / dt);
+      break;
+    case ConstraintType::Articulated3dRotationTarget: {
+      // the target's own turning, in its frame (first order, as the error's rate)
+      const Vec3 error = joint_rotation_error(c, t.a);
+      const Vec3 rate = quat_log(c.old_target_rotation.conjugate() * c.target_rotation) / dt;
+      for (int i = 0; i < 3; ++i) w.equality(dof_row(i), none, error[i], rate[i]);
+      break;
+    }
     case ConstraintType::JointRotationRange: {
       Mat3 F_A;
       const Vec3 phi = joint_rotation(c, X_WA, X_WB, F_A);
@@ -235,6 +267,10 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Constrai
       return out(c.target_position - a.node_W);
     case ConstraintType::DeformableNodeToRigid:
       return out(X_WA * c.p_A - b.node_W);
+    case ConstraintType::ArticulatedSingleDofTarget:
+      return {c.target_value - a.q_dof};
+    case ConstraintType::Articulated3dRotationTarget:
+      return out(joint_rotation_error(c, a));
   }
   return {};
 }
@@ -259,6 +295,8 @@ void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a
       p_a = X_WA * c.p_A, p_b = b.node_W;
       return;
     case ConstraintType::RigidPivotRotation:
+    case ConstraintType::ArticulatedSingleDofTarget:
+    case ConstraintType::Articulated3dRotationTarget:
       p_a = p_b = X_WA.translation;
       return;
     default:
@@ -271,6 +309,11 @@ void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, co
   // a node: the force on it, by the node's DOFs (3 n + 0-2)
   if (side.soft >= 0) {
     for (int k : dofs) out.push_back(f[k % 3]);
+    return;
+  }
+  // joint DOFs: the generalized forces on them
+  if (side.dof >= 0) {
+    for (int k : dofs) out.push_back(F_origin[k - side.dof]);
     return;
   }
   // torque about the centre of mass: tau_o + (o - c) x f

@@ -13,7 +13,7 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 // One side of a constraint: a link of an articulation (rigid actors are one-link ones), a node
-// of a soft body, or none.
+// of a soft body, some DOFs of an articulation's joint, or none.
 struct ConstraintSide {
   int body = -1;  // articulation index; -1: none
   int link = 0;
@@ -21,12 +21,17 @@ struct ConstraintSide {
   Vec3 com_W = Vec3::Zero();     // its centre of mass (m, world)
   int soft = -1, node = -1;      // soft body index and node; -1: none
   Vec3 node_W = Vec3::Zero();    // the node's position now (m, world)
+  // joint DOFs: the first (articulation DOF index; -1: none), a 1-DOF joint's value now (rad or
+  // m) and a 3-D joint's rotation now (child link in joint frame)
+  int dof = -1;
+  real q_dof = 0;
+  Quat R_joint = Quat::Identity();
 };
 
 
 // One row: its rate is g_a . V_a + g_b . V_b with V = (v, w) a side's spatial velocity (its
 // link origin's velocity, m/s, and angular velocity, rad/s; world; a node side: its velocity, and
-// g's angular part zero). `block` is Bounded
+// g's angular part zero; a joint side: the velocities of its DOFs dof, dof + 1, ...). `block` is Bounded
 // (equalities) or Unilateral (limits), R not yet floored against ill-conditioning.
 struct ConstraintRow {
   Vec6 g_a = Vec6::Zero(), g_b = Vec6::Zero();

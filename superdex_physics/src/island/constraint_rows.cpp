@@ -31,6 +31,23 @@ real add_side(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J, con
   if (side.body < 0) return 0;
   const int nb = in.s.articulations[side.body]->model.nv;
   if (nb == 0) return 0;
+  // joint DOFs: g's entries on the velocities of DOFs dof, dof + 1, ... (compliance: the
+  // diagonal of A^-1 there, coupling between them left out of this floor)
+  if (side.dof >= 0) {
+    real* P = J.form() == IslandJacobian::Form::Bodies ? J.piece(w.island_position[side.body]) : nullptr;
+    const int o = w.body_offset[side.body];
+    real compliance = 0;
+    for (int i = 0; i < 6 && side.dof + i < nb; ++i) {
+      if (g[i] == 0) continue;
+      if (P) {
+        P[side.dof + i] += g[i];
+      } else {
+        J.add_column(o + side.dof + i, &g[i]);
+      }
+      compliance += g[i] * g[i] * in.terms[side.body].inverse_diagonal(side.dof + i);
+    }
+    return compliance;
+  }
   const IslandWorkspace::LinkJacobian& lj = link_compliance(in.s, side.body, side.link, in.terms[side.body].A_factor, w);
   real* P = J.form() == IslandJacobian::Form::Bodies ? J.piece(w.island_position[side.body]) : nullptr;
   const int o = w.body_offset[side.body];

@@ -209,7 +209,7 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
   json constraints = json::array();
   for (const auto& [h, c] : s.constraints) {
     Vec3 p_a, p_b;
-    constraint_anchor_points(c, constraint_side(s, c.actor_a, c.node_a), constraint_side(s, c.actor_b, c.node_b), p_a, p_b);
+    constraint_anchor_points(c, constraint_side(s, c, 0), constraint_side(s, c, 1), p_a, p_b);
     constraints.push_back({{"h", h}, {"type", constraint_type_name(c.type)}, {"a", vec(p_a)}, {"b", vec(p_b)}});
   }
   line({{"type", "frame"}, {"scene", s.handle}, {"step", s.step_count}, {"t", s.time}, {"links", links}, {"joints", joints},

@@ -85,6 +85,8 @@ bool Scene::is_query_supported(ActorHandle actor, QueryType type) const {
     case QueryType::SurfaceNodePositions:
     case QueryType::SurfaceNodeNormals:
       return r.soft != nullptr && !(type == QueryType::ElementsDeformationGradient && r.soft->reduced);
+    case QueryType::ArticulatedControllerForce:
+      return !r.soft && r.link < 0 && !r.articulation->is_rigid;
     default:
       return false;
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "multibody/kinematics.h"
+#include "scene/articulation_poses.h"
 #include "scene/actor_lookup.h"
 #include "superdex/physics/log.h"
 
@@ -80,14 +81,8 @@ std::vector<Real2> Scene::dof_limits(ActorHandle h) const {
   return out;
 }
 
-void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL) {
-  const char* what = "set_articulated_pose_from_links";
-  Articulation& a = articulated(scene_data(handle_), h, what);
+VecX pose_from_link_frames(const Articulation& a, std::span<const TransformRT> X_WL) {
   const ArticulationModel& m = a.model;
-  if (static_cast<int>(X_WL.size()) != m.num_links)
-    throw Error(std::string(what) + ": world_from_links must hold one transform per link (" + std::to_string(m.num_links) + "), got " +
-                std::to_string(X_WL.size()));
-  // each joint's motion from its parent link's pose and its own, projected onto the joint's DOFs
   VecX pose(m.nv);
   for (int i = 0; i < m.num_links; ++i) {
     const JointModel& j = m.joints[i];
@@ -106,16 +101,12 @@ void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL
       default: break;
     }
   }
-  set_pose(h, pose);
+  return pose;
 }
 
-VecX Scene::add_delta_to_pose(ActorHandle h, const VecX& pose, const VecX& delta) const {
-  const char* what = "add_articulated_delta_to_pose";
-  const Articulation& a = articulated(scene_data(handle_), h, what);
-  check_pose_size(what, "pose", pose, a.model.nv);
-  check_pose_size(what, "delta_dofs", delta, a.model.nv);
+VecX pose_plus_delta(const ArticulationModel& m, const VecX& pose, const VecX& delta) {
   VecX out = pose + delta;
-  for (const JointModel& j : a.model.joints) {
+  for (const JointModel& j : m.joints) {
     // a 3-D rotation's delta is an increment of its rotation in the child frame (where its
     // velocity lives): exp(pose) exp(delta)
     const int r = j.type == JointType::Spherical ? j.v_offset : j.type == JointType::Free ? j.v_offset + 3 : -1;
@@ -123,6 +114,34 @@ VecX Scene::add_delta_to_pose(ActorHandle h, const VecX& pose, const VecX& delta
     out.segment<3>(r) = rotation_vector(rotation_of(pose.segment<3>(r)) * rotation_of(delta.segment<3>(r)));
   }
   return out;
+}
+
+std::vector<Transform> link_frames_at(const Articulation& a, const VecX& pose) {
+  VecX q = a.state.q;
+  q_from_pose(a.model, pose.data(), false, q);
+  ArticulationKinematics kin;
+  update_kinematics(a.model, q, VecX::Zero(a.model.nv), a.state.X_W_base, kin);
+  std::vector<Transform> out;
+  out.reserve(kin.X_WL.size());
+  for (const SpatialTransform& X : kin.X_WL) out.push_back({Quat(X.R).normalized(), X.p});
+  return out;
+}
+
+void Scene::set_pose_from_links(ActorHandle h, std::span<const TransformRT> X_WL) {
+  const char* what = "set_articulated_pose_from_links";
+  Articulation& a = articulated(scene_data(handle_), h, what);
+  if (static_cast<int>(X_WL.size()) != a.model.num_links)
+    throw Error(std::string(what) + ": world_from_links must hold one transform per link (" + std::to_string(a.model.num_links) + "), got " +
+                std::to_string(X_WL.size()));
+  set_pose(h, pose_from_link_frames(a, X_WL));
+}
+
+VecX Scene::add_delta_to_pose(ActorHandle h, const VecX& pose, const VecX& delta) const {
+  const char* what = "add_articulated_delta_to_pose";
+  const Articulation& a = articulated(scene_data(handle_), h, what);
+  check_pose_size(what, "pose", pose, a.model.nv);
+  check_pose_size(what, "delta_dofs", delta, a.model.nv);
+  return pose_plus_delta(a.model, pose, delta);
 }
 
 VecX Scene::pose_delta(ActorHandle h, const VecX& base, const VecX& target) const {

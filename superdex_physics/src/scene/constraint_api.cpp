@@ -23,6 +23,8 @@ const char* constraint_type_name(ConstraintType type) {
     case ConstraintType::RigidPivotRotation: return "RIGID_PIVOT_ROTATION";
     case ConstraintType::DeformableNodePosition: return "DEFORMABLE_NODE_POSITION";
     case ConstraintType::DeformableNodeToRigid: return "DEFORMABLE_NODE_TO_RIGID";
+    case ConstraintType::ArticulatedSingleDofTarget: return "ARTICULATED_SINGLE_DOF_TARGET";
+    case ConstraintType::Articulated3dRotationTarget: return "ARTICULATED_3D_ROTATION_TARGET";
   }
   return "?";
 }
@@ -58,6 +60,17 @@ Transform rigid_frame(SceneData& s, ActorHandle actor, const std::string& what, 
     throw Error(what + ": " + field + " (" + describe(actor) + ") must be a rigid actor or an articulation's link");
   const SpatialTransform& X = r.articulation->kin.X_WL[r.link < 0 ? 0 : r.link];
   return {Quat(X.R).normalized(), X.p};
+}
+
+// Joint `joint` of an articulated actor (a whole articulation, not a rigid actor or a link).
+const JointModel& articulated_joint(SceneData& s, ActorHandle actor, int joint, const std::string& what) {
+  if (!actor.is_valid()) throw Error(what + ": actor is not set");
+  const ActorRef r = lookup(s, actor, (what + " (actor)").c_str());
+  if (r.soft || r.link >= 0 || r.articulation->is_rigid)
+    throw Error(what + ": actor (" + describe(actor) + ") must be an articulated actor");
+  const int n = r.articulation->model.num_links;
+  check(joint >= 0 && joint < n, what, "joint_index " + std::to_string(joint) + " out of range [0, " + std::to_string(n) + ")");
+  return r.articulation->model.joints[joint];
 }
 
 // The soft body of a soft actor whose node a constraint holds (full bodies: a reduced body's
@@ -99,9 +112,7 @@ ConstraintHandle add(SceneData& s, ConstraintRecord c, const ConstraintParams& p
   c.stiffness = p.stiffness;
   c.damping = p.damping;
   c.saturation = p.saturation;
-  c.old_target_position = c.target_position;
-  c.old_target_rotation = c.target_rotation;
-  c.old_target_transform = c.target_transform;
+  settle_constraint_targets(c);
   const ConstraintHandle h = c.handle;
   s.constraints.emplace(h, std::move(c));
   return h;
@@ -272,9 +283,45 @@ ConstraintHandle Scene::create_deformable_node_to_rigid_constraint(const Deforma
   return add(s, std::move(c), p);
 }
 
+ConstraintHandle Scene::create_articulated_single_dof_target_constraint(const ArticulatedSingleDofTargetConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_articulated_single_dof_target_constraint";
+  check_spring(p, what);
+  check(std::isfinite(p.target_value), what, "target_value must be finite");
+  const JointModel& j = articulated_joint(s, p.actor, p.joint_index, what);
+  check(j.nv == 1, what, "joint_index " + std::to_string(p.joint_index) + " is a " + joint_type_name(j.type) +
+                             " joint; this constraint takes a revolute or prismatic one");
+  check(p.dof_index == 0, what, "dof_index must be 0 (the joint has one DOF), got " + std::to_string(p.dof_index));
+  ConstraintRecord c;
+  c.type = ConstraintType::ArticulatedSingleDofTarget;
+  c.actor_a = p.actor;
+  c.joint = p.joint_index, c.dof = j.v_offset;
+  c.target_value = p.target_value;
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_articulated_3d_rotation_target_constraint(const Articulated3dRotationTargetConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_articulated_3d_rotation_target_constraint";
+  check_spring(p, what);
+  check_rotation(p.target, what, "target");
+  const JointModel& j = articulated_joint(s, p.actor, p.joint_index, what);
+  check(j.type == JointType::Spherical || j.type == JointType::Free, what,
+        "joint_index " + std::to_string(p.joint_index) + " is a " + joint_type_name(j.type) + " joint; this constraint takes a spherical or free one");
+  ConstraintRecord c;
+  c.type = ConstraintType::Articulated3dRotationTarget;
+  c.actor_a = p.actor;
+  c.joint = p.joint_index, c.dof = j.v_offset + (j.type == JointType::Free ? 3 : 0);
+  c.target_rotation = p.target.normalized();
+  return add(s, std::move(c), p);
+}
+
 void Scene::destroy_constraint(ConstraintHandle h) {
   SceneData& s = scene_data(handle_);
-  record(s, h, "destroy_constraint");
+  const ConstraintRecord& c = record(s, h, "destroy_constraint");
+  if (c.owner.is_valid())
+    throw Error("destroy_constraint: constraint " + std::to_string(h) + " belongs to the pose controller of actor " + std::to_string(c.owner) +
+                "; remove_articulated_pose_controller removes it");
   s.constraints.erase(h);
 }
 
@@ -316,7 +363,7 @@ std::vector<int> Scene::constraint_dof_indices(ConstraintHandle h, int actor_ind
 std::vector<real> Scene::constraint_deviation(ConstraintHandle h) const {
   SceneData& s = scene_data(handle_);
   const ConstraintRecord& c = record(s, h, "get_deviation");
-  return physics::constraint_deviation(c, constraint_side(s, c.actor_a, c.node_a), constraint_side(s, c.actor_b, c.node_b));
+  return physics::constraint_deviation(c, constraint_side(s, c, 0), constraint_side(s, c, 1));
 }
 
 std::vector<real> Scene::constraint_force(ConstraintHandle h) const {
@@ -344,7 +391,8 @@ void Scene::set_constraint_target_position(ConstraintHandle h, const Vec3& posit
 void Scene::set_constraint_target_rotation(ConstraintHandle h, const Quat& rotation) {
   ConstraintRecord& c = record(scene_data(handle_), h, "set_target_rotation");
   check_rotation(rotation, "set_target_rotation", "rotation");
-  if (c.type == ConstraintType::RigidPivotRotation || c.type == ConstraintType::JointRotationTracking) {
+  if (c.type == ConstraintType::RigidPivotRotation || c.type == ConstraintType::JointRotationTracking ||
+      c.type == ConstraintType::Articulated3dRotationTarget) {
     c.target_rotation = rotation.normalized();
   } else if (c.type == ConstraintType::RigidPivotToRigidTarget) {
     c.target_transform.rotation = rotation.normalized();
@@ -353,15 +401,21 @@ void Scene::set_constraint_target_rotation(ConstraintHandle h, const Quat& rotat
   }
 }
 
+void Scene::set_constraint_target_dof(ConstraintHandle h, real value) {
+  ConstraintRecord& c = record(scene_data(handle_), h, "set_target_dof");
+  check(std::isfinite(value), "set_target_dof", "value must be finite");
+  if (c.type != ConstraintType::ArticulatedSingleDofTarget) unsupported(c, "set_target_dof");
+  c.target_value = value;
+}
+
 void Scene::update_constraint_old_target(ConstraintHandle h) {
   ConstraintRecord& c = record(scene_data(handle_), h, "update_old_target");
   if (c.type != ConstraintType::RigidPivotPosition && c.type != ConstraintType::DeformableNodePosition &&
-      c.type != ConstraintType::RigidPivotToRigidTarget &&
-      c.type != ConstraintType::RigidPivotRotation && c.type != ConstraintType::JointRotationTracking)
+      c.type != ConstraintType::RigidPivotToRigidTarget && c.type != ConstraintType::RigidPivotRotation &&
+      c.type != ConstraintType::JointRotationTracking && c.type != ConstraintType::ArticulatedSingleDofTarget &&
+      c.type != ConstraintType::Articulated3dRotationTarget)
     unsupported(c, "update_old_target");
-  c.old_target_position = c.target_position;
-  c.old_target_rotation = c.target_rotation;
-  c.old_target_transform = c.target_transform;
+  settle_constraint_targets(c);
 }
 
 void Scene::set_constraint_ref_relative_rotation(ConstraintHandle h, const Quat& rotation_a, const Quat& rotation_b) {

@@ -310,6 +310,8 @@ void Scene::set_pose(ActorHandle h, const VecX& pose) {
   check_finite(what, "pose", pose);
   q_from_pose(a.model, pose.data(), false, a.state.q);
   refresh_kinematics(a);
+  // a pose controller's target jumps there too, at rest
+  if (a.pose_controller) reset_target_pose(h, pose);
 }
 
 VecX Scene::joint_velocities(ActorHandle h) const { return whole(scene_data(handle_), h, "get_articulated_joint_velocities").state.v; }

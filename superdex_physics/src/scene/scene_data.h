@@ -15,6 +15,7 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include "constraint/constraint_record.h"
+#include "constraint/pose_controller.h"
 #include "multibody/articulation_model.h"
 #include "output/debug_draw_features.h"
 #include "scene/actor_records.h"
@@ -44,6 +45,7 @@ struct Articulation {
   VecX drive_efforts;          // results of the last step: joint drive efforts per DOF
   ConvergenceStatus convergence_status = ConvergenceStatus::None;  // of its island's last solve
   std::vector<ActorHandle> link_handles;
+  std::optional<PoseController> pose_controller;  // add_pose_controller
 };
 
 // What an actor handle refers to: a whole articulation (link -1) or one of its links.

@@ -12,10 +12,13 @@
 // u32 3N, node positions, velocities and forces (3N each),
 // u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
 // velocities (r each) and residual contact displacement (3N).
-// Then u32 constraint count; per constraint (creation order): u8 type, then 35 reals: stiffness,
+// Then u32 constraint count; per constraint (creation order): u8 type, then 37 reals: stiffness,
 // damping, saturation, target position and its value at the last step (3 each), target rotation
 // and its last (xyzw, 4 each), target transform and its last (rotation xyzw, translation: 7
-// each), and B's joint frame (xyzw).
+// each), B's joint frame (xyzw), target value and its last.
+// Then u32 pose controller count; per articulation with one (body order): i64 its handle, u8 1
+// when a target velocity is pending, then nv reals of target pose, 7 per link of target link
+// frames (rotation xyzw, translation) and nv of the pending target velocity (zeros when none).
 
 #include <array>
 #include <cmath>
@@ -33,7 +36,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 7;
+constexpr std::uint32_t kVersion = 8;
 
 class Writer {
  public:
@@ -74,7 +77,7 @@ class Reader {
 };
 
 // A constraint's evolving part (the layout above) and its restoration.
-constexpr size_t kConstraintReals = 35;
+constexpr size_t kConstraintReals = 37;
 std::array<real, kConstraintReals> constraint_state(const ConstraintRecord& c) {
   std::array<real, kConstraintReals> x;
   size_t k = 0;
@@ -87,6 +90,7 @@ std::array<real, kConstraintReals> constraint_state(const ConstraintRecord& c) {
   put(c.target_transform.rotation.coeffs()), put(c.target_transform.translation);
   put(c.old_target_transform.rotation.coeffs()), put(c.old_target_transform.translation);
   put(c.J_B.coeffs());
+  put(Eigen::Matrix<real, 2, 1>(c.target_value, c.old_target_value));
   return x;
 }
 void restore_constraint_state(ConstraintRecord& c, const std::array<real, kConstraintReals>& x) {
@@ -102,6 +106,36 @@ void restore_constraint_state(ConstraintRecord& c, const std::array<real, kConst
   get(c.target_transform.rotation.coeffs()), get(c.target_transform.translation);
   get(c.old_target_transform.rotation.coeffs()), get(c.old_target_transform.translation);
   get(c.J_B.coeffs());
+  Eigen::Matrix<real, 2, 1> value;
+  get(value);
+  c.target_value = value[0], c.old_target_value = value[1];
+}
+
+// A pose controller's evolving part: its targets and any pending target velocity (the layout above).
+std::vector<real> controller_state(const Articulation& a) {
+  const PoseController& pc = *a.pose_controller;
+  std::vector<real> x(pc.target_pose.data(), pc.target_pose.data() + pc.target_pose.size());
+  for (const Transform& X : pc.target_links) {
+    x.insert(x.end(), X.rotation.coeffs().data(), X.rotation.coeffs().data() + 4);
+    x.insert(x.end(), X.translation.data(), X.translation.data() + 3);
+  }
+  const VecX v = pc.target_velocity ? *pc.target_velocity : VecX::Zero(a.model.nv);
+  x.insert(x.end(), v.data(), v.data() + v.size());
+  return x;
+}
+void restore_controller_state(Articulation& a, bool pending, const std::vector<real>& x) {
+  PoseController& pc = *a.pose_controller;
+  const int nv = a.model.nv;
+  pc.target_pose = Eigen::Map<const VecX>(x.data(), nv);
+  for (size_t i = 0; i < pc.target_links.size(); ++i) {
+    const real* p = x.data() + nv + 7 * i;
+    pc.target_links[i] = {Quat(p[3], p[0], p[1], p[2]).normalized(), Vec3(p[4], p[5], p[6])};
+  }
+  if (pending) {
+    pc.target_velocity = Eigen::Map<const VecX>(x.data() + nv + 7 * pc.target_links.size(), nv);
+  } else {
+    pc.target_velocity.reset();
+  }
 }
 
 }  // namespace
@@ -163,6 +197,16 @@ std::vector<std::uint8_t> state_bytes(const SceneData& s) {
   for (const auto& [h, c] : s.constraints) {
     w.put(static_cast<std::uint8_t>(c.type));
     w.put_reals(constraint_state(c).data(), kConstraintReals);
+  }
+  std::uint32_t controllers = 0;
+  for (const auto& a : s.articulations) controllers += a->pose_controller ? 1 : 0;
+  w.put(controllers);
+  for (const auto& a : s.articulations) {
+    if (!a->pose_controller) continue;
+    w.put(static_cast<std::int64_t>(a->handle));
+    w.put(static_cast<std::uint8_t>(a->pose_controller->target_velocity ? 1 : 0));
+    const std::vector<real> x = controller_state(*a);
+    w.put_reals(x.data(), x.size());
   }
   return std::move(w.bytes);
 }
@@ -289,7 +333,27 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
     for (real x : constraint_states[i])
       if (!std::isfinite(x)) throw Error("restore_state: constraint " + std::to_string(i) + " has non-finite values in the state");
   }
-  if (!r.done()) throw Error("restore_state: unexpected bytes after the last constraint");
+  // pose controllers match by articulation, in body order
+  std::vector<Articulation*> controlled;
+  for (const auto& a : s.articulations)
+    if (a->pose_controller) controlled.push_back(a.get());
+  const auto controller_count = r.get<std::uint32_t>("pose controller count");
+  if (controller_count != controlled.size())
+    throw Error("restore_state: the state has " + std::to_string(controller_count) + " pose controllers but the scene has " +
+                std::to_string(controlled.size()));
+  std::vector<std::pair<bool, std::vector<real>>> controller_states(controller_count);
+  for (std::uint32_t i = 0; i < controller_count; ++i) {
+    const Articulation& a = *controlled[i];
+    if (r.get<std::int64_t>("pose controller actor") != a.handle)
+      throw Error("restore_state: pose controller " + std::to_string(i) + " of the state is not on actor " + std::to_string(a.handle));
+    controller_states[i].first = r.get<std::uint8_t>("pose controller velocity flag") != 0;
+    controller_states[i].second.resize(2 * a.model.nv + 7 * a.model.num_links);
+    r.get_reals(controller_states[i].second.data(), controller_states[i].second.size(), "pose controllers");
+    for (real x : controller_states[i].second)
+      if (!std::isfinite(x)) throw Error("restore_state: pose controller " + std::to_string(i) + " has non-finite values in the state");
+  }
+  if (!r.done()) throw Error("restore_state: unexpected bytes after the last pose controller");
+  for (std::uint32_t i = 0; i < controller_count; ++i) restore_controller_state(*controlled[i], controller_states[i].first, controller_states[i].second);
   constraint = s.constraints.begin();
   for (std::uint32_t i = 0; i < constraint_count; ++i, ++constraint) restore_constraint_state(constraint->second, constraint_states[i]);
   for (std::uint32_t i = 0; i < soft_count; ++i) {

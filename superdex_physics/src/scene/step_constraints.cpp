@@ -22,19 +22,32 @@ int index_in(const std::vector<std::unique_ptr<T>>& list, const T* body, const s
 
 }  // namespace
 
-ConstraintSide constraint_side(const SceneData& s, ActorHandle actor, int node, const std::unordered_map<const void*, int>* index) {
+ConstraintSide constraint_side(const SceneData& s, const ConstraintRecord& c, int which, const std::unordered_map<const void*, int>* index) {
   ConstraintSide side;
+  const ActorHandle actor = which == 0 ? c.actor_a : c.actor_b;
   if (!actor.is_valid()) return side;
   const ActorRef& r = s.actors.at(actor);
   if (r.soft) {
     side.soft = index_in(s.soft_bodies, r.soft, index);
-    side.node = node;
-    side.node_W = r.soft->state.x.segment<3>(3 * node);
+    side.node = which == 0 ? c.node_a : c.node_b;
+    side.node_W = r.soft->state.x.segment<3>(3 * side.node);
     return side;
   }
   const Articulation& a = *r.articulation;
   side.body = index_in(s.articulations, &a, index);
-  side.link = r.link < 0 ? 0 : r.link;
+  // a joint target's side: the joint's child link, and the joint's value now
+  side.link = c.joint >= 0 ? c.joint : r.link < 0 ? 0 : r.link;
+  if (c.joint >= 0) {
+    const JointModel& j = a.model.joints[c.joint];
+    side.dof = c.dof;
+    if (j.nv == 1) {
+      side.q_dof = a.state.q[j.q_offset];
+    } else {
+      // the rotation's quaternion (x, y, z, w): a spherical joint's coordinates, a free joint's last four
+      const int q = j.q_offset + (j.type == JointType::Free ? 3 : 0);
+      side.R_joint = Quat(a.state.q[q + 3], a.state.q[q], a.state.q[q + 1], a.state.q[q + 2]).normalized();
+    }
+  }
   const SpatialTransform& X = a.kin.X_WL[side.link];
   side.X_WL = {Quat(X.R).normalized(), X.p};
   side.com_W = X.R * a.model.inertia[side.link].com + X.p;
@@ -44,6 +57,7 @@ ConstraintSide constraint_side(const SceneData& s, ActorHandle actor, int node, 
 void constraint_step_terms(Step& step) {
   SceneData& s = step.s;
   StepWorkspace& ws = step.ws;
+  apply_pose_controller_velocities(s, step.dt);
   ws.constraint_terms.resize(s.constraints.size());
   ws.constraint_bodies.resize(s.constraints.size());
   if (s.constraints.empty()) return;
@@ -56,8 +70,8 @@ void constraint_step_terms(Step& step) {
   size_t k = 0;
   for (const auto& [handle, c] : s.constraints) {
     ConstraintTerms& t = ws.constraint_terms[k];
-    t.a = constraint_side(s, c.actor_a, c.node_a, &index);
-    t.b = constraint_side(s, c.actor_b, c.node_b, &index);
+    t.a = constraint_side(s, c, 0, &index);
+    t.b = constraint_side(s, c, 1, &index);
     constraint_terms(c, step.dt, t);
     ws.constraint_bodies[k] = {island_node(t.a), island_node(t.b)};
     ++k;
@@ -82,9 +96,7 @@ void constraint_records(Step& step) {
     if (c.actor_b.is_valid()) side_generalized_force(t.b, F_b, constraint_dof_indices(c, 1), c.force);
     c.force_step = s.step_count;
     // the target's motion over this step is done: the next step's damping follows only its next
-    c.old_target_position = c.target_position;
-    c.old_target_rotation = c.target_rotation;
-    c.old_target_transform = c.target_transform;
+    settle_constraint_targets(c);
   }
 }
 

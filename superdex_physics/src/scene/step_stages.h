@@ -44,7 +44,10 @@ void gather_contacts(Step& step);
 // The side of a constraint on `actor` (invalid: none) at `node` (soft actors), from the scene's
 // current state; `index` maps the scene's articulations and soft bodies to their indices (built
 // once per step), or null to search them (step_constraints.cpp).
-ConstraintSide constraint_side(const SceneData& s, ActorHandle actor, int node, const std::unordered_map<const void*, int>* index = nullptr);
+ConstraintSide constraint_side(const SceneData& s, const ConstraintRecord& c, int which, const std::unordered_map<const void*, int>* index = nullptr);
+// The pose controllers' pending target velocities applied: each target's motion over the step
+// of dt (pose_controller_api.cpp).
+void apply_pose_controller_velocities(SceneData& s, real dt);
 // Each constraint's rows from the state at the step's start (step_constraints.cpp).
 void constraint_step_terms(Step& step);
 // The islands: bodies coupled by contacts and constraints (step_islands.cpp).

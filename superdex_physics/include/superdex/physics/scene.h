@@ -19,6 +19,7 @@
 #include "superdex/physics/handles.h"
 #include "superdex/physics/params/actor_params.h"
 #include "superdex/physics/params/constraint_params.h"
+#include "superdex/physics/params/pose_controller_params.h"
 #include "superdex/physics/params/recording_params.h"
 #include "superdex/physics/params/solver_params.h"
 #include "superdex/physics/params/transmission_params.h"
@@ -296,6 +297,9 @@ class Scene {
   ConstraintHandle create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& params);
   ConstraintHandle create_deformable_node_position_constraint(const DeformableNodePositionConstraintParams& params);
   ConstraintHandle create_deformable_node_to_rigid_constraint(const DeformableNodeToRigidConstraintParams& params);
+  ConstraintHandle create_articulated_single_dof_target_constraint(const ArticulatedSingleDofTargetConstraintParams& params);
+  ConstraintHandle create_articulated_3d_rotation_target_constraint(const Articulated3dRotationTargetConstraintParams& params);
+  /// Errors for a pose controller's constraint (remove the controller instead).
   void destroy_constraint(ConstraintHandle constraint);
   bool has_constraint(ConstraintHandle constraint) const;
   /// The scene's constraints in creation order.
@@ -320,6 +324,8 @@ class Scene {
   /// Turns the target: world for the pivot rotation and the pivot to rigid target, B relative to
   /// A for the joint rotation tracking.
   void set_constraint_target_rotation(ConstraintHandle constraint, const Quat& rotation);
+  /// Moves the target of a single-DOF joint target (rad or m).
+  void set_constraint_target_dof(ConstraintHandle constraint, real value);
   /// Forgets the target's motion since the last step (after a jump of the target).
   void update_constraint_old_target(ConstraintHandle constraint);
   /// The relative rotation of A and B at the rotations rotation_a and rotation_b becomes the
@@ -427,6 +433,32 @@ class Scene {
   /// All entries added, in insertion order (clearable and permanent).
   std::vector<int> boundary_condition_dof_indices(ActorHandle soft) const;
   std::vector<real> boundary_condition_dof_values_world(ActorHandle soft) const;
+
+  // The pose controller of an articulated actor (pose_controller_params.h; pose_controller_api.cpp).
+  // Targets are DOF-sized joint poses (rotation vectors for spherical and free joints) or
+  // world-from-link transforms, one per link; either sets both (the other by forward kinematics
+  // or by projecting the links onto the joints). A target set between steps moves over the next
+  // step, and the damping follows that motion; a reset target, or a target velocity (DOF
+  // velocities, applied at the next step's start), sets how it moved instead.
+  void add_pose_controller(ActorHandle articulation, const PoseControllerParams& params);
+  bool has_pose_controller(ActorHandle articulation) const;
+  void remove_pose_controller(ActorHandle articulation);
+  void set_pose_controller_params(ActorHandle articulation, const PoseControllerParams& params);
+  /// All three arrays with one entry per link (zero gains where a link or joint has none).
+  PoseControllerParams pose_controller_params(ActorHandle articulation) const;
+  /// Link translations (every link), then link rotations (every link), then joints (every joint
+  /// but Hard ones).
+  std::vector<PoseConstraintInfo> pose_constraints(ActorHandle articulation) const;
+  void set_target_pose(ActorHandle articulation, const VecX& pose);
+  void reset_target_pose(ActorHandle articulation, const VecX& pose);
+  void set_target_link_transforms(ActorHandle articulation, std::span<const TransformRT> X_WL);
+  void reset_target_link_transforms(ActorHandle articulation, std::span<const TransformRT> X_WL);
+  void set_target_velocity(ActorHandle articulation, const VecX& velocity);
+  VecX target_pose(ActorHandle articulation) const;
+  std::vector<Transform> target_link_transforms(ActorHandle articulation) const;
+  /// The generalized force (N or N m per DOF) the controller's constraints applied in the last
+  /// step. Needs an ArticulatedControllerForce query registered before that step.
+  VecX controller_force(ActorHandle articulation) const;
 
   // Articulations (articulated_actor_api.cpp).
   std::vector<ArticulatedJointFrictionParams> joint_friction_params(ActorHandle articulation) const;

@@ -28,6 +28,8 @@ enum class ConstraintType {
   RigidPivotRotation,
   DeformableNodePosition,
   DeformableNodeToRigid,
+  ArticulatedSingleDofTarget,
+  Articulated3dRotationTarget,
 };
 const char* constraint_type_name(ConstraintType type);
 
@@ -117,6 +119,23 @@ struct DeformableNodeToRigidConstraintParams : ConstraintParams {
   ActorHandle rigid_actor, deformable_actor;
   bool find_closest = false;
   bool fix_to_deformable_pos = true;
+};
+
+/// Pulls one DOF of a revolute or prismatic joint of an articulated actor to target_value (rad or
+/// m): joint joint_index (the joint attaching link joint_index), its DOF dof_index (0).
+struct ArticulatedSingleDofTargetConstraintParams : ConstraintParams {
+  ActorHandle actor;
+  int joint_index = 0;
+  int dof_index = 0;
+  real target_value = 0;
+};
+
+/// Turns the rotation of a spherical or free joint of an articulated actor (its child link's
+/// frame relative to the joint frame) to `target`.
+struct Articulated3dRotationTargetConstraintParams : ConstraintParams {
+  ActorHandle actor;
+  int joint_index = 0;
+  Quat target = Quat::Identity();
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
