@@ -324,6 +324,7 @@ def test_filtered_pairs_never_touch_and_unfiltered_pairs_do():
     ("contact_filtering", ["--seconds", "0.5"]),
     ("double_pendulum", ["--seconds", "0.5"]),
     ("constraints_double_pendulum", ["--seconds", "0.5"]),
+    ("articulations_pose_controller", ["--seconds", "0.5"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr and prints its summary; with
@@ -347,6 +348,11 @@ def test_runs_as_a_script(name, args, tmp_path):
         assert np.linalg.norm(np.subtract(first[0]["b"], [0, 0, 1])) < 0.051
         assert all(np.linalg.norm(np.subtract(c["a"], c["b"])) < 1e-3 for c in first)
         assert frames[-1]["constraints"] == []  # the upper box and its pivot are gone by the end
+    if name == "articulations_pose_controller":
+        # the pose controller's constraints are in the frames: per link a centre-of-mass and a
+        # rotation target, per moving joint a joint target
+        types = [c["type"] for c in frames[-1]["constraints"]]
+        assert types == ["RIGID_PIVOT_TO_RIGID_TARGET"] * 4 + ["RIGID_PIVOT_ROTATION"] * 4 + ["ARTICULATED_SINGLE_DOF_TARGET"] * 3
 
 
 def test_constraints_double_pendulum_swings_as_the_jointed_one():
@@ -384,3 +390,148 @@ def test_constraints_double_pendulum_swings_as_the_jointed_one():
     ours = result["lower_positions"]
     assert float(np.min(ours[:, 2])) < example.ANCHOR[2] - 0.2  # it swung down
     assert float(np.max(np.linalg.norm(ours - np.array(reference), axis=1))) < 0.01
+
+
+# --------------------------------------------------------------------------------------------
+# articulations_pose_controller.py
+
+
+def arm_model(ex) -> CartDoublePendulum:
+    """The example's cart and arms as the cart-double-pendulum above (the arms are uniform boxes of
+    square section w, centred half their length below their joints; about Y, m (w^2 + L^2) / 12)."""
+    return CartDoublePendulum(ex.CART_MASS, ex.ARMS, lambda m, length: [0, 0, 0, m * (ex.ARM_WIDTH**2 + length**2) / 12])
+
+
+def force_along(model: CartDoublePendulum, q: np.ndarray, dt: float) -> np.ndarray:
+    """M(q) qddot - f(q, qdot) along a trajectory sampled every dt (rates by central differences):
+    the generalized force that moves the model along it against gravity, the controller's part."""
+    v = np.gradient(q, dt, axis=0)
+    a = np.gradient(v, dt, axis=0)
+    out = []
+    for qi, vi, ai in zip(q, v, a):
+        M, f, _ = model.terms(qi, vi)
+        out.append(M @ ai - f)
+    return np.array(out)
+
+
+@pytest.fixture(scope="module")
+def pose_controller():
+    ex = load_example("articulations_pose_controller")
+    result = ex.run(seconds=7.0, dt=0.005, print_every=7.0)
+    return ex, result
+
+
+def test_pose_controller_hybrid_phase_holds_the_arm_against_gravity(pose_controller):
+    """At the end of the hybrid phase (2 s) the arm rests (its pose unchanged over the last 0.5 s
+    within 1e-6), so the controller's generalized force balances gravity's: on the rail none
+    (gravity is across it; 0.01 N, 0.1 % of the arms' weight) and on each hinge minus the torque
+    about its axis of the weights m g of the arms beyond it, at their centres of mass, from the
+    engine's link transforms (an arm's frame is at its centre; the shoulder is SHOULDER_OFFSET
+    along the cart's Y, the elbow half the upper arm's length along the upper arm's -Z), within
+    2 %."""
+    from contact_helpers import rotation_matrix
+
+    ex, result = pose_controller
+    t = result["t"]
+    k = int(np.argmin(np.abs(t - ex.HYBRID_END)))
+    assert t[k] == pytest.approx(ex.HYBRID_END)
+    settled = (t > ex.HYBRID_END - 0.5) & (t <= t[k])
+    assert np.ptp(result["pose"][settled], axis=0).max() < 1e-6
+    T, R = result["link_translations"][k], result["link_rotations"][k]
+    (_, m1, l1), (_, m2, _) = ex.ARMS
+    cart, upper, lower = 1, 2, 3
+    shoulder = T[cart] + rotation_matrix(R[cart]) @ [0, ex.SHOULDER_OFFSET, 0]
+    elbow = T[upper] + rotation_matrix(R[upper]) @ [0, 0, -l1 / 2]
+
+    def torque_y(mass, centre, axis_point):
+        # ((c - p) x (0, 0, -m g))_y = m g (c_x - p_x)
+        return mass * G * (centre[0] - axis_point[0])
+
+    gravity = np.array([0.0,
+                        torque_y(m1, T[upper], shoulder) + torque_y(m2, T[lower], shoulder),
+                        torque_y(m2, T[lower], elbow)])
+    assert abs(gravity[1]) > 1.0 and abs(gravity[2]) > 0.3, "the rest pose is bent: gravity pulls on both hinges"
+    force = result["controller_force"][k]
+    assert abs(force[0]) < 0.01
+    np.testing.assert_allclose(force[1:], -gravity[1:], rtol=0.02)
+
+
+def test_pose_controller_joint_phase_follows_the_trajectory(pose_controller):
+    """From 2 s to 5 s the joints track the target set every step (the cart 0.2 m out and back,
+    the shoulder swinging 0.77 rad across). The damping follows the target's motion, so the error
+    is the springs' quasi-static one, e* = -K^-1 tau*, with tau* = M qddot* - f(q*, qdot*) the
+    force that moves the arm along the target (the equations of motion above, at the target),
+    K the joint stiffnesses: the error never exceeds the largest |e*| by more than 25 % (no
+    overshoot at the switch from the hybrid gains nor along the way), and once the switch's
+    transient has decayed (0.25 s, over seven of the slowest joint's decay time 2 m / D = 2 x
+    2 kg / 120 N s/m on the rail) it is e* within the damping's lag D/K max|de*/dt| plus 10 % of
+    max|e*| (the error's own inertia, left out by the quasi-static model)."""
+    ex, result = pose_controller
+    t, dt = result["t"], result["dt"]
+    phase = (t > ex.HYBRID_END + dt / 2) & (t < ex.JOINT_END + dt / 2)
+    target = result["target_pose"][phase]
+    # (the float build's clock is float32: the times are a few microseconds off by 5 s)
+    np.testing.assert_allclose(target, [ex.joint_trajectory(s) for s in t[phase]], atol=float_or_double(1e-12, 1e-5))
+    assert np.ptp(result["pose"][phase][:, 0]) > 0.19 and np.ptp(result["pose"][phase][:, 1]) > 0.7, "the arm moved"
+
+    K = np.array([ex.RAIL_GAINS[0], ex.SHOULDER_GAINS[0], ex.ELBOW_GAINS[0]])
+    D = np.array([ex.RAIL_GAINS[1], ex.SHOULDER_GAINS[1], ex.ELBOW_GAINS[1]])
+    expected = -force_along(arm_model(ex), target, dt) / K
+    error = result["pose"][phase] - target
+    largest = np.abs(expected).max(axis=0)
+    assert largest[1] > 0.01, "the shoulder carries the arm: a sag of over 10 mrad"
+    assert (np.abs(error) <= 1.25 * largest).all(), (np.abs(error).max(axis=0), largest)
+    steady = t[phase] > ex.HYBRID_END + 0.25
+    lag = D / K * np.abs(np.gradient(expected, dt, axis=0)[steady]).max(axis=0)
+    assert (np.abs(error - expected)[steady] <= lag + 0.1 * largest).all(), (np.abs(error - expected)[steady].max(axis=0), lag, largest)
+
+
+def test_pose_controller_link_phase_carries_lower_arm_on_its_circle(pose_controller):
+    """After 5 s only lower_arm is tracked, its target on a circle in the X-Z plane about where it
+    rests (radius growing to 5 cm, rotation kept); the target pose the engine reads off the link
+    targets puts lower_arm there (the arm's forward kinematics, written here). The arm is a 3-DOF
+    planar chain, so the force F on lower_arm's centre of mass and the torque on it that move the
+    arm along the target solve J^T (F, torque) = tau* (tau* as in the joint phase, at the target
+    pose; J lower_arm's planar Jacobian), and the spring's quasi-static error is -F / K (at rest
+    F is (m1 a1 / L1 + m2) g up, in any pose: 3.4 mm). The centre of mass stays within 1.25 times
+    the largest such error of its target, and after the switch's transient (0.3 s) it is within
+    25 % of that largest error of the predicted one (what is left: the error's own inertia and
+    damping, which the quasi-static model leaves out)."""
+    ex, result = pose_controller
+    t, dt = result["t"], result["dt"]
+    tight = float_or_double(1e-9, 2e-5)  # m, rad: what must agree up to rounding
+    (_, m1, l1), (_, m2, l2) = ex.ARMS
+    a2 = l2 / 2
+    phase = t > ex.JOINT_END + dt / 2
+    target_com = result["lower_arm_target_com"][phase]
+    rest_com = result["lower_arm_target_com"][0]  # the hybrid phase's target is the rest pose
+    offset = target_com - rest_com
+    np.testing.assert_allclose(offset[:, 1], 0, atol=tight)
+    radius = np.linalg.norm(offset, axis=1)
+    assert radius.max() <= ex.CIRCLE_RADIUS + tight and radius[-1] == pytest.approx(ex.CIRCLE_RADIUS, abs=tight)
+    q = result["target_pose"][phase]
+    x, t1, p = q[:, 0], q[:, 1], q[:, 1] + q[:, 2]
+    np.testing.assert_allclose(p, sum(ex.REST_POSE[1:]), atol=tight)
+    np.testing.assert_allclose(target_com[:, 0], x - l1 * np.sin(t1) - a2 * np.sin(p), atol=tight)
+    np.testing.assert_allclose(target_com[:, 2], ex.RAIL_HEIGHT - l1 * np.cos(t1) - a2 * np.cos(p), atol=tight)
+
+    tau = force_along(arm_model(ex), q, dt)
+    expected = []
+    for ti, pi, Qi in zip(t1, p, tau):
+        J = np.array([[1, -l1 * np.cos(ti) - a2 * np.cos(pi), -a2 * np.cos(pi)],   # centre of mass x
+                      [0, l1 * np.sin(ti) + a2 * np.sin(pi), a2 * np.sin(pi)],      # centre of mass z
+                      [0, 1, 1]])                                                  # rotation about Y
+        wrench = np.linalg.solve(J.T, Qi)
+        expected.append(-wrench[:2] / ex.LINK_POS_GAINS[0])
+    expected = np.array(expected)
+    # the target starts at rest (the radius grows from 0 with zero rate): there the error is the
+    # static one, (m1 a1 / L1 + m2) g / K
+    static = (m1 * (l1 / 2) / l1 + m2) * G / ex.LINK_POS_GAINS[0]
+    assert np.linalg.norm(expected[0]) == pytest.approx(static, rel=0.02)
+    error = (result["lower_arm_com"] - result["lower_arm_target_com"])[phase]
+    np.testing.assert_allclose(error[:, 1], 0, atol=tight)
+    error = error[:, [0, 2]]
+    largest = np.linalg.norm(expected, axis=1).max()
+    assert np.linalg.norm(error, axis=1).max() <= 1.25 * largest
+    steady = t[phase] > ex.JOINT_END + 0.3
+    assert np.linalg.norm(error - expected, axis=1)[steady].max() <= 0.25 * largest
