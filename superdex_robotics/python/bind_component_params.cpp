@@ -8,12 +8,16 @@
 #include "bind_robotics_types.h"
 #include "struct_binder.h"
 #include "superdex/robotics/controller_basic_jsc_pd.h"
+#include "superdex/robotics/controller_mochi_articulated_pose.h"
 #include "superdex/robotics/sensor_camera.h"
 
 namespace superdex::python {
 
 using robotics::CameraSensorParams;
 using robotics::ControllerBasicJscPdParams;
+using robotics::ControllerMochiArticulatedPoseObsv;
+using robotics::ControllerMochiArticulatedPoseParams;
+using robotics::ControllerMochiArticulatedPoseTarget;
 
 void export_component_params(nb::module_& m) {
   StructBinder<ControllerBasicJscPdParams>(m, "ControllerBasicJscPdParams",
@@ -26,6 +30,24 @@ void export_component_params(nb::module_& m) {
       .done()
       .def_static("load_from_file", &ControllerBasicJscPdParams::load_from_file, "path"_a, "Reads a .superdex_controller JSON file.")
       .def("save_to_file", &ControllerBasicJscPdParams::save_to_file, "path"_a, "Writes a .superdex_controller JSON file.");
+
+  StructBinder<ControllerMochiArticulatedPoseParams>(m, "ControllerMochiArticulatedPoseParams",
+                                                    "Gains of MOCHI_ARTICULATED_POSE: the engine pose controller's PoseControllerParams.")
+      .field("pose_controller_params", &ControllerMochiArticulatedPoseParams::pose_controller_params)
+      .done()
+      .def_static("load_from_file", &ControllerMochiArticulatedPoseParams::load_from_file, "path"_a, "Reads a .superdex_controller JSON file.")
+      .def("save_to_file", &ControllerMochiArticulatedPoseParams::save_to_file, "path"_a, "Writes a .superdex_controller JSON file.");
+  nb::class_<ControllerMochiArticulatedPoseObsv>(m, "ControllerMochiArticulatedPoseObsv",
+                                                 "What MOCHI_ARTICULATED_POSE observes: nothing (its target aims it).")
+      .def(nb::init<>());
+  StructBinder<ControllerMochiArticulatedPoseTarget>(
+      m, "ControllerMochiArticulatedPoseTarget",
+      "The pose MOCHI_ARTICULATED_POSE holds: world_from_root with exactly one of local_to_parent_transforms (one per link,\n"
+      "each link in its parent's frame) and pose_dofs (the DOFs below the root: rad, m).")
+      .field("world_from_root", &ControllerMochiArticulatedPoseTarget::world_from_root)
+      .field("local_to_parent_transforms", &ControllerMochiArticulatedPoseTarget::local_to_parent_transforms)
+      .field("pose_dofs", &ControllerMochiArticulatedPoseTarget::pose_dofs)
+      .done(false);
 
   StructBinder<CameraSensorParams>(m, "CameraSensorParams", "A camera's intrinsics and mounting; numeric 0 means the renderer's default.")
       .field("name", &CameraSensorParams::name, "the camera's name in the params (not the instance name)")

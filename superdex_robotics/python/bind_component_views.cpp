@@ -4,9 +4,11 @@
 
 #include <nanobind/stl/string.h>
 
+#include "bind_container.h"
 #include "bind_robotics_types.h"
 #include "superdex/physics/engine.h"
 #include "superdex/robotics/controller_basic_jsc_pd.h"
+#include "superdex/robotics/controller_mochi_articulated_pose.h"
 #include "superdex/robotics/sensor_camera.h"
 
 namespace superdex::python {
@@ -15,6 +17,10 @@ using robotics::CameraSensor;
 using robotics::CameraSensorParams;
 using robotics::ControllerBasicJscPd;
 using robotics::ControllerBasicJscPdParams;
+using robotics::ControllerMochiArticulatedPose;
+using robotics::ControllerMochiArticulatedPoseObsv;
+using robotics::ControllerMochiArticulatedPoseParams;
+using robotics::ControllerMochiArticulatedPoseTarget;
 
 const robotics::ComponentRecord& ComponentView::record() const {
   if (!is_valid())
@@ -31,6 +37,8 @@ nb::object component_view(nb::object context, ComponentKind kind, ComponentHandl
   switch (kind) {
     case ComponentKind::Controller:
       if (dynamic_cast<const ControllerBasicJscPd*>(impl)) return nb::cast(JscPdControllerView{{{context, kind, handle}}});
+      if (dynamic_cast<const ControllerMochiArticulatedPose*>(impl))
+        return nb::cast(MochiArticulatedPoseControllerView{{{context, kind, handle}}});
       return nb::cast(ControllerView{{context, kind, handle}});
     case ComponentKind::Sensor:
       if (dynamic_cast<const CameraSensor*>(impl)) return nb::cast(CameraSensorView{{{context, kind, handle}}});
@@ -114,6 +122,23 @@ void export_component_views(nb::module_& m) {
              impl_as<ControllerBasicJscPd>(v, "set_params")
                  .set_params(object_of<ControllerBasicJscPdParams>(p, "set_params: params", "a ControllerBasicJscPdParams"));
            }, "params"_a.none(), "Replaces the gains (empty: defaults, one value: every joint DOF).");
+
+  nb::class_<MochiArticulatedPoseControllerView, ControllerView>(
+      m, "ControllerMochiArticulatedPose", "MOCHI_ARTICULATED_POSE: the engine's pose controller, aimed by compute_output.")
+      .def_static("type_name", [] { return std::string(ControllerMochiArticulatedPose::kTypeName); })
+      .def("get_params", [](const MochiArticulatedPoseControllerView& v) { return impl_as<ControllerMochiArticulatedPose>(v, "get_params").params(); })
+      .def("set_params", [](const MochiArticulatedPoseControllerView& v, const ControllerMochiArticulatedPoseParams& p) {
+             impl_as<ControllerMochiArticulatedPose>(v, "set_params").set_params(p);
+           }, "params"_a, "Keeps the params; once initialized, also sets the engine controller's gains.")
+      .def("initialize", [](const MochiArticulatedPoseControllerView& v, bool remove_existing) {
+             impl_as<ControllerMochiArticulatedPose>(v, "initialize").initialize(remove_existing);
+           }, "remove_existing"_a = false,
+           "Adds the engine pose controller to the articulation (replacing one when remove_existing, else an error).")
+      .def("compute_output", [](const MochiArticulatedPoseControllerView& v, const ControllerMochiArticulatedPoseObsv& obsv,
+                                const ControllerMochiArticulatedPoseTarget& target) {
+             impl_as<ControllerMochiArticulatedPose>(v, "compute_output").compute_output(obsv, target);
+             return SpanOf<const real>::owning({});
+           }, "obsv"_a, "target"_a, "Aims the engine controller at the target; returns no efforts (the constraints act inside the step).");
 
   nb::class_<CameraSensorView, SensorView>(m, "CameraSensor", "SENSOR_CAMERA: intrinsics and mounting for renderers.")
       .def_static("type_name", [] { return std::string(CameraSensor::kTypeName); })

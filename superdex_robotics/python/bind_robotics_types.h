@@ -65,6 +65,7 @@ struct SensorView : ComponentView {};
 struct ActuatorView : ComponentView {};
 struct CameraSensorView : SensorView {};
 struct JscPdControllerView : ControllerView {};
+struct MochiArticulatedPoseControllerView : ControllerView {};
 
 // The handle of kind K from a typed handle or an int; a handle of another kind is refused
 // (superdex::Error naming `what`).

@@ -4,6 +4,7 @@
 
 #include "builtins.h"
 #include "superdex/robotics/controller_basic_jsc_pd.h"
+#include "superdex/robotics/controller_mochi_articulated_pose.h"
 #include "superdex/robotics/sensor_camera.h"
 
 namespace superdex::robotics {
@@ -15,6 +16,7 @@ void register_builtin_components(Context& ctx) {
   ctx.register_type(K::Controller, ControllerBasicJscPd::kTypeName, make_joint_pd_controller);
   ctx.register_type(K::Controller, "BASIC_OSC_PD", make_osc_pd_controller);
   ctx.register_type(K::Controller, "ARTICULATED_POSE", make_articulated_pose_controller);
+  ctx.register_type(K::Controller, ControllerMochiArticulatedPose::kTypeName, make_mochi_articulated_pose_controller);
   ctx.register_type(K::Controller, "HYBRID_FORCE_VELOCITY", make_hybrid_force_velocity_controller);
   ctx.register_type(K::Actuator, "IDEAL_PD", make_ideal_pd_actuator);
   ctx.register_type(K::Actuator, "DC_MOTOR", make_dc_motor_actuator, dc_motor_armature);

@@ -15,6 +15,7 @@ std::unique_ptr<Component> make_joint_command_controller(const ComponentArgs& ar
 std::unique_ptr<Component> make_joint_pd_controller(const ComponentArgs& args);
 std::unique_ptr<Component> make_osc_pd_controller(const ComponentArgs& args);
 std::unique_ptr<Component> make_articulated_pose_controller(const ComponentArgs& args);
+std::unique_ptr<Component> make_mochi_articulated_pose_controller(const ComponentArgs& args);
 std::unique_ptr<Component> make_hybrid_force_velocity_controller(const ComponentArgs& args);
 // actuators
 std::unique_ptr<Component> make_ideal_pd_actuator(const ComponentArgs& args);

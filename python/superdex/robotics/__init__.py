@@ -37,6 +37,10 @@ SensorBase = _r.SensorBase
 ActuatorBase = _r.ActuatorBase
 ControllerBasicJscPd = _r.ControllerBasicJscPd
 ControllerBasicJscPdParams = _r.ControllerBasicJscPdParams
+ControllerMochiArticulatedPose = _r.ControllerMochiArticulatedPose
+ControllerMochiArticulatedPoseParams = _r.ControllerMochiArticulatedPoseParams
+ControllerMochiArticulatedPoseObsv = _r.ControllerMochiArticulatedPoseObsv
+ControllerMochiArticulatedPoseTarget = _r.ControllerMochiArticulatedPoseTarget
 CameraSensor = _r.CameraSensor
 CameraSensorParams = _r.CameraSensorParams
 # batched stepping of scenes of one model (scene_batch.h; superdex.lab builds on it)

@@ -19,6 +19,8 @@
 ///                     (default false: adds the bias forces c(q, v), gravity and Coriolis).
 ///   BASIC_OSC_PD      operational-space PD of an end-effector link relative to a base link.
 ///   ARTICULATED_POSE  stiff joint pose tracking, implicit in the step's dt.
+///   MOCHI_ARTICULATED_POSE  the physics engine's pose controller, aimed by the script through
+///                     compute_output (no part in the pipeline: controller_mochi_articulated_pose.h).
 ///   HYBRID_FORCE_VELOCITY  resolved-rate velocity control of a link's origin along a Cartesian
 ///                     target or trajectory, with force regulation along one axis in contact;
 ///                     writes joint velocities (for velocity actuators).
