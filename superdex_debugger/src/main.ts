@@ -178,9 +178,9 @@ class App {
     this.shownScene = handle;
     const scene = this.scene();
     this.view.refit();
-    this.view.setActors(scene ? [...scene.actors.values()] : [], (a) => this.colorOf(a));
     this.plots.setScene(scene);
     this.currentAbs = scene && scene.frames.length ? (this.replay ? scene.frames.start : scene.frames.end - 1) : -1;
+    this.view.setActors(scene ? this.store.actorsAt(scene, this.currentAbs) : [], (a) => this.colorOf(a));
     this.shownFrame = undefined;
     this.dataDirty = true;
   }
@@ -195,7 +195,7 @@ class App {
         if (first) this.select({ scene: first.handle });
       }
       const scene = this.scene();
-      if (scene) this.view.setActors([...scene.actors.values()], (a) => this.colorOf(a));
+      if (scene) this.view.setActors(this.store.actorsAt(scene, this.currentAbs), (a) => this.colorOf(a));
       this.toolbar.setHasRenderModels(this.view.hasRenderModels());
       // A destroyed actor cannot stay selected.
       const sel = this.selection;
@@ -217,6 +217,9 @@ class App {
     const frame = frames?.get(this.currentIndex());
     if (frame !== this.shownFrame) {
       this.shownFrame = frame;
+      // actors destroyed later in the run are shown up to their last frame
+      const scene = this.scene();
+      if (scene?.retired.size) this.view.setActors(this.store.actorsAt(scene, this.currentAbs), (a) => this.colorOf(a));
       this.view.applyFrame(frame);
       this.propsDirty = true;
       this.dataDirty = true;
@@ -283,6 +286,7 @@ class App {
       scenes: () => [...this.store.scenes.keys()],
       renderModelCount: () => this.view.renderModelCount(),
       drawCount: () => this.view.drawCount(),
+      shownActors: () => this.view.shownActors(),
     });
   }
 }

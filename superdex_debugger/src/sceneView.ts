@@ -186,6 +186,11 @@ export class SceneView {
     this.requestRender();
   }
 
+  /** Handles of the actors drawn. */
+  shownActors(): number[] {
+    return [...this.visuals.keys()];
+  }
+
   /** Fits the camera again on the next frame (another scene is shown). */
   refit(): void {
     this.fitted = false;

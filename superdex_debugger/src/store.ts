@@ -24,6 +24,9 @@ export interface SceneState {
   actors: Map<number, ActorMsg>;
   /** Link handle -> actor handle, for the live actors. */
   linkOwner: Map<number, number>;
+  /** Destroyed actors by handle, with the absolute index of the last frame they were in (a
+   * replay shows them up to that frame). */
+  retired: Map<number, { actor: ActorMsg; lastFrame: number }>;
   /** Frames as received (never modified). */
   frames: Ring<FrameMsg>;
   /** Absolute index of the first frame since simulated time last went backwards (a restore). */
@@ -120,6 +123,7 @@ export class DebugStore extends Emitter<StoreEvents> {
         name: `scene ${handle}`,
         actors: new Map(),
         linkOwner: new Map(),
+        retired: new Map(),
         frames: new Ring<FrameMsg>(MAX_FRAMES_PER_SCENE),
         epochStart: 0,
         signals: new SignalStore(MAX_FRAMES_PER_SCENE),
@@ -156,8 +160,16 @@ export class DebugStore extends Emitter<StoreEvents> {
     const s = this.scenes.get(scene);
     if (!s || !s.actors.has(handle)) return;
     this.forgetLinks(s, handle);
+    s.retired.set(handle, { actor: s.actors.get(handle)!, lastFrame: s.frames.end - 1 });
     s.actors.delete(handle);
     this.emit('structure', s);
+  }
+
+  /** The actors a frame shows: the live ones and those destroyed after it (absolute index). */
+  actorsAt(scene: SceneState, frame: number): ActorMsg[] {
+    const out = [...scene.actors.values()];
+    for (const r of scene.retired.values()) if (frame >= 0 && frame <= r.lastFrame) out.push(r.actor);
+    return out;
   }
 
   private forgetLinks(s: SceneState, actor: number): void {

@@ -37,6 +37,9 @@ export interface SuperdexHook {
   renderModelCount(): number;
   /** Times the 3D view has been drawn since the page loaded. */
   drawCount(): number;
+  /** Handles of the actors drawn in the 3D view (a replay shows destroyed actors up to their
+   * last frame). */
+  shownActors(): number[];
 }
 
 declare global {

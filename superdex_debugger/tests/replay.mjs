@@ -98,6 +98,15 @@ try {
   await page.evaluate((k) => window.superdex.seek(k), mid);
   out.seekWorks = Boolean(await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, mid, 10000));
 
+  // The actors drawn at the first and the last frame (destroyed ones only up to their last frame).
+  const shownAt = async (k) => {
+    await page.evaluate((k) => window.superdex.seek(k), k);
+    await waitFor(page, (k) => window.superdex.currentFrameIndex() === k, k, 10000);
+    await page.waitForTimeout(100);
+    return page.evaluate(() => window.superdex.shownActors());
+  };
+  out.shownActorsFirst = await shownAt(0);
+  out.shownActorsLast = await shownAt(kept.length - 1);
   out.actorNames = await page.evaluate(() => window.superdex.actorNames());
   // Render models load asynchronously; a model that cannot be loaded is not counted.
   const modelCount = () => (typeof window.superdex.renderModelCount === 'function' ? window.superdex.renderModelCount() : null);

@@ -136,6 +136,30 @@ def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
     assert proc.returncode == 0
 
 
+def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(tmp_path):
+    """The constraints example destroys its upper box before 0.5 s: replayed, the page draws the
+    box at the first frame and not at the last."""
+    recording = tmp_path / "pendulum.jsonl"
+    env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
+    example = REPO / "superdex_physics" / "examples" / "constraints_double_pendulum.py"
+    subprocess.run([sys.executable, str(example), "--seconds", "0.5", "--debugger"], env=env, check=True, capture_output=True,
+                   timeout=900 * SLOW, cwd=REPO)
+    lines = [json.loads(l) for l in recording.read_text().splitlines()]
+    (upper,) = [l["handle"] for l in lines if l["type"] == "actor" and l.get("name") == "upper"]
+    assert any(l["type"] == "destroy" and l["handle"] == upper for l in lines)
+    proc, url, _ = start_and_read_url([sys.executable, "-m", "superdex", "view", str(recording), "--no-browser"],
+                                      headless_env(), "superdex view: replaying")
+    try:
+        r = run_node("replay.mjs", url, recording)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+    details = json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
+    assert r["replayEnded"], details
+    assert upper in r["shownActorsFirst"], details
+    assert upper not in r["shownActorsLast"], details
+
+
 RECORD_A_BALL = """
 import sys
 import superdex.physics as sdp
