@@ -39,6 +39,26 @@ void export_experimental(nb::module_& m) {
       .field("allow_compressive_force", &ForceControlActuatorParams::allow_compressive_force, "the transmission can push")
       .done();
 
+  nb::enum_<RoutingElementType>(m, "RoutingElementType", "What a spatial tendon's routing element is.")
+      .value("WAYPOINT", RoutingElementType::Waypoint)
+      .value("LINEAR_JOINT", RoutingElementType::LinearJoint);
+  StructBinder<RoutingElement>(m, "RoutingElement",
+                               "One element of a spatial tendon's route, in order: a WAYPOINT (index: a link; local_position in its\n"
+                               "frame, m) or a LINEAR_JOINT (index: a single-DOF joint; coefficient, m per unit of joint motion). A\n"
+                               "segment joins adjacent waypoints only.")
+      .field("type", &RoutingElement::type)
+      .field("index", &RoutingElement::index)
+      .field("local_position", &RoutingElement::local_position, "m, link frame (waypoints)")
+      .field("coefficient", &RoutingElement::coefficient, "m per unit of joint motion (linear-joint elements)")
+      .done();
+  bind_dynamic_array<RoutingElement>(m, "DynamicArrayRoutingElement");
+  StructBinder<SpatialTendonParams>(e, "SpatialTendonParams",
+                                    "A spatial tendon: displacement = its segments' length less their length with the joints at zero, plus\n"
+                                    "its linear-joint terms (m).")
+      .field("routing_elements", &SpatialTendonParams::routing_elements)
+      .done();
+  e.def("add_spatial_tendon", [](Actor& actor, const SpatialTendonParams& params) { return actor.scene.add_spatial_tendon(actor.handle, params); },
+        "actor"_a, "params"_a, "Adds a spatial tendon to an articulated actor; returns its transmission index.");
   e.def("add_linear_transmission", [](Actor& actor, const LinearTransmissionParams& params) {
           return actor.scene.add_linear_transmission(actor.handle, params);
         }, "actor"_a, "params"_a, "Adds a linear transmission to an articulated actor; returns its index.");

@@ -3,9 +3,12 @@
 
 - the displacement is sum c_k q_k and its Jacobian the coefficients summed per DOF;
 - a displacement-control actuator (implicit spring-damper) on a transmission over a slider
-  holds it where stiffness (target - d) balances gravity, pulls but never pushes unless allowed,
-  and follows a target set through its state variable;
-- a force-control actuator accelerates a free slider at f c / m;
+  holds it where its tension stiffness (d - target), which shortens the transmission (joint
+  force -f c), balances gravity; it pulls but never pushes unless allowed, and follows a target
+  set through its state variable;
+- a force-control actuator's tension f accelerates a free slider at -f c / m;
+- spatial tendons: the route's length change and its rate, and a tendon holding a rod up where
+  the torques balance;
 - bad indices, actors and values raise superdex.physics.Error naming the argument.
 """
 
@@ -67,25 +70,25 @@ def test_displacement_and_jacobian_sum_the_coefficients(scene):
 
 
 def test_displacement_control_holds_a_slider_against_gravity(scene):
-    # d = -2 q (pulling the slider up lowers d... the tension pulls d up, i.e. the slider down)
-    # with c = +2: tension f = K (target - 2 q) on the joint as 2 f balances m g: q = (target - m g / (2 K)) / 2
+    # d = -2 q: the rope shortens (d down) by raising the slider. Tension f = K (d - target) on the
+    # joint as -f c = 2 f balances m g: f = m g / 2, d = target + m g / (2 K), q = -d / 2
     actor = slider(scene)
-    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[2.0]))
-    K, target = 400.0, 0.3
+    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[-2.0]))
+    K, target = 400.0, -0.6
     ex.attach_displacement_control_actuator(actor, k, ex.DisplacementControlActuatorParams(target_displacement=target, stiffness=K,
                                                                                            damping=40.0))
     for _ in range(1500):
         scene.step(0.004)
     q = float(actor.get_articulated_pose()[0])
-    # a rope pulls only: here it must pull up (f > 0 raises d = 2 q), f = m g / 2
-    assert q == pytest.approx((target - 2.0 * G / (2 * K)) / 2, abs=1e-6)
+    # a rope pulls only: here it pulls up (f > 0 shortens d = -2 q), f = m g / 2
+    assert q == pytest.approx(-(target + 2.0 * G / (2 * K)) / 2, abs=1e-6)
 
 
 def test_a_rope_pulls_but_does_not_push(scene):
-    # the slider rests above the target: the rope would have to push it up to hold it, so it
-    # falls freely; allowed to push, the actuator holds it
+    # d = q: falling shortens the transmission below its target (compression), so the rope would
+    # have to push to hold the slider: it falls freely; allowed to push, the actuator holds it
     actor = slider(scene)
-    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[-1.0]))
+    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[1.0]))
     ex.attach_displacement_control_actuator(actor, k, ex.DisplacementControlActuatorParams(target_displacement=0.0, stiffness=1e4))
     for _ in range(50):  # 0.2 s of free fall: 0.196 m
         scene.step(0.004)
@@ -95,7 +98,7 @@ def test_a_rope_pulls_but_does_not_push(scene):
                                                                                            damping=200.0, allow_compressive_force=True))
     for _ in range(1000):
         scene.step(0.004)
-    # -q = d, pushed to where K d balances m g: d = -m g / K... the push holds q = -m g / K
+    # q = d, pushed back where the compression K d (joint force -K d) balances m g: q = -m g / K
     assert float(actor.get_articulated_pose()[0]) == pytest.approx(-2.0 * G / 1e4, abs=1e-6)
 
 
@@ -116,15 +119,15 @@ def test_the_target_is_the_state_variable(scene):
 
 
 def test_force_control_accelerates_a_free_slider(scene):
-    # f = 3 N along d = 0.5 q: joint force 1.5 N on 2 kg, from rest: q = 0.75 t^2 / 2
+    # tension f = 3 N along d = 0.5 q: joint force -1.5 N on 2 kg, from rest: q = -0.75 t^2 / 2
     actor = slider(scene, gravity=False)
     k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[0.5]))
     ex.attach_force_control_actuator(actor, k, ex.ForceControlActuatorParams(force=3.0))
     for _ in range(250):
         scene.step(0.002)
     t = 0.5
-    assert float(actor.get_articulated_joint_velocities()[0]) == pytest.approx(0.75 * t, rel=1e-5)
-    assert float(actor.get_articulated_pose()[0]) == pytest.approx(0.75 * t * t / 2, rel=5e-3)  # (semi-implicit Euler: dt / t)
+    assert float(actor.get_articulated_joint_velocities()[0]) == pytest.approx(-0.75 * t, rel=1e-5)
+    assert float(actor.get_articulated_pose()[0]) == pytest.approx(-0.75 * t * t / 2, rel=5e-3)  # (semi-implicit Euler: dt / t)
 
 
 def test_bad_calls_name_the_argument(scene):
@@ -163,3 +166,151 @@ def test_a_captured_state_keeps_the_actuator_target(scene):
     out = np.zeros(1, dtype=REAL)
     ex.get_transmission_actuator_state_variables(actor, k, out)
     assert out[0] == pytest.approx(0.1)
+
+
+# ---- spatial tendons: a route of waypoints on links, and linear-joint elements
+
+
+def waypoint(link, p):
+    return sdp.RoutingElement(type=sdp.RoutingElementType.WAYPOINT, index=link, local_position=list(p))
+
+
+def linear_joint(joint, c):
+    return sdp.RoutingElement(type=sdp.RoutingElementType.LINEAR_JOINT, index=joint, coefficient=c)
+
+
+def points_W(actor, route):
+    """The world positions of a route's waypoints from the link transforms (float64)."""
+    from contact_helpers import rotation_matrix
+
+    X = actor.get_articulated_link_transforms()
+    out = []
+    for e in route:
+        x = X[e.index]
+        out.append(rotation_matrix(np.asarray(x.rotation, dtype=float)) @ np.asarray(e.local_position, dtype=float) +
+                   np.asarray(x.translation, dtype=float))
+    return out
+
+
+def route_length(actor, route, pose):
+    actor.set_articulated_pose_from_joints(np.asarray(pose, dtype=REAL))
+    p = points_W(actor, route)
+    return sum(float(np.linalg.norm(b - a)) for a, b in zip(p, p[1:]))
+
+
+ROUTE = [waypoint(0, (0.0, 0.1, 0.0)), waypoint(1, (0.0, 0.05, 0.1)), waypoint(2, (0.0, -0.08, 0.12))]
+
+
+def test_a_spatial_tendon_is_its_route_length_less_the_length_with_the_joints_at_zero(scene):
+    actor = chain(scene)
+    k = ex.add_spatial_tendon(actor, ex.SpatialTendonParams(routing_elements=ROUTE))
+    rest = route_length(actor, ROUTE, [0, 0, 0])
+    rng = np.random.default_rng(3)
+    for _ in range(4):
+        pose = rng.uniform(-1.2, 1.2, 3)
+        expected = route_length(actor, ROUTE, pose) - rest
+        assert ex.get_transmission_displacement(actor, k) == pytest.approx(expected, abs=1e-6)
+    assert abs(expected) > 1e-2  # the joints change the route
+
+
+def test_a_linear_joint_element_adds_its_term_and_breaks_the_route(scene):
+    actor = chain(scene)
+    # waypoints 0-1, then a joint term, then waypoint 2: the segment 1-2 is not part of it
+    k = ex.add_spatial_tendon(actor, ex.SpatialTendonParams(routing_elements=ROUTE[:2] + [linear_joint(1, 0.5)] + ROUTE[2:]))
+    pose = [0.3, 0.4, -0.5]
+    expected = route_length(actor, ROUTE[:2], pose) - route_length(actor, ROUTE[:2], [0, 0, 0]) + 0.5 * 0.4
+    actor.set_articulated_pose_from_joints(np.asarray(pose, dtype=REAL))
+    assert ex.get_transmission_displacement(actor, k) == pytest.approx(expected, abs=1e-6)
+
+
+def test_a_spatial_tendons_jacobian_is_its_displacements_rate(scene):
+    actor = chain(scene)
+    k = ex.add_spatial_tendon(actor, ex.SpatialTendonParams(routing_elements=ROUTE + [linear_joint(0, -0.2)]))
+    pose = np.array([0.4, -0.6, 0.9])
+    actor.set_articulated_pose_from_joints(pose.astype(REAL))
+    J = np.zeros(3, dtype=REAL)
+    ex.get_transmission_displacement_jacobian(actor, k, J)
+    h = 1e-6 if sdp.uses_double_precision() else 1e-3
+    for i in range(3):
+        d = []
+        for s in (1, -1):
+            actor.set_articulated_pose_from_joints((pose + s * h * np.eye(3)[i]).astype(REAL))
+            d.append(ex.get_transmission_displacement(actor, k))
+        assert J[i] == pytest.approx((d[0] - d[1]) / (2 * h), abs=1e-6 if sdp.uses_double_precision() else 2e-3)
+
+
+def test_a_tendon_under_tension_holds_a_rod_where_the_torques_balance(scene):
+    """A rod on a hinge (about Y, its 1 kg at L along X) held up by a tendon from a point A of the
+    base (above the rod's horizontal tip) to its tip: at rest the tension's torque -f dl/dq
+    balances the weight's m g L cos q, with dl/dq of the geometry (tip B = L (cos q, 0, -sin q),
+    route l = |B - A|), within 1 %."""
+    scene.set_gravity([0.0, 0.0, -G])
+    L, m, f = 0.4, 1.0, 30.0
+    A = np.array([0.4, 0.0, 0.3])
+    params = sdp.ArticulatedActorParams()
+    params.joints = [sdp.ArticulatedJointParams(type=sdp.ArticulatedJointType.HARD),
+                     sdp.ArticulatedJointParams(type=sdp.ArticulatedJointType.REVOLUTE, axis=[0, 1, 0],
+                                                friction=sdp.ArticulatedJointFrictionParams(viscous=2.0))]
+    params.links = [sdp.ArticulatedLinkParams(parent_link=-1, mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+                    sdp.ArticulatedLinkParams(parent_link=0, mass=m, center_of_mass=[L, 0, 0], moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3])]
+    rod = scene.create_articulated_actor(params)
+    k = ex.add_spatial_tendon(rod, ex.SpatialTendonParams(routing_elements=[waypoint(0, A), waypoint(1, (L, 0, 0))]))
+    ex.attach_force_control_actuator(rod, k, ex.ForceControlActuatorParams(force=f))
+    for _ in range(3000):
+        scene.step(0.005)
+    q = float(rod.get_articulated_pose()[0])
+    B = L * np.array([np.cos(q), 0.0, -np.sin(q)])
+    u = (B - A) / np.linalg.norm(B - A)
+    dLdq = float(u @ (L * np.array([-np.sin(q), 0.0, -np.cos(q)])))
+    assert abs(float(rod.get_articulated_joint_velocities()[0])) < (1e-6 if sdp.uses_double_precision() else 1e-4)
+    assert -1.2 < q < 1.2 and abs(np.cos(q)) > 0.3  # held up off the vertical: the balance is not trivial
+    # the generalized forces on the hinge: the tension's -f dl/dq (it shortens the route) and
+    # gravity's m g L cos q
+    assert -f * dLdq + m * G * L * np.cos(q) == pytest.approx(0, abs=1e-2 * m * G * L)
+
+
+RECORD_A_TENDON = """
+import sys
+import superdex.physics as sdp
+sdp.initialize(num_worker_threads=0)
+scene = sdp.create_scene("tendon")
+params = sdp.ArticulatedActorParams()
+params.joints = [sdp.ArticulatedJointParams(type=sdp.ArticulatedJointType.REVOLUTE, axis=[1, 0, 0],
+                                            parent_link_from_joint=sdp.TransformRT(translation=[0, 0, 0.2 if i else 0])) for i in range(3)]
+params.links = [sdp.ArticulatedLinkParams(parent_link=i - 1, shape=sdp.create_box_shape(half_extents=[0.05, 0.05, 0.05]), mass=1.0)
+                for i in range(3)]
+arm = scene.create_articulated_actor(params)
+W = lambda link, p: sdp.RoutingElement(type=sdp.RoutingElementType.WAYPOINT, index=link, local_position=p)
+sdp.experimental.add_spatial_tendon(arm, sdp.experimental.SpatialTendonParams(routing_elements=[
+    W(0, [0, 0.1, 0]), W(1, [0, 0.05, 0.1]),
+    sdp.RoutingElement(type=sdp.RoutingElementType.LINEAR_JOINT, index=1, coefficient=0.1), W(2, [0, -0.08, 0.12])]))
+arm.set_articulated_pose_from_joints([0.3, -0.4, 0.5])
+sdp.debugger.attach()
+scene.step(0.001)
+sdp.debugger.detach()
+X = arm.get_articulated_link_transforms()
+print(repr([list(x.translation) + list(x.rotation) for x in X]))
+"""
+
+
+def test_the_debugger_frames_carry_the_tendons_segments(tmp_path):
+    """A frame of a recording holds the route's one segment (the linear-joint element breaks the
+    route between waypoints 1 and 2): from waypoint 0 to waypoint 1, at the links' frames."""
+    import ast
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from contact_helpers import rotation_matrix
+
+    recording = tmp_path / "tendon.jsonl"
+    env = dict(os.environ, SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0")
+    proc = subprocess.run([sys.executable, "-c", RECORD_A_TENDON], env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    X = ast.literal_eval(proc.stdout.strip().splitlines()[-1])
+    frames = [json.loads(line) for line in recording.read_text().splitlines() if '"frame"' in line]
+    (tendon,) = frames[-1]["tendons"]
+    assert tendon["i"] == 0
+    world = lambda link, p: rotation_matrix(np.asarray(X[link][3:], dtype=float)) @ np.asarray(p, dtype=float) + X[link][:3]
+    np.testing.assert_allclose(tendon["s"], np.concatenate([world(0, [0, 0.1, 0]), world(1, [0, 0.05, 0.1])]), atol=1e-5)

@@ -92,9 +92,19 @@ struct ArticulationModel {
     }
   };
   std::vector<Tendon> tendons;
-  // linear transmissions added at run time (Scene::add_linear_transmission): the same sums, no
-  // range or spring of their own; their actuators are state (ArticulationState)
-  std::vector<Tendon> transmissions;
+  // transmissions added at run time (Scene::add_linear_transmission, add_spatial_tendon): the
+  // same sums, plus for a spatial tendon the lengths of its segments between waypoints on links
+  // (their rest length taken off, rest_length); no range or spring of their own; their
+  // actuators are state (ArticulationState)
+  struct Waypoint {
+    int link = 0;
+    Vec3 p_L = Vec3::Zero();  // in the link frame (m)
+    bool to_next = false;     // a segment joins it to the next waypoint
+  };
+  struct Transmission : Tendon {
+    std::vector<Waypoint> waypoints;
+  };
+  std::vector<Transmission> transmissions;
   ArticulationDesc desc;               // the validated description it was built from
 };
 

@@ -7,6 +7,7 @@
 
 #include "multibody/dynamics.h"
 #include "multibody/kinematics.h"
+#include "multibody/transmission_path.h"
 #include "core/spatial.h"
 #include "solver/step_settings.h"
 
@@ -137,33 +138,35 @@ void tendon_springs(const ArticulationModel& model, const ArticulationState& sta
   }
 }
 
-// Force-controlled transmissions: the tension's joint efforts f c, explicit (dt f c into r).
-void transmission_forces(const ArticulationModel& model, const ArticulationState& state, real dt, ArticulationTerms& t) {
+// Force-controlled transmissions: the tension's joint efforts -f dd/dv (it shortens the
+// transmission), explicit (into r).
+void transmission_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin, real dt,
+                         ArticulationTerms& t) {
   for (size_t i = 0; i < model.transmissions.size(); ++i) {
     const TransmissionActuator& act = state.transmission_actuators[i];
     if (act.kind != TransmissionActuator::Kind::ForceControl) continue;
-    const ArticulationModel::Tendon& path = model.transmissions[i];
-    for (size_t k = 0; k < path.dofs.size(); ++k) t.r[path.dofs[k]] += dt * act.value * path.coefficients[k];
+    t.r -= dt * act.value * transmission_jacobian(model, kin, model.transmissions[i]);
   }
 }
 
-// Displacement-controlled transmissions: a row on the displacement rate c . v, an implicit
-// spring-damper as a joint drive is, that only pulls (unilateral) unless it may push.
-void transmission_drive_rows(const ArticulationModel& model, const ArticulationState& state, real dt, const StepSettings& params,
-                             ArticulationTerms& t) {
+// Displacement-controlled transmissions: a row on the transmission's shortening rate, an
+// implicit spring-damper as a joint drive is, that only pulls (unilateral) unless it may push.
+void transmission_drive_rows(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin, real dt,
+                             const StepSettings& params, ArticulationTerms& t) {
   for (size_t i = 0; i < model.transmissions.size(); ++i) {
     const TransmissionActuator& act = state.transmission_actuators[i];
     if (act.kind != TransmissionActuator::Kind::DisplacementControl || (act.stiffness <= 0 && act.damping <= 0)) continue;
-    const ArticulationModel::Tendon& path = model.transmissions[i];
+    const ArticulationModel::Transmission& path = model.transmissions[i];
     JointRow row;
-    row.J = path.jacobian(model.nv);
+    // the row's rate is the shortening rate -dd/dt: a rope's tension acts along it
+    row.J = -transmission_jacobian(model, kin, path);
     MatX X = row.J;
     const real w = compliance_diagonal(t.A_factor, X)[0];
     const real per_rate = dt * act.stiffness + act.damping;  // tension per unit of displacement rate
     row.block.kind = act.allow_compressive_force ? BlockKind::Bounded : BlockKind::Unilateral;
     // floored only against ill-conditioning (far below near-rigid, so the spring stays exact)
     row.block.R = std::max(1 / (dt * per_rate), real(1e-3) * near_rigid_factor(params) * w);
-    row.block.vhat = act.stiffness * (act.value - path.length(state.q)) / per_rate;
+    row.block.vhat = act.stiffness * (transmission_displacement(model, state, kin, path) - act.value) / per_rate;
     row.block.bound = std::numeric_limits<real>::infinity();
     t.joint_rows.push_back(std::move(row));
   }
@@ -254,14 +257,14 @@ void articulation_terms(const Articulation& a, const Vec3& g_W, real dt, const S
     for (int k = 0; k < j.nv; ++k) t.A(j.v_offset + k, j.v_offset + k) += dt * j.viscous;
   implicit_gyroscopic(model, a.state, dt, t.r);
   tendon_springs(model, a.state, dt, t);
-  transmission_forces(model, a.state, dt, t);
+  transmission_forces(model, a.state, a.kin, dt, t);
   t.A_factor.compute(t.A, model.dof_parent);
   t.v_free = t.r;
   t.A_factor.solve_in_place(t.v_free);
   joint_rows(model, a.state, dt, params, t);
   coupling_rows(model, a.state, dt, params, t);
   tendon_limit_rows(model, a.state, dt, params, t);
-  transmission_drive_rows(model, a.state, dt, params, t);
+  transmission_drive_rows(model, a.state, a.kin, dt, params, t);
   link_drive_rows(model, a.state, a.kin, t.A_factor, dt, params, t.joint_rows);
 }
 

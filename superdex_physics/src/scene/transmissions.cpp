@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "multibody/kinematics.h"
+#include "multibody/transmission_path.h"
 #include "scene/actor_lookup.h"
 #include "scene/scene_data.h"
 #include "superdex/physics/error.h"
@@ -36,6 +38,25 @@ void attach(Articulation& a, int transmission, const TransmissionActuator& act, 
   a.state.transmission_actuators[transmission] = act;
 }
 
+// Adds c q_j to a transmission's linear sum; `field` names the joint index's argument.
+void add_joint_term(const Articulation& a, ArticulationModel::Transmission& path, int j, real c, const std::string& field,
+                    const std::string& coefficient_field) {
+  if (j < 0 || j >= static_cast<int>(a.model.joints.size()))
+    throw Error(field + ": expected the index of a joint (0 to " + std::to_string(a.model.joints.size()) + " - 1), got " + std::to_string(j));
+  const JointModel& joint = a.model.joints[j];
+  if (joint.nv != 1) throw Error(field + ": joint " + std::to_string(j) + " has " + std::to_string(joint.nv) + " DOFs; transmissions run over single-DOF joints");
+  if (!std::isfinite(c)) throw Error(coefficient_field + " must be finite");
+  path.dofs.push_back(joint.v_offset);
+  path.q.push_back(joint.q_offset);
+  path.coefficients.push_back(c);
+}
+
+int add_transmission(Articulation& a, ArticulationModel::Transmission path) {
+  a.model.transmissions.push_back(std::move(path));
+  a.state.transmission_actuators.resize(a.model.transmissions.size());
+  return static_cast<int>(a.model.transmissions.size()) - 1;
+}
+
 }  // namespace
 
 int Scene::add_linear_transmission(ActorHandle h, const LinearTransmissionParams& p) {
@@ -44,37 +65,57 @@ int Scene::add_linear_transmission(ActorHandle h, const LinearTransmissionParams
   if (p.joint_indices.size() != p.joint_coefficients.size())
     throw Error(std::string(what) + ": params.joint_indices has " + std::to_string(p.joint_indices.size()) +
                 " entries and params.joint_coefficients " + std::to_string(p.joint_coefficients.size()) + "; one coefficient per joint");
-  ArticulationModel::Tendon path;
-  for (size_t k = 0; k < p.joint_indices.size(); ++k) {
-    const int j = p.joint_indices[k];
-    const std::string field = std::string(what) + ": params.joint_indices[" + std::to_string(k) + "]";
-    if (j < 0 || j >= static_cast<int>(a.model.joints.size()))
-      throw Error(field + ": expected the index of a joint (0 to " + std::to_string(a.model.joints.size()) + " - 1), got " + std::to_string(j));
-    const JointModel& joint = a.model.joints[j];
-    if (joint.nv != 1) throw Error(field + ": joint " + std::to_string(j) + " has " + std::to_string(joint.nv) + " DOFs; transmissions run over single-DOF joints");
-    if (!std::isfinite(p.joint_coefficients[k]))
-      throw Error(std::string(what) + ": params.joint_coefficients[" + std::to_string(k) + "] must be finite");
-    path.dofs.push_back(joint.v_offset);
-    path.q.push_back(joint.q_offset);
-    path.coefficients.push_back(p.joint_coefficients[k]);
+  ArticulationModel::Transmission path;
+  for (size_t k = 0; k < p.joint_indices.size(); ++k)
+    add_joint_term(a, path, p.joint_indices[k], p.joint_coefficients[k], std::string(what) + ": params.joint_indices[" + std::to_string(k) + "]",
+                   std::string(what) + ": params.joint_coefficients[" + std::to_string(k) + "]");
+  return add_transmission(a, std::move(path));
+}
+
+int Scene::add_spatial_tendon(ActorHandle h, const SpatialTendonParams& p) {
+  const char* what = "add_spatial_tendon";
+  Articulation& a = articulated(scene_data(handle_), h, what);
+  ArticulationModel::Transmission path;
+  bool last_was_waypoint = false;
+  for (size_t k = 0; k < p.routing_elements.size(); ++k) {
+    const RoutingElement& e = p.routing_elements[k];
+    const std::string field = std::string(what) + ": params.routing_elements[" + std::to_string(k) + "]";
+    if (e.type == RoutingElementType::LinearJoint) {
+      add_joint_term(a, path, e.index, e.coefficient, field + ".index", field + ".coefficient");
+      last_was_waypoint = false;
+      continue;
+    }
+    if (e.index < 0 || e.index >= a.model.num_links)
+      throw Error(field + ".index: expected the index of a link (0 to " + std::to_string(a.model.num_links) + " - 1), got " + std::to_string(e.index));
+    if (!e.local_position.allFinite()) throw Error(field + ".local_position must be finite");
+    // a segment joins it to the previous element when that was a waypoint too
+    if (last_was_waypoint) path.waypoints.back().to_next = true;
+    path.waypoints.push_back({e.index, e.local_position, false});
+    last_was_waypoint = true;
   }
-  a.model.transmissions.push_back(std::move(path));
-  a.state.transmission_actuators.resize(a.model.transmissions.size());
-  return static_cast<int>(a.model.transmissions.size()) - 1;
+  if (path.waypoints.empty() && path.dofs.empty()) throw Error(std::string(what) + ": params.routing_elements is empty");
+  // the segments' length with every joint at zero (the base where it is: lengths do not depend on it)
+  ArticulationKinematics rest;
+  VecX q = a.state.q;
+  const VecX zero_pose = VecX::Zero(a.model.nv);
+  q_from_pose(a.model, zero_pose.data(), false, q);
+  update_kinematics(a.model, q, VecX::Zero(a.model.nv), a.state.X_W_base, rest);
+  path.rest_length = segments_length(path, rest.X_WL);
+  return add_transmission(a, std::move(path));
 }
 
 real Scene::transmission_displacement(ActorHandle h, int transmission) const {
   const char* what = "get_transmission_displacement";
   const Articulation& a = articulated(scene_data(handle_), h, what);
   check_index(a, transmission, what);
-  return a.model.transmissions[transmission].length(a.state.q);
+  return physics::transmission_displacement(a.model, a.state, a.kin, a.model.transmissions[transmission]);
 }
 
 VecX Scene::transmission_displacement_jacobian(ActorHandle h, int transmission) const {
   const char* what = "get_transmission_displacement_jacobian";
   const Articulation& a = articulated(scene_data(handle_), h, what);
   check_index(a, transmission, what);
-  return a.model.transmissions[transmission].jacobian(a.model.nv);
+  return transmission_jacobian(a.model, a.kin, a.model.transmissions[transmission]);
 }
 
 void Scene::attach_displacement_control_actuator(ActorHandle h, int transmission, const DisplacementControlActuatorParams& p) {

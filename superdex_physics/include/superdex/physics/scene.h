@@ -272,6 +272,8 @@ class Scene {
   // bad argument: an actor that is not articulated, an index out of range, a bad joint list.
   /// Adds a linear transmission; returns its index (0, 1, ... in order of addition).
   int add_linear_transmission(ActorHandle articulation, const LinearTransmissionParams& params);
+  /// Adds a spatial tendon (a transmission: same index sequence, same actuators).
+  int add_spatial_tendon(ActorHandle articulation, const SpatialTendonParams& params);
   /// Its displacement d at the current pose (m).
   real transmission_displacement(ActorHandle articulation, int transmission) const;
   /// dd/dv over the actor's DOFs (num_dofs entries).
