@@ -9,6 +9,7 @@ export interface ToolbarHandlers {
   setFramesVisible(v: boolean): void;
   setContactsVisible(v: boolean): void;
   setConstraintsVisible(v: boolean): void;
+  setTendonsVisible(v: boolean): void;
   /** Also draw the colliders of links shown with a render model. */
   setCollidersVisible(v: boolean): void;
   /** Force arrow scale, m/N. */
@@ -49,6 +50,7 @@ export class Toolbar {
         <label class="toggle"><input type="checkbox" data-id="frames"><span>Frames</span></label>
         <label class="toggle"><input type="checkbox" data-id="contacts" checked><span>Contacts</span></label>
         <label class="toggle"><input type="checkbox" data-id="constraints" checked><span>Constraints</span></label>
+        <label class="toggle"><input type="checkbox" data-id="tendons" checked><span>Tendons</span></label>
         <label class="scale" title="Force arrow length per newton">
           <input type="range" data-id="fscale" min="${FORCE_EXP.min}" max="${FORCE_EXP.max}" step="0.05" value="${FORCE_EXP.initial}">
           <span data-id="fscale-label"></span>
@@ -69,6 +71,7 @@ export class Toolbar {
     q<HTMLInputElement>('colliders').addEventListener('change', (e) => h.setCollidersVisible((e.target as HTMLInputElement).checked));
     q<HTMLInputElement>('contacts').addEventListener('change', (e) => h.setContactsVisible((e.target as HTMLInputElement).checked));
     q<HTMLInputElement>('constraints').addEventListener('change', (e) => h.setConstraintsVisible((e.target as HTMLInputElement).checked));
+    q<HTMLInputElement>('tendons').addEventListener('change', (e) => h.setTendonsVisible((e.target as HTMLInputElement).checked));
     const fs = q<HTMLInputElement>('fscale');
     const fsLabel = q('fscale-label');
     const onScale = () => {

@@ -59,6 +59,7 @@ class App {
       setFramesVisible: (v) => this.view.setFramesVisible(v),
       setContactsVisible: (v) => this.view.setContactsVisible(v),
       setConstraintsVisible: (v) => this.view.setConstraintsVisible(v),
+      setTendonsVisible: (v) => this.view.setTendonsVisible(v),
       setCollidersVisible: (v) => this.view.setCollidersVisible(v),
       setForceScale: (s) => this.view.setForceScale(s),
     });

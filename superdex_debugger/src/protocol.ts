@@ -157,6 +157,13 @@ export interface JointState {
 }
 
 /** State of a scene after a step. */
+/** A spatial tendon of an articulated actor: its segments, flat [ax, ay, az, bx, by, bz, ...], m. */
+export interface TendonRoute {
+  a: number;
+  i: number;
+  s: number[];
+}
+
 export interface FrameMsg {
   type: 'frame';
   scene: number;
@@ -171,6 +178,8 @@ export interface FrameMsg {
   contacts?: Contact[];
   /** The scene's constraints (optional). */
   constraints?: ConstraintMarker[];
+  /** The spatial tendons' routes (optional). */
+  tendons?: TendonRoute[];
   /** Joint state per actor handle (optional). */
   joints?: Record<string, JointState>;
   /** Named scalar or vector signals to plot (optional). */

@@ -3,6 +3,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { RoomEnvironment } from 'three/examples/jsm/environments/RoomEnvironment.js';
 import { ActorVisual, type PickInfo } from './actorVisual';
 import { ConstraintsView } from './constraintsView';
+import { TendonsView } from './tendonsView';
 import { ContactsView } from './contactsView';
 import type { ActorMsg, Axes, FrameMsg } from './protocol';
 
@@ -36,6 +37,7 @@ export class SceneView {
   private readonly visuals = new Map<number, ActorVisual>();
   private readonly contacts = new ContactsView();
   private readonly constraints = new ConstraintsView();
+  private readonly tendons = new TendonsView();
   private grid: THREE.GridHelper | null = null;
   private readonly hemi = new THREE.HemisphereLight('#dfe8ff', '#2a2e36', 1.6);
   private readonly sun = new THREE.DirectionalLight('#ffffff', 2.4);
@@ -78,7 +80,7 @@ export class SceneView {
     this.sun.shadow.mapSize.setScalar(software ? 1024 : 2048);
     this.sun.shadow.bias = -0.0004;
     this.sun.shadow.normalBias = 0.01;
-    this.scene.add(this.hemi, this.sun, this.sun.target, this.actorsRoot, this.contacts.root, this.constraints.root);
+    this.scene.add(this.hemi, this.sun, this.sun.target, this.actorsRoot, this.contacts.root, this.constraints.root, this.tendons.root);
 
     this.controls = this.makeControls();
     this.setAxes('FLU');
@@ -203,6 +205,7 @@ export class SceneView {
     for (const v of this.visuals.values()) v.applyFrame(frame);
     this.contacts.update(frame?.contacts);
     this.constraints.update(frame?.constraints);
+    this.tendons.update(frame?.tendons);
     if (!this.fitted && frame && this.visuals.size > 0) {
       this.fitted = true;
       this.fit();
@@ -280,6 +283,11 @@ export class SceneView {
 
   setConstraintsVisible(v: boolean): void {
     this.constraints.root.visible = v;
+    this.requestRender();
+  }
+
+  setTendonsVisible(v: boolean): void {
+    this.tendons.root.visible = v;
     this.requestRender();
   }
 

@@ -208,12 +208,30 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
   // constraints: the two points each draws between
   json constraints = json::array();
   for (const auto& [h, c] : s.constraints) {
+    // a spring-damper without stiffness or damping does nothing: not drawn
+    if (c.stiffness <= 0 && c.damping <= 0) continue;
     Vec3 p_a, p_b;
     constraint_anchor_points(c, constraint_side(s, c, 0), constraint_side(s, c, 1), p_a, p_b);
     constraints.push_back({{"h", h}, {"type", constraint_type_name(c.type)}, {"a", vec(p_a)}, {"b", vec(p_b)}});
   }
+  // spatial tendons: the segments of each route, flat [a, b, a, b, ...] (m, world)
+  json tendons = json::array();
+  for (const auto& a : s.articulations)
+    for (size_t i = 0; i < a->model.transmissions.size(); ++i) {
+      const ArticulationModel::Transmission& t = a->model.transmissions[i];
+      std::vector<real> segments;
+      for (size_t k = 0; k + 1 < t.waypoints.size(); ++k) {
+        if (!t.waypoints[k].to_next) continue;
+        for (const ArticulationModel::Waypoint* w : {&t.waypoints[k], &t.waypoints[k + 1]}) {
+          const SpatialTransform& X = a->kin.X_WL[w->link];
+          const Vec3 p = X.R * w->p_L + X.p;
+          segments.insert(segments.end(), {p.x(), p.y(), p.z()});
+        }
+      }
+      if (!segments.empty()) tendons.push_back({{"a", a->handle}, {"i", i}, {"s", segments}});
+    }
   line({{"type", "frame"}, {"scene", s.handle}, {"step", s.step_count}, {"t", s.time}, {"links", links}, {"joints", joints},
-        {"soft", soft}, {"contacts", contacts}, {"constraints", constraints}, {"signals", signals}});
+        {"soft", soft}, {"contacts", contacts}, {"constraints", constraints}, {"tendons", tendons}, {"signals", signals}});
   state.last_frame[s.handle] = s.time;
 }
 
