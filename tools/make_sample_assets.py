@@ -1,0 +1,227 @@
+#!/usr/bin/env python3
+"""Generate the assets the articulation examples look up by path, with the project's own API.
+
+- assets/cube/cube_fine_mesh.mochi.json: a finer tetrahedral unit cube, corner-anchored: the cube
+  [0, 1]^3 m cut into 4 x 4 x 4 cells of six tetrahedra each (125 nodes, 384 positively oriented
+  tetrahedra, cut as in cube_mesh.mochi.json so that neighbouring cells' faces match). Scripts bake a
+  scale into it to make box-shaped links: baked by [sx, sy, sz] it spans [0, sx] x [0, sy] x [0, sz].
+- assets/sphere/icosphere_4subdiv.1.mochi.json: the unit sphere as a triangle mesh, an icosahedron
+  whose faces are split in four four times (2562 vertices, 5120 triangles, counter-clockwise seen
+  from outside), for balls (bake the radius as a scale, use the Sphere collider).
+- assets/samples/articulations_double_pendulum_on_rail.mochi_scene: a prefab, +Y up, of a double
+  pendulum hanging from a cart on a rail (the articulated actor DoublePendulumOnRail), a ball on the
+  ground in front of it (Ball) and the ground (Ground). Its links and joints, in order:
+
+      0: RailHousing / CeilingWeld (Hard)      -> no DoFs (welded 0.75 m up)
+      1: Cart        / Rail        (Prismatic) -> DoF 0 (along +X, limited to +-0.2 m)
+      2: UpperArm    / UpperSwing  (Revolute)  -> DoF 1 (about -Z)
+      3: LowerArm    / LowerSwing  (Spherical) -> DoFs 2-4
+
+  The links are inline boxes whose link frames sit at their centres; at zero pose the arms hang
+  straight down and the tip of the lower arm is 5 cm above the ground. The scene's contact filter
+  lets only the lower arm (layer EndEffector) touch the ball, and the ball the ground.
+
+Reuses the mesh builders of tools/make_model_assets.py; writes only the files above (and
+assets/samples/), then loads each back through the engine (model loader, load_shape_from_file,
+prefab.add_to_scene) and steps the scene to check it. Deterministic: two runs give the same files.
+Run from the repository root:
+
+    uv run python tools/make_sample_assets.py
+
+(SUPERDEX_PRECISION=float, the default, writes the reals as float32 values, as
+tools/make_model_assets.py does; the files read the same in both precisions.)
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+import superdex.physics as sdp
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from make_model_assets import compact, grid_nodes, kuhn_tets, make_icosphere, signed_volumes, tet_mesh  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[1]
+ASSETS = REPO / "assets"
+FINE_CUBE = ASSETS / "cube" / "cube_fine_mesh.mochi.json"
+FINE_SPHERE = ASSETS / "sphere" / "icosphere_4subdiv.1.mochi.json"
+RAIL_SCENE = ASSETS / "samples" / "articulations_double_pendulum_on_rail.mochi_scene"
+
+FINE_CUBE_CELLS = 4  # cells along each side of the fine cube (0.25 m cells: exact in float32)
+
+# ---- the double pendulum on a rail (m, kg/m^3, +Y up) ------------------------------------------
+ARTICULATION_NAME = "DoublePendulumOnRail"
+RAIL_HEIGHT = 0.75  # the weld: the centre of the rail housing
+HOUSING_SIZE = (0.5, 0.05, 0.05)  # the rail housing, long along X
+CART_SIZE = (0.075, 0.075, 0.075)
+ARM_SIZE = (0.03, 0.3, 0.03)  # each arm, a rod along Y
+RAIL_LIMIT = 0.2  # the cart slides +-0.2 m from the middle of the rail
+LINK_DENSITY = 1000.0
+TIP_DENSITY = 2000.0  # the lower arm, heavier, strikes the ball
+SEED_JOINT_VELOCITIES = [0.3, 4.2, 0.0, 0.0, 0.0]  # m/s on the rail, rad/s on the hinges
+BALL_RADIUS = 0.05
+BALL_POSITION = [0.15, BALL_RADIUS, 0.0]  # resting on the ground, in reach of the tip
+BALL_DENSITY = 500.0
+
+
+# ------------------------------------------------------------------------------------ model files
+
+
+def make_fine_cube(cells: int = FINE_CUBE_CELLS) -> sdp.ModelData:
+    """The unit cube [0, 1]^3 cut into cells^3 cells of six tetrahedra each."""
+    dims = (cells, cells, cells)
+    grid = np.array([(i, j, k) for k in range(cells) for j in range(cells) for i in range(cells)])
+    nodes, tets = compact(grid_nodes(np.zeros(3), 1.0 / cells, dims), kuhn_tets(grid, dims))
+    volumes = signed_volumes(nodes, tets)
+    assert len(nodes) == (cells + 1) ** 3 and len(tets) == 6 * cells**3
+    assert np.all(volumes > 0) and np.isclose(volumes.sum(), 1.0)
+    assert nodes.min() == 0.0 and nodes.max() == 1.0
+    return sdp.ModelData(mesh=tet_mesh(nodes, tets))
+
+
+def save_model(model: sdp.ModelData, path: Path) -> None:
+    sdp.model.validate(model)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    sdp.model.save_to_file(model, str(path), sdp.FileFormat.JSON)
+    back = sdp.model.load_from_file(str(path))
+    assert back.mesh.nodes_per_element == model.mesh.nodes_per_element
+    assert list(back.mesh.connectivity) == list(model.mesh.connectivity)
+    np.testing.assert_allclose(back.mesh.coordinates, model.mesh.coordinates, atol=1e-7)
+
+
+# ------------------------------------------------------------------------------------- the prefab
+
+
+def box(size) -> dict:
+    """An inline box primitive centred on its link's frame."""
+    return {"box": {"halfExtents": [s / 2 for s in size]}}
+
+
+def rail_scene() -> dict:
+    """The prefab of the double pendulum on a rail, the ball and the ground, as JSON."""
+    housing_bottom = [0.0, -HOUSING_SIZE[1] / 2, 0.0]
+    cart_bottom = [0.0, -CART_SIZE[1] / 2, 0.0]
+    arm_bottom = [0.0, -ARM_SIZE[1] / 2, 0.0]
+
+    def link(name, parent, size, joint_from_link, layer, density):
+        entry = {"name": name, "parentLink": parent, "shape": box(size), "colliderType": "Box",
+                 "jointFromLink": joint_from_link, "layer": layer, "density": density}
+        if parent < 0:
+            del entry["parentLink"]  # the root
+        return entry
+
+    def at(translation):
+        return {"rotation": [0.0, 0.0, 0.0, 1.0], "translation": translation}
+
+    # each link frame at the link's centre; a child joint at the bottom centre of its parent
+    links = [
+        link("RailHousing", -1, HOUSING_SIZE, [0.0, 0.0, 0.0], "Pendulum", LINK_DENSITY),
+        link("Cart", 0, CART_SIZE, cart_bottom, "Pendulum", LINK_DENSITY),
+        link("UpperArm", 1, ARM_SIZE, arm_bottom, "Pendulum", LINK_DENSITY),
+        link("LowerArm", 2, ARM_SIZE, arm_bottom, "EndEffector", TIP_DENSITY),
+    ]
+    joints = [
+        {"name": "CeilingWeld", "type": "Hard"},
+        {"name": "Rail", "type": "Prismatic", "axis": [1.0, 0.0, 0.0], "parentLinkFromJoint": at(housing_bottom),
+         "minLimit": -RAIL_LIMIT, "maxLimit": RAIL_LIMIT, "limitStiffness": 250.0, "limitDamping": 8.8,
+         "friction": {"viscous": 0.018}, "inertia": 0.125},
+        # a positive angle swings the arm's lower end towards -X
+        {"name": "UpperSwing", "type": "Revolute", "axis": [0.0, 0.0, -1.0], "parentLinkFromJoint": at(cart_bottom)},
+        {"name": "LowerSwing", "type": "Spherical", "parentLinkFromJoint": at(arm_bottom)},
+    ]
+    disabled = [("Pendulum", "Pendulum"), ("Pendulum", "Ball"), ("Pendulum", "EndEffector"),
+                ("Pendulum", "Environment"), ("EndEffector", "Environment")]
+    return {
+        "actors": {
+            "rigid": [
+                {"name": "Ground", "shape": {"plane": {"normal": [0.0, 1.0, 0.0], "distance": 0.0}},
+                 "isStatic": True, "layer": "Environment"},
+                {"name": "Ball", "shape": {"sphere": {"radius": BALL_RADIUS}}, "translation": BALL_POSITION,
+                 "colliderType": "Sphere", "density": BALL_DENSITY, "layer": "Ball"},
+            ],
+            "soft": [],
+            "articulated": [
+                {"name": ARTICULATION_NAME, "translation": [0.0, RAIL_HEIGHT, 0.0],
+                 "jointVelocities": SEED_JOINT_VELOCITIES, "links": links, "joints": joints},
+            ],
+        },
+        "prefabs": [],
+        "contactFilter": {"layerContactSymmetric": [{"enable": False, "layers": list(pair)} for pair in disabled]},
+        "scene": {
+            "description": "A double pendulum (UpperArm, LowerArm) hanging from a cart on a rail welded 0.75 m up, "
+                           "+Y up; the lower arm's tip swings 5 cm above the ground and strikes a 5 cm ball "
+                           "resting at x = 0.15 m. Only the lower arm touches the ball.",
+            "gravity": [0.0, -9.8, 0.0],
+        },
+    }
+
+
+def write_json(doc: dict, path: Path) -> None:
+    text = json.dumps(doc, indent=2)
+    # lists of numbers on one line each
+    text = re.sub(r"\[[-+0-9.eE,\s]*[0-9]\s*\]", lambda m: json.dumps(json.loads(m.group(0))), text)
+    assert json.loads(text) == doc
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text + "\n")
+
+
+# ------------------------------------------------------------------------------------------ check
+
+
+def check_rail_scene() -> None:
+    """Adds the prefab to a scene the way the examples do and steps it."""
+    rel = RAIL_SCENE.relative_to(ASSETS)
+    scene = sdp.create_scene("check")
+    result = sdp.prefab.add_to_scene(prefab_path=str(ASSETS / rel), root_path=str(ASSETS), scene=scene)
+    (arm,) = [a for a in result.filter(sdp.ActorType.ARTICULATED) if a.get_name() == ARTICULATION_NAME]
+    info = arm.get_articulated_shape_info()
+    assert list(info.link_names) == ["RailHousing", "Cart", "UpperArm", "LowerArm"], list(info.link_names)
+    assert list(info.joint_names) == ["CeilingWeld", "Rail", "UpperSwing", "LowerSwing"], list(info.joint_names)
+    assert arm.get_num_dofs() == 5
+    names = sorted(a.get_name() for a in result.filter(sdp.ActorType.RIGID))
+    assert names == ["Ball", "Ground"], names
+    mass = arm.get_mass()
+    expected = LINK_DENSITY * (math.prod(HOUSING_SIZE) + math.prod(CART_SIZE) + math.prod(ARM_SIZE)) + TIP_DENSITY * math.prod(ARM_SIZE)
+    assert math.isclose(mass, expected, rel_tol=1e-4), (mass, expected)
+    for _ in range(100):
+        scene.step(0.01)
+    pose = sdp.DynamicArrayReal(5)
+    arm.get_articulated_pose(pose)
+    assert all(math.isfinite(x) for x in pose) and abs(pose[0]) < RAIL_LIMIT + 0.05
+    sdp.destroy_scene(scene)
+    print(f"{rel}: {ARTICULATION_NAME} {list(info.link_names)}, 5 DoFs, {mass:.4f} kg; pose after 1 s "
+          f"{[round(x, 3) for x in pose]}")
+
+
+def main() -> None:
+    sdp.initialize(num_worker_threads=0)
+
+    cube = make_fine_cube()
+    save_model(cube, FINE_CUBE)
+    print(f"fine cube: {cube.mesh.get_num_nodes()} nodes, {len(cube.mesh.connectivity) // 4} tetrahedra")
+
+    sphere = make_icosphere(4)
+    save_model(sphere, FINE_SPHERE)
+    print(f"fine sphere: {sphere.mesh.get_num_nodes()} vertices, {len(sphere.mesh.connectivity) // 3} triangles")
+
+    # both load as the examples load them: a baked, corner-anchored box and a baked ball
+    shape = sdp.load_shape_from_file(file_path=str(FINE_CUBE), bake_scale=[0.5, 0.05, 0.05])
+    x = np.array(sdp.get_shape_mesh(shape).coordinates, dtype=float).reshape(-1, 3)
+    assert np.allclose(x.min(axis=0), 0) and np.allclose(x.max(axis=0), [0.5, 0.05, 0.05])
+    sdp.release_shape(shape)
+    shape = sdp.load_shape_from_file(file_path=str(FINE_SPHERE), bake_scale=[0.05, 0.05, 0.05])
+    sdp.release_shape(shape)
+
+    write_json(rail_scene(), RAIL_SCENE)
+    check_rail_scene()
+    sdp.shutdown()
+
+
+if __name__ == "__main__":
+    main()
