@@ -82,6 +82,28 @@ def test_debugger_records_headless_for_a_duration(scene, tmp_path, monkeypatch, 
     assert [round(l["t"], 6) for l in read(path) if l["type"] == "frame"] == [0.01, 0.11, 0.21, 0.31, 0.41]
 
 
+def test_a_duration_counts_simulated_steps_across_restores(scene, tmp_path, monkeypatch):
+    """A script that restores a captured state every 0.2 s (its clock goes back) still ends after
+    0.5 s of simulation, and the recording has a frame right after each restore (the replay's
+    new epoch)."""
+    path = tmp_path / "run.jsonl"
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_RECORD", str(path))
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "0.5")
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_FRAME_INTERVAL", "0.1")
+    scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    start = scene.capture_state()
+    assert sdp.debugger.attach()
+    steps = 0
+    while sdp.debugger.is_attached():
+        if steps and steps % 20 == 0:
+            scene.restore_state(start, release_immediately=False)
+        scene.step(0.01)
+        steps += 1
+    assert steps == 50
+    times = [round(l["t"], 6) for l in read(path) if l["type"] == "frame"]
+    assert times == [0.01, 0.11, 0.01, 0.11, 0.01]  # the last 0.1 s run ends at t = 0.1
+
+
 def test_debugger_without_a_page_prints_the_url_and_gives_up(engine, monkeypatch, capsys, tmp_path):
     monkeypatch.delenv("SUPERDEX_DEBUGGER_RECORD", raising=False)
     monkeypatch.delenv("SUPERDEX_DEBUGGER_DURATION", raising=False)

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <mutex>
 
 #include "output/recording_internal.h"
@@ -21,6 +22,9 @@ struct Recording {
   std::ofstream out;
   std::string path;
   double frame_interval = 0;
+  // per scene, the simulated time it has run since the recording started (the sum of its step
+  // sizes: a restored state rewinds its clock, not this), and the most of them
+  std::map<std::int64_t, double> simulated;
   double latest_time = 0;
   StreamState stream;
 };
@@ -63,10 +67,16 @@ void record_step(const SceneData& s) {
   auto& r = recording();
   if (!r) return;
   std::lock_guard lock(r->mutex);
-  r->latest_time = std::max(r->latest_time, s.time);
+  double& simulated = r->simulated[s.handle];
+  simulated += s.last_time_step;
+  r->latest_time = std::max(r->latest_time, simulated);
   const auto& last = r->stream.last_frame;
-  // (float builds step by float dt: allow its rounding)
-  if (auto it = last.find(s.handle); it != last.end() && s.time - it->second < r->frame_interval * (1 - 1e-6) - 1e-12) return;
+  // a frame once frame_interval has passed since the last one, or at once when the clock went
+  // back (a restored state: the replay starts a new epoch there); float builds step by float dt:
+  // allow its rounding
+  if (auto it = last.find(s.handle);
+      it != last.end() && s.time >= it->second && s.time - it->second < r->frame_interval * (1 - 1e-6) - 1e-12)
+    return;
   std::string lines;
   append_frame_lines(s, r->stream, lines);
   r->out << lines;

@@ -20,7 +20,8 @@ void start_recording(const std::string& path, double frame_interval);
 void stop_recording();
 /// Whether a recording is running.
 bool is_recording();
-/// The latest simulated time (s) a recorded scene has reached, 0 before the first step.
+/// The most simulated time (s) a recorded scene has run since the recording started: the sum of
+/// its step sizes (a restored state rewinds the scene's clock, not this); 0 before the first step.
 double recorded_time();
 /// The recording's path ("" when none).
 std::string recording_path();
