@@ -44,8 +44,10 @@ void joint_rows(const ArticulationModel& model, const ArticulationState& state, 
       b.kind = BlockKind::Unilateral;
       for (const real sign : {real(1), real(-1)}) {
         if (!(sign > 0 ? j.has_lower : j.has_upper)) continue;
-        // beyond the limit (vhat > 0): back no faster than the depenetration bound
-        b.vhat = std::min(-(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d), params.max_depenetration_speed);
+        // beyond the limit (vhat > 0): a near-rigid limit backs out no faster than the
+        // depenetration bound; a compliant one is a spring whose force the bound must not cap
+        b.vhat = -(sign > 0 ? q - j.lower : j.upper - q) / (dt + tau_d);
+        if (j.limit_stiffness <= 0) b.vhat = std::min(b.vhat, params.max_depenetration_speed);
         // acts once sign * v < vhat (< 0 inside the limit): far from it when the free motion
         // keeps sign * v above vhat / 2
         JointRow row{k, sign, b};
