@@ -3,6 +3,8 @@
 // implicit joint and link drives (this engine's additions). Out-parameters are filled in place;
 // where they are optional, a new array is returned without one.
 
+#include <nanobind/stl/vector.h>
+
 #include "bind_actor.h"
 #include "bind_container.h"
 
@@ -49,6 +51,12 @@ void add_articulated_methods(ActorClass& c) {
       .def("set_articulated_joint_inertia_params", [](Actor& a, nb::handle inertia) {
              a.scene.set_joint_inertia_params(a.handle, as_span(read_vector(inertia, "set_articulated_joint_inertia_params: inertia")));
            }, "inertia"_a, "One per joint; finite, >= 0.")
+      .def("get_articulated_joint_limit_constraints", [](const Actor& a) {
+             std::vector<Constraint> out;
+             for (ConstraintHandle h : a.scene.joint_limit_constraints(a.handle)) out.push_back(Constraint{a.scene, h});
+             return out;
+           }, "The constraints standing for the joint limits (ARTICULATED_SINGLE_DOF_RANGE, one per limited revolute or\n"
+              "prismatic joint): their limits, deviation beyond them, stiffness and damping (0: near rigid).")
       .def("get_articulated_dof_limits", [](const Actor& a, nb::handle out_dof_limits) {
              write_out(out_dof_limits, a.scene.dof_limits(a.handle), "get_articulated_dof_limits: out_dof_limits");
            }, "out_dof_limits"_a, "[min, max] per DOF (m or rad; -inf, +inf where unlimited).")

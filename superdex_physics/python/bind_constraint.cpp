@@ -22,6 +22,7 @@ void export_constraints(nb::module_& m) {
       .value("DEFORMABLE_NODE_POSITION", ConstraintType::DeformableNodePosition)
       .value("ARTICULATED_SINGLE_DOF_TARGET", ConstraintType::ArticulatedSingleDofTarget)
       .value("ARTICULATED_3D_ROTATION_TARGET", ConstraintType::Articulated3dRotationTarget)
+      .value("ARTICULATED_SINGLE_DOF_RANGE", ConstraintType::ArticulatedSingleDofRange)
       .value("DEFORMABLE_NODE_TO_RIGID", ConstraintType::DeformableNodeToRigid);
 
   StructBinder<ConstraintParams>(m, "ConstraintParams",

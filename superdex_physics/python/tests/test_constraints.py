@@ -322,3 +322,50 @@ def test_a_restored_state_brings_back_the_constraints_targets_and_springs(scene)
     scene.destroy_constraint(c)
     with pytest.raises(sdp.Error, match="constraints"):
         scene.restore_state(state, release_immediately=False)
+
+
+def test_joint_limits_are_constraints_of_their_articulation(scene):
+    """A hinge limited to [-0.5, 0]: one ARTICULATED_SINGLE_DOF_RANGE constraint with those limits
+    and the joint's limit stiffness. A horizontal rod (1 kg at 0.5 m) falls onto its upper limit,
+    which gives like a spring of that stiffness, K q = m g L cos q; stiffened or softened through
+    the constraint, it gives accordingly; at stiffness 0 (near rigid) it stops at the limit."""
+    from conftest import articulation, joint, link
+
+    m, L = 1.0, 0.5
+    links = [link("base", mass=1.0, moment_of_inertia=[0.01, 0, 0, 0.01, 0, 0.01]),
+             link("rod", parent=0, mass=m, center_of_mass=[L, 0, 0], moment_of_inertia=[1e-3, 0, 0, 1e-3, 0, 1e-3])]
+    rod = articulation(scene, "rod", links, [joint("weld", "hard"),
+                                             joint("hinge", "revolute", axis=[0, 1, 0], min_limit=[0, -0.5, 0], max_limit=[0, 0, 0])])
+    before = scene.get_num_constraints()
+    (limit,) = rod.get_articulated_joint_limit_constraints()
+    assert limit.get_type() == sdp.ConstraintType.ARTICULATED_SINGLE_DOF_RANGE
+    assert list(limit.get_limit_min_values()) == [pytest.approx(-0.5)] and list(limit.get_limit_max_values()) == [pytest.approx(0.0)]
+    assert list(limit.get_dof_indices_for_actor(0)) == [0]
+    rod.set_articulated_pose_from_joints(np.array([0.2]))
+    assert float(limit.get_deviation()[0]) == pytest.approx(-0.2)
+    rod.set_articulated_pose_from_joints(np.array([-0.2]))
+    assert float(limit.get_deviation()[0]) == 0
+
+    def settle():
+        for _ in range(1500):
+            scene.step(0.005)
+        return float(rod.get_articulated_pose()[0])
+
+    for K in (limit.get_stiffness(), 50.0):
+        assert K > 0
+        limit.set_stiffness(K)
+        limit.set_damping(2.0)
+        q = settle()
+        assert K * q == pytest.approx(m * G * L * math.cos(q), rel=1e-2)
+        assert float(limit.get_deviation()[0]) == pytest.approx(-q, rel=1e-6)
+    limit.set_stiffness(0.0)
+    limit.set_damping(0.0)
+    assert settle() == pytest.approx(0.0, abs=2e-3)
+    with pytest.raises(sdp.Error, match="joint limits"):
+        scene.destroy_constraint(limit)
+    with pytest.raises(sdp.Error, match="not reported"):
+        limit.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    with pytest.raises(sdp.Error, match="force cap"):
+        limit.set_saturation(10.0)
+    scene.destroy_actor(rod)
+    assert scene.get_num_constraints() == before - 1

@@ -26,6 +26,7 @@ std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index) {
       // B's origin is held on a line fixed in A: B's rotation is free
       return index == 0 ? std::vector<int>{0, 1, 2, 3, 4, 5} : std::vector<int>{0, 1, 2};
     case ConstraintType::ArticulatedSingleDofTarget:
+    case ConstraintType::ArticulatedSingleDofRange:
       return {c.dof};
     case ConstraintType::Articulated3dRotationTarget:
       return {c.dof, c.dof + 1, c.dof + 2};
@@ -215,6 +216,9 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
       for (int i = 0; i < 3; ++i) w.equality(dof_row(i), none, error[i], rate[i]);
       break;
     }
+    case ConstraintType::ArticulatedSingleDofRange:
+      // the articulation's own joint-limit rows act (articulation_step.cpp)
+      break;
     case ConstraintType::JointRotationRange: {
       Mat3 F_A;
       const Vec3 phi = joint_rotation(c, X_WA, X_WB, F_A);
@@ -271,6 +275,8 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Constrai
       return {c.target_value - a.q_dof};
     case ConstraintType::Articulated3dRotationTarget:
       return out(joint_rotation_error(c, a));
+    case ConstraintType::ArticulatedSingleDofRange:
+      return {c.min && a.q_dof < *c.min ? *c.min - a.q_dof : c.max && a.q_dof > *c.max ? *c.max - a.q_dof : real(0)};
   }
   return {};
 }
@@ -297,6 +303,7 @@ void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a
     case ConstraintType::RigidPivotRotation:
     case ConstraintType::ArticulatedSingleDofTarget:
     case ConstraintType::Articulated3dRotationTarget:
+    case ConstraintType::ArticulatedSingleDofRange:
       p_a = p_b = X_WA.translation;
       return;
     default:

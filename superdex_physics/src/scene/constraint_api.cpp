@@ -25,6 +25,7 @@ const char* constraint_type_name(ConstraintType type) {
     case ConstraintType::DeformableNodeToRigid: return "DEFORMABLE_NODE_TO_RIGID";
     case ConstraintType::ArticulatedSingleDofTarget: return "ARTICULATED_SINGLE_DOF_TARGET";
     case ConstraintType::Articulated3dRotationTarget: return "ARTICULATED_3D_ROTATION_TARGET";
+    case ConstraintType::ArticulatedSingleDofRange: return "ARTICULATED_SINGLE_DOF_RANGE";
   }
   return "?";
 }
@@ -320,8 +321,9 @@ void Scene::destroy_constraint(ConstraintHandle h) {
   SceneData& s = scene_data(handle_);
   const ConstraintRecord& c = record(s, h, "destroy_constraint");
   if (c.owner.is_valid())
-    throw Error("destroy_constraint: constraint " + std::to_string(h) + " belongs to the pose controller of actor " + std::to_string(c.owner) +
-                "; remove_articulated_pose_controller removes it");
+    throw Error("destroy_constraint: constraint " + std::to_string(h) + " belongs to actor " + std::to_string(c.owner) +
+                (c.type == ConstraintType::ArticulatedSingleDofRange ? " (one of its joint limits); it goes with the actor"
+                                                                     : " (its pose controller); remove_articulated_pose_controller removes it"));
   s.constraints.erase(h);
 }
 
@@ -341,9 +343,37 @@ ConstraintParams Scene::constraint_params(ConstraintHandle h) const {
 }
 
 void Scene::set_constraint_params(ConstraintHandle h, const ConstraintParams& p) {
-  ConstraintRecord& c = record(scene_data(handle_), h, "set_constraint_params");
+  SceneData& s = scene_data(handle_);
+  ConstraintRecord& c = record(s, h, "set_constraint_params");
   check_spring(p, "set_constraint_params");
+  if (c.type == ConstraintType::ArticulatedSingleDofRange) {
+    // a handle on the joint's own limits: their stiffness and damping (no force cap)
+    check(p.saturation < 0, "set_constraint_params", "a joint limit has no force cap (saturation must be negative)");
+    JointModel& j = s.actors.at(c.actor_a).articulation->model.joints[c.joint];
+    j.limit_stiffness = p.stiffness, j.limit_damping = p.damping;
+  }
   c.stiffness = p.stiffness, c.damping = p.damping, c.saturation = p.saturation;
+}
+
+void add_joint_limit_constraints(SceneData& s, Articulation& a) {
+  for (int i = 0; i < a.model.num_links; ++i) {
+    const JointModel& j = a.model.joints[i];
+    if (j.nv != 1 || !(j.has_lower || j.has_upper)) continue;
+    ConstraintRecord c;
+    c.type = ConstraintType::ArticulatedSingleDofRange;
+    c.actor_a = a.handle;
+    c.owner = a.handle;
+    c.joint = i, c.dof = j.v_offset;
+    if (j.has_lower) c.min = j.lower;
+    if (j.has_upper) c.max = j.upper;
+    ConstraintParams p;
+    p.stiffness = j.limit_stiffness, p.damping = j.limit_damping;
+    a.limit_constraints.push_back(add(s, std::move(c), p));
+  }
+}
+
+std::vector<ConstraintHandle> Scene::joint_limit_constraints(ActorHandle h) const {
+  return articulated(scene_data(handle_), h, "get_articulated_joint_limit_constraints").limit_constraints;
 }
 
 std::vector<ActorHandle> Scene::constraint_actors(ConstraintHandle h) const {
@@ -436,14 +466,16 @@ void Scene::set_constraint_ref_relative_rotation(ConstraintHandle h, const Quat&
 std::vector<real> Scene::constraint_limit_min_values(ConstraintHandle h) const {
   const ConstraintRecord& c = record(scene_data(handle_), h, "get_limit_min_values");
   if (c.type == ConstraintType::JointRotationRange) return {c.lower.x(), c.lower.y(), c.lower.z()};
-  if (c.type == ConstraintType::RigidPrismaticJoint) return {c.min ? *c.min : -std::numeric_limits<real>::infinity()};
+  if (c.type == ConstraintType::RigidPrismaticJoint || c.type == ConstraintType::ArticulatedSingleDofRange)
+    return {c.min ? *c.min : -std::numeric_limits<real>::infinity()};
   unsupported(c, "get_limit_min_values");
 }
 
 std::vector<real> Scene::constraint_limit_max_values(ConstraintHandle h) const {
   const ConstraintRecord& c = record(scene_data(handle_), h, "get_limit_max_values");
   if (c.type == ConstraintType::JointRotationRange) return {c.upper.x(), c.upper.y(), c.upper.z()};
-  if (c.type == ConstraintType::RigidPrismaticJoint) return {c.max ? *c.max : std::numeric_limits<real>::infinity()};
+  if (c.type == ConstraintType::RigidPrismaticJoint || c.type == ConstraintType::ArticulatedSingleDofRange)
+    return {c.max ? *c.max : std::numeric_limits<real>::infinity()};
   unsupported(c, "get_limit_max_values");
 }
 
@@ -452,6 +484,8 @@ QueryHandle Scene::register_constraint_query(ConstraintHandle h, QueryType type)
   ConstraintRecord& c = record(s, h, "register_query");
   if (type != QueryType::ConstraintForce)
     throw Error(std::string("register_query: ") + query_type_name(type) + " is not available for a constraint (CONSTRAINT_FORCE is)");
+  if (c.type == ConstraintType::ArticulatedSingleDofRange)
+    throw Error("register_query: a joint limit's force is not reported (the articulation's own limit rows carry it)");
   const QueryHandle q = next_handle();
   if (c.queries.empty()) c.query_since = s.step_count;
   c.queries.insert(q);
@@ -465,8 +499,8 @@ void Scene::cancel_constraint_query(ConstraintHandle h, QueryHandle query) {
 }
 
 bool Scene::is_constraint_query_supported(ConstraintHandle h, QueryType type) const {
-  record(scene_data(handle_), h, "is_query_supported");
-  return type == QueryType::ConstraintForce;
+  const ConstraintRecord& c = record(scene_data(handle_), h, "is_query_supported");
+  return type == QueryType::ConstraintForce && c.type != ConstraintType::ArticulatedSingleDofRange;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -92,6 +92,7 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a) {
     if (!a->is_rigid) s.actors[link] = {a.get(), i};
   }
   s.actors[a->handle] = {a.get(), -1};
+  if (!a->is_rigid) add_joint_limit_constraints(s, *a);
   const ActorHandle h = a->handle;
   s.articulations.push_back(std::move(a));
   return h;

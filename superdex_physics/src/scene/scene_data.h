@@ -46,6 +46,7 @@ struct Articulation {
   ConvergenceStatus convergence_status = ConvergenceStatus::None;  // of its island's last solve
   std::vector<ActorHandle> link_handles;
   std::optional<PoseController> pose_controller;  // add_pose_controller
+  std::vector<ConstraintHandle> limit_constraints;  // per limited single-DOF joint, in joint order
 };
 
 // What an actor handle refers to: a whole articulation (link -1) or one of its links.
@@ -178,6 +179,8 @@ ActorHandle add_articulation(SceneData& s, std::unique_ptr<Articulation> a);
 // superdex::Error for bytes of another scene or build, changing nothing.
 std::vector<std::uint8_t> state_bytes(const SceneData& s);
 void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes);
+// Makes the constraints that stand for an articulation's joint limits (constraint_api.cpp).
+void add_joint_limit_constraints(SceneData& s, Articulation& a);
 // Throws unless the query `type` is registered on `actor` and has a result (actor_queries.cpp).
 void require_query(const SceneData& s, ActorHandle actor, QueryType type, const char* what);
 // Moves a soft body's frame with the rigid motion of its nodes (soft_actor_api.cpp), as its

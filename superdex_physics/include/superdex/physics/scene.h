@@ -304,6 +304,9 @@ class Scene {
   /// Errors for a pose controller's constraint (remove the controller instead).
   void destroy_constraint(ConstraintHandle constraint);
   bool has_constraint(ConstraintHandle constraint) const;
+  /// An articulated actor's joint-limit constraints (ArticulatedSingleDofRange, one per limited
+  /// revolute or prismatic joint, in joint order).
+  std::vector<ConstraintHandle> joint_limit_constraints(ActorHandle articulation) const;
   /// The scene's constraints in creation order.
   std::vector<ConstraintHandle> constraints() const;
   ConstraintType constraint_type(ConstraintHandle constraint) const;

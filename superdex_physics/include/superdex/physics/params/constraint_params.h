@@ -30,6 +30,11 @@ enum class ConstraintType {
   DeformableNodeToRigid,
   ArticulatedSingleDofTarget,
   Articulated3dRotationTarget,
+  /// The position limits of a revolute or prismatic joint of an articulated actor (made with the
+  /// actor; Actor.get_articulated_joint_limit_constraints): a handle on the articulation's own
+  /// limit rows. Its stiffness and damping are the joint's limit stiffness and damping (0: near
+  /// rigid); no force cap, no force query.
+  ArticulatedSingleDofRange,
 };
 const char* constraint_type_name(ConstraintType type);
 
