@@ -100,7 +100,8 @@ void restore_constraint_state(ConstraintRecord& c, const std::array<real, kConst
   };
   Vec3 spring;
   get(spring);
-  c.stiffness = spring[0], c.damping = spring[1], c.saturation = spring[2];
+  // a joint limit's spring is its joint's (the model, which a state does not hold)
+  if (c.type != ConstraintType::ArticulatedSingleDofRange) c.stiffness = spring[0], c.damping = spring[1], c.saturation = spring[2];
   get(c.target_position), get(c.old_target_position);
   get(c.target_rotation.coeffs()), get(c.old_target_rotation.coeffs());
   get(c.target_transform.rotation.coeffs()), get(c.target_transform.translation);
