@@ -14,13 +14,6 @@ namespace {
 
 std::span<const real> as_span(const VecX& v) { return {v.data(), static_cast<size_t>(v.size())}; }
 
-// `values` into the out-parameter, or a new numpy array when it is None; returns what was filled.
-nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg) {
-  if (out.is_none()) return nb::cast(numpy_copy(values));
-  write_out(out, as_span(values), arg);
-  return nb::borrow(out);
-}
-
 NumpyArray matrix_to_numpy(const MatX& M) {
   const MatXR R = M;
   return numpy_copy(R.data(), {static_cast<size_t>(R.rows()), static_cast<size_t>(R.cols())});

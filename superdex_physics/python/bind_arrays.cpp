@@ -120,6 +120,12 @@ void write_out(nb::handle out, std::span<const real> values, std::string_view ar
   std::copy(values.begin(), values.end(), dst);
 }
 
+nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg) {
+  if (out.is_none()) return nb::cast(numpy_copy(values));
+  write_out(out, std::span<const real>(values.data(), static_cast<size_t>(values.size())), arg);
+  return nb::borrow(out);
+}
+
 namespace {
 
 // The elements behind an out-parameter of class elements: a DynamicArray or a mutable Span of

@@ -57,6 +57,9 @@ real* out_buffer(nb::handle out, std::string_view arg, size_t n);
 void write_out(nb::handle out, std::span<const real> values, std::string_view arg);
 void write_out(nb::handle out, std::span<const TransformRT> values, std::string_view arg);
 void write_out(nb::handle out, std::span<const Real2> values, std::string_view arg);
+// `values` into an optional out-parameter, or into a new numpy array when `out` is None; returns
+// the array filled.
+nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg);
 
 // An actor as seen from Python: its scene and handle. Default: no actor (an element of a new
 // DynamicArrayActor).

@@ -10,13 +10,6 @@ namespace superdex::python {
 
 namespace {
 
-// `values` into the out-parameter, or a new numpy array when it is None; returns what was filled.
-nb::object fill_out(nb::handle out, const VecX& values, std::string_view arg) {
-  if (out.is_none()) return nb::cast(numpy_copy(values));
-  write_out(out, std::span<const real>(values.data(), static_cast<size_t>(values.size())), arg);
-  return nb::borrow(out);
-}
-
 // One array of `out` (pre-sized to one entry per link, as an out-parameter) set from `values`.
 void fill_tracking(std::vector<PoseTrackingParams>& out, const std::vector<PoseTrackingParams>& values, const char* field) {
   if (out.size() != values.size())

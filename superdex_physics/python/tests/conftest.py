@@ -156,3 +156,27 @@ def cube_obj(path, h=0.1):
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def unit_sphere_triangles(asset_path):
+    """The vertices (n, 3) and triangles (m, 3) of a unit-sphere triangle mesh asset, checked to be a
+    closed, consistently outward surface on the sphere whose volume is just under the sphere's."""
+    import math
+
+    from superdex.physics.paths import resolve_asset
+
+    mesh = sdp.model.load_from_file(str(resolve_asset(asset_path))).mesh
+    assert mesh.nodes_per_element == 3
+    x = np.array(mesh.coordinates, dtype=float).reshape(-1, 3)
+    t = np.array(mesh.connectivity).reshape(-1, 3)
+    np.testing.assert_allclose(np.linalg.norm(x, axis=1), 1.0, atol=1e-6)
+    # closed: every edge is shared by exactly two triangles, in opposite directions
+    edges = {}
+    for a, b, c in t:
+        for e in ((a, b), (b, c), (c, a)):
+            edges[e] = edges.get(e, 0) + 1
+    assert all(n == 1 and edges.get((e[1], e[0])) == 1 for e, n in edges.items())
+    # outward, and within 1 % under the sphere's volume
+    volume = np.einsum("ij,ij->i", x[t[:, 0]], np.cross(x[t[:, 1]], x[t[:, 2]])).sum() / 6
+    assert 0.99 * 4 / 3 * math.pi < volume < 4 / 3 * math.pi
+    return x, t

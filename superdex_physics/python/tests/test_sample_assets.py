@@ -20,6 +20,8 @@ import pytest
 import superdex.physics as sdp
 from superdex.physics.paths import resolve_asset, resolve_asset_root
 
+from conftest import unit_sphere_triangles
+
 FINE_CUBE = "cube/cube_fine_mesh.mochi.json"
 FINE_SPHERE = "sphere/icosphere_4subdiv.1.mochi.json"
 RAIL_SCENE = "samples/articulations_double_pendulum_on_rail.mochi_scene"
@@ -83,21 +85,8 @@ def test_fine_cube_mesh(engine, log_messages):
 
 
 def test_fine_icosphere(engine):
-    mesh = sdp.model.load_from_file(str(resolve_asset(FINE_SPHERE))).mesh
-    assert mesh.nodes_per_element == 3
-    x = np.array(mesh.coordinates, dtype=float).reshape(-1, 3)
-    t = np.array(mesh.connectivity).reshape(-1, 3)
+    x, t = unit_sphere_triangles(FINE_SPHERE)
     assert (len(x), len(t)) == (2562, 5120)
-    np.testing.assert_allclose(np.linalg.norm(x, axis=1), 1.0, atol=1e-6)
-    # closed: every edge is shared by exactly two triangles, in opposite directions
-    edges = {}
-    for a, b, c in t:
-        for e in ((a, b), (b, c), (c, a)):
-            edges[e] = edges.get(e, 0) + 1
-    assert all(n == 1 and edges.get((e[1], e[0])) == 1 for e, n in edges.items())
-    # outward, and a little under the sphere's volume
-    volume = np.einsum("ij,ij->i", x[t[:, 0]], np.cross(x[t[:, 1]], x[t[:, 2]])).sum() / 6
-    assert 0.99 * 4 / 3 * math.pi < volume < 4 / 3 * math.pi
 
     # as the examples use it: a 5 cm ball with the Sphere collider, resting on the ground
     r = 0.05
