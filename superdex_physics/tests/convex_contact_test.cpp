@@ -365,8 +365,9 @@ TEST(Midphase, OrientedBoxesApartExactlyWhenAnAxisSeparatesThemByTheGap) {
 }
 
 TEST(ConvexContact, AConvexMeshOnAPlaneTouchesAtItsCornersWithinTheMargin) {
-  // a hull of many corners (points on an ellipsoid) posed over a ground plane: the walk along its
-  // edges from the deepest corner finds the corners a scan of all of them finds within the margin
+  // a hull of many corners (points on an ellipsoid) posed over a ground plane: its contacts are
+  // corners that a scan of all of them finds within the margin, the deepest among them, and
+  // they span the patch of those corners
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
   std::vector<Vec3> points;
@@ -402,7 +403,19 @@ TEST(ConvexContact, AConvexMeshOnAPlaneTouchesAtItsCornersWithinTheMargin) {
       EXPECT_TRUE(got.empty()) << "trial " << trial;
       continue;
     }
-    ASSERT_EQ(got.size(), std::min(within.size(), kMaxConvexContacts)) << "trial " << trial;
+    // at most kMaxConvexContacts, two at least where two corners are within the margin, and
+    // spread over the patch: at least 60 % of its widest span between two of them
+    ASSERT_LE(got.size(), std::min(within.size(), kMaxConvexContacts)) << "trial " << trial;
+    ASSERT_GE(got.size(), std::min<size_t>(within.size(), 2)) << "trial " << trial;
+    auto widest = [](const std::vector<Vec3>& points) {
+      real w = 0;
+      for (const Vec3& p : points)
+        for (const Vec3& q : points) w = std::max(w, (p - q).norm());
+      return w;
+    };
+    std::vector<Vec3> got_points;
+    for (const ShapeContact& c : got) got_points.push_back(c.p_W);
+    EXPECT_GE(widest(got_points), real(0.6) * widest(within)) << "trial " << trial;
     // each contact is one of those corners (midway to the plane), and the deepest is among them
     for (const ShapeContact& c : got) {
       const Vec3 corner = c.p_W + Vec3::UnitZ() * (c.phi / 2);
@@ -415,6 +428,32 @@ TEST(ConvexContact, AConvexMeshOnAPlaneTouchesAtItsCornersWithinTheMargin) {
   }
   EXPECT_GT(exact, 20);
   EXPECT_GT(reduced, 20);
+}
+
+TEST(ConvexContact, AFlatFaceOnAPlaneTouchesAtItsRim) {
+  // a 128-sided prism (radius 4 cm, 2 cm tall, every corner on its two rims) lying on its end,
+  // tipped by 5 mrad about x: the contacts include the lowest rim corner and span the end face
+  std::vector<Vec3> points;
+  const real radius = real(0.04);
+  for (int i = 0; i < 128; ++i) {
+    const real a = real(2 * M_PI * i / 128);
+    for (real z : {real(0), real(0.02)}) points.push_back(Vec3(radius * std::cos(a), radius * std::sin(a), z));
+  }
+  LinkCollider prism, ground;
+  prism.shape = make_convex_hull_shape(points, "prism");
+  ground.shape = PlaneShape{Vec3::UnitZ(), 0};
+  const Quat q(Eigen::AngleAxis<real>(real(0.005), Vec3::UnitX()));
+  const SpatialTransform X = pose(Vec3(0, 0, radius * real(std::sin(0.005)) + real(0.001)), q);
+  std::vector<ShapeContact> got;
+  collide_shapes(prism, X, ground, SpatialTransform{}, real(0.01), got);
+  ASSERT_EQ(got.size(), kMaxConvexContacts);
+  // the end face's corners lie 1 to 1.4 mm above the ground: the deepest contact is the lowest
+  EXPECT_NEAR(deepest(got), real(0.001), 1e-5);
+  real widest = 0;
+  for (const ShapeContact& a : got)
+    for (const ShapeContact& b : got) widest = std::max(widest, (a.p_W - b.p_W).norm());
+  EXPECT_GT(widest, real(0.95) * 2 * radius);
+  for (const ShapeContact& c : got) EXPECT_LT(c.phi, real(0.0015));  // all on the end face
 }
 
 }  // namespace

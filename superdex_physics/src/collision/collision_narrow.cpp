@@ -175,25 +175,43 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
       const size_t first = out.size();
       const ConvexFaces* f = mesh->faces.get();
       if (f != nullptr && !f->corners.empty() && f->neighbour_start.size() == f->corners.size() + 1) {
-        // the corners within the margin of the plane: on a convex polyhedron, those below any
-        // level are joined along its edges to the deepest one, so a walk from it finds them all
+        // the deepest corner, and the corners within the margin farthest along 8 directions in
+        // the plane: support corners along the plane's inward normal tilted towards each, the
+        // tilt (from 0.3) scaled, as on a quadratic surface, towards a corner 80 % of the margin
+        // above the deepest, up to four climbs (from the deepest, then each from the last); on a
+        // flat face lying on the plane (hundreds of corners within the margin) the first climb
+        // ends on its rim
         const Vec3 n_S = X_WA.R.transpose() * pl.n;
         const real level = pl.d + margin - pl.n.dot(X_WA.p);  // corners x_S with n_S . x_S below it are within the margin
-        thread_local std::vector<int> walk;
-        thread_local std::vector<char> seen;
-        if (seen.size() < f->corners.size()) seen.resize(f->corners.size(), 0);
-        walk.assign(1, f->support(-n_S));
-        seen[walk[0]] = 1;
-        for (size_t k = 0; k < walk.size(); ++k) {
-          const int c = walk[k];
-          if (!(n_S.dot(f->corners[c]) < level)) continue;
-          add(X_WA.R * f->corners[c] + X_WA.p, 0);
-          for (int e = f->neighbour_start[c]; e < f->neighbour_start[c + 1]; ++e) {
-            const int next = f->neighbours[e];
-            if (!seen[next]) seen[next] = 1, walk.push_back(next);
+        const int deepest = f->support(-n_S);
+        if (n_S.dot(f->corners[deepest]) < level) {
+          add(X_WA.R * f->corners[deepest] + X_WA.p, 0);
+          constexpr int kDirections = 8;
+          const Vec3 t1 = n_S.unitOrthogonal(), t2 = n_S.cross(t1);
+          const real c45 = std::sqrt(real(0.5));
+          const real dir_u[kDirections] = {1, c45, 0, -c45, -1, -c45, 0, c45};
+          const real dir_v[kDirections] = {0, c45, 1, c45, 0, -c45, -1, -c45};
+          int found[kDirections];
+          for (int d = 0; d < kDirections; ++d) {
+            found[d] = deepest;
+            real tilt = real(0.3);
+            int at = deepest;
+            // the height above the deepest corner that the margin leaves
+            const real room = level - n_S.dot(f->corners[deepest]);
+            for (int attempt = 0; attempt < 4; ++attempt) {
+              at = f->support(-n_S + tilt * (dir_u[d] * t1 + dir_v[d] * t2), at);
+              const real rise = n_S.dot(f->corners[at] - f->corners[deepest]);
+              if (rise < room) found[d] = at;
+              // flat (the rim of a face) or near the margin: done
+              if (rise < room && (rise <= real(1e-3) * room || rise > real(0.5) * room)) break;
+              tilt *= std::clamp(std::sqrt(real(0.8) * room / std::max(rise, real(1e-3) * room)), real(0.3), real(3));
+            }
+            // each corner once, and only within the margin
+            const int c = found[d];
+            if (c == deepest || std::find(found, found + d, c) != found + d || !(n_S.dot(f->corners[c]) < level)) continue;
+            add(X_WA.R * f->corners[c] + X_WA.p, 0);
           }
         }
-        for (int c : walk) seen[c] = 0;
       } else {
         for (const Vec3& v : mesh->mesh->vertices) add(X_WA.R * v + X_WA.p, 0);
       }
