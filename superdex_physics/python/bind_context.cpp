@@ -117,6 +117,7 @@ void export_context(nb::module_& m) {
         "frame_interval simulated seconds (0: every step).");
   m.def("stop_recording", &physics::stop_recording, "Flushes and closes the running recording.");
   m.def("is_recording", &physics::is_recording);
+  m.def("recorded_frames", &physics::recorded_frames, "How many frames the running recording has written (0 when none runs).");
   m.def("recorded_time", &physics::recorded_time, "The most simulated time (s) a recorded scene has run since the recording started (the sum of its step sizes).");
 
   m.def("create_scene", &physics::create_scene, "name"_a,

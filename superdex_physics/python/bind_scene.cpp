@@ -119,6 +119,13 @@ void export_scene(nb::module_& m) {
            "anything), releasing the GIL while the physics runs. Raises superdex.physics.Error for a negative or\n"
            "non-finite time step and, under the default NumericalFaultPolicy.RAISE, for a numerical fault (the scene\n"
            "then keeps its last good state). An exception raised by a Python callback or component propagates as itself.")
+      .def("update_debugger", [](Scene& s) {
+             nb::gil_scoped_release release;
+             s.update_debugger();
+           },
+           "Shows the scene's current state in the debugger without stepping it: a frame to the connected pages and\n"
+           "to a running recording (only when it differs from the scene's last frame). For scenes a script poses or\n"
+           "solves rather than steps, such as a checkpoint that worker scenes restore from.")
       .def("get_last_time_step", &Scene::last_time_step, "s: the last positive time step.")
       .def("get_total_simulation_time", &Scene::total_simulation_time, "s")
       .def("get_solver_stats", &Scene::solver_stats)

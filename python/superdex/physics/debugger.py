@@ -12,7 +12,9 @@ Environment variables:
   (JSON lines, docs/recording_format.md; replay it with `superdex view <file>`) and returns True;
 - SUPERDEX_DEBUGGER_DURATION=<seconds>: with or without RECORD, records (default file
   superdex_recording.jsonl) and `is_attached()` stays True until the recorded scenes have been
-  simulated that long. This is how headless runs (CI, a cluster) use scripts written for the page;
+  simulated that long (a script that only shows scenes through `Scene.update_debugger`, such as
+  an IK loop, simulates nothing: its run ends that long on the wall clock after its first frame).
+  This is how headless runs (CI, a cluster) use scripts written for the page;
 - SUPERDEX_DEBUGGER_FRAME_INTERVAL=<seconds>: simulated time between recorded frames (default
   1/60; 0 records every step);
 - SUPERDEX_DEBUGGER_PORT=<port>: the server's port (default: a free one);
@@ -23,6 +25,7 @@ Environment variables:
 
 import os
 import sys
+import time
 import webbrowser
 from pathlib import Path
 
@@ -30,6 +33,7 @@ from superdex._native import module as _m
 
 _duration = None
 _mode = None  # None, "record" or "live"
+_frames_since = None  # wall clock (s) at the first frame of a recording that simulates nothing
 
 
 def _ui_directory() -> Path:
@@ -61,7 +65,8 @@ def _env_seconds(name: str, default=None, allow_zero=False):
 
 
 def _attach_recording() -> bool:
-    global _duration, _mode
+    global _duration, _mode, _frames_since
+    _frames_since = None
     _duration = _env_seconds("SUPERDEX_DEBUGGER_DURATION")
     frame_interval = _env_seconds("SUPERDEX_DEBUGGER_FRAME_INTERVAL", 1.0 / 60, allow_zero=True)
     path = os.environ.get("SUPERDEX_DEBUGGER_RECORD") or "superdex_recording.jsonl"
@@ -132,6 +137,15 @@ def is_attached() -> bool:
         if _duration is not None and _m.recorded_time() >= _duration * (1 - 1e-6):
             detach()
             return False
+        # a script that shows scenes without stepping them (Scene.update_debugger, an IK loop)
+        # simulates nothing: its duration runs on the wall clock from its first frame
+        global _frames_since
+        if _duration is not None and _m.recorded_time() == 0 and _m.recorded_frames() > 0:
+            if _frames_since is None:
+                _frames_since = time.monotonic()
+            elif time.monotonic() - _frames_since >= _duration:
+                detach()
+                return False
         return True
     return False
 

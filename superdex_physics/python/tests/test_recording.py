@@ -3,6 +3,7 @@ link poses, soft node positions and contacts; destroyed actors are announced; th
 headless mode records for a set simulated duration."""
 
 import json
+import time
 
 import numpy as np
 import pytest
@@ -104,6 +105,51 @@ def test_a_duration_counts_simulated_steps_across_restores(scene, tmp_path, monk
     assert times == [0.01, 0.11, 0.01, 0.11, 0.01]  # the last 0.1 s run ends at t = 0.1
 
 
+def test_update_debugger_records_a_scene_that_is_not_stepped(scene, tmp_path):
+    """Scene.update_debugger writes the scene's current state as a frame without stepping it,
+    and only when it changed since the scene's last frame; stepped frames go on as before."""
+    path = tmp_path / "run.jsonl"
+    ball = scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0,
+                                    world_from_local=sdp.TransformRT(translation=[0, 0, 0.5]))
+    scene.update_debugger()  # no recording, no page: nothing to do
+    sdp.start_recording(str(path), 0.0)
+    scene.update_debugger()
+    scene.update_debugger()  # the same state: no second frame
+    ball.set_root_transform(sdp.TransformRT(translation=[0.3, 0, 0.5]))
+    scene.update_debugger()
+    scene.step(0.01)
+    scene.update_debugger()  # the step's own frame shows this state already
+    sdp.stop_recording()
+    frames = [l for l in read(path) if l["type"] == "frame"]
+    assert [(f["t"], f["step"]) for f in frames] == [(0.0, 0), (0.0, 0), (pytest.approx(0.01), 1)]
+    # the ball where it was put, then where it was moved to, then a step later
+    x = [next(iter(f["links"].values()))[0] for f in frames]
+    assert x[0] == 0 and x[1] == pytest.approx(0.3) and x[2] == pytest.approx(0.3)
+    assert sdp.recorded_time() == 0 and not sdp.is_recording()
+    assert [l["name"] for l in read(path) if l["type"] == "actor"] == ["ball"]  # described once
+
+
+def test_a_duration_without_steps_runs_on_the_wall_clock(scene, tmp_path, monkeypatch):
+    """A script that only shows its scene through update_debugger (an IK loop) simulates nothing:
+    headless, it ends once the duration has passed on the wall clock after its first frame."""
+    path = tmp_path / "run.jsonl"
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_RECORD", str(path))
+    monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "0.3")
+    scene.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+    assert sdp.debugger.attach()
+    time.sleep(0.35)
+    assert sdp.debugger.is_attached()  # no frame yet: a slow setup is not cut short
+    start = time.monotonic()
+    shown = 0
+    while sdp.debugger.is_attached():
+        scene.update_debugger()
+        shown += 1
+        time.sleep(0.01)
+    assert 0.3 <= time.monotonic() - start < 1.0
+    assert shown > 5 and not sdp.is_recording()
+    assert len([l for l in read(path) if l["type"] == "frame"]) == 1  # nothing changed after the first
+
+
 def test_debugger_without_a_page_prints_the_url_and_gives_up(engine, monkeypatch, capsys, tmp_path):
     monkeypatch.delenv("SUPERDEX_DEBUGGER_RECORD", raising=False)
     monkeypatch.delenv("SUPERDEX_DEBUGGER_DURATION", raising=False)
@@ -118,3 +164,39 @@ def test_debugger_without_a_page_prints_the_url_and_gives_up(engine, monkeypatch
     monkeypatch.setenv("SUPERDEX_DEBUGGER_DURATION", "soon")
     with pytest.raises(sdp.Error, match="SUPERDEX_DEBUGGER_DURATION: expected a number of seconds"):
         sdp.debugger.attach()
+
+
+def test_recording_stops_safely_while_other_threads_step(engine, tmp_path):
+    """Scenes stepped on two Python threads record into the running recording while the main
+    thread stops and restarts it again and again (as a headless script's detach does while its
+    worker scenes still step): every step either records or not, nothing is torn."""
+    import threading
+
+    scenes = []
+    for k in range(2):
+        s = sdp.create_scene(f"worker {k}")
+        s.create_rigid_actor(name="ball", shape=sdp.create_sphere_shape([0, 0, 0], 0.1), is_static=False, mass=1.0)
+        scenes.append(s)
+    stop = threading.Event()
+
+    def work(s):
+        while not stop.is_set():
+            s.step(0.001)
+
+    threads = [threading.Thread(target=work, args=(s,)) for s in scenes]
+    for t in threads:
+        t.start()
+    try:
+        for k in range(40):
+            sdp.start_recording(str(tmp_path / f"run{k}.jsonl"), 0.0)
+            time.sleep(0.002)
+            assert sdp.recorded_frames() >= 0
+            sdp.stop_recording()
+    finally:
+        stop.set()
+        for t in threads:
+            t.join()
+    # each file is whole: a header, then complete JSON lines
+    for k in range(40):
+        lines = read(tmp_path / f"run{k}.jsonl")
+        assert lines[0]["type"] == "header"

@@ -92,5 +92,15 @@ void debug_after_step(Scene& scene, const SceneData& s) {
   send_frame(server, s, state);
 }
 
+void debug_update(const SceneData& s) {
+  DebugServer& server = get_debug_server();
+  if (!server.has_started()) return;
+  server.report_progress(s.time, s.step_count);
+  if (!server.wants_frame()) return;
+  LinkState& state = link_state();
+  std::lock_guard lock(state.mutex);
+  send_frame(server, s, state);
+}
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

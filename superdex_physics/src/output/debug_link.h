@@ -13,6 +13,8 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 void debug_before_step(Scene& scene);
 // At the end of Scene::step: reports progress, paces real-time play and sends a frame when due.
 void debug_after_step(Scene& scene, const SceneData& s);
+// Scene::update_debugger: reports progress and sends a frame when the pages want one.
+void debug_update(const SceneData& s);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

@@ -18,7 +18,6 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 struct Recording {
-  std::mutex mutex;
   std::ofstream out;
   std::string path;
   double frame_interval = 0;
@@ -26,7 +25,9 @@ struct Recording {
   // sizes: a restored state rewinds its clock, not this), and the most of them
   std::map<std::int64_t, double> simulated;
   double latest_time = 0;
+  long long frames = 0;
   StreamState stream;
+  std::map<std::int64_t, std::string> last_frame_line;  // per scene: its last frame's line
 };
 
 std::unique_ptr<Recording>& recording() {
@@ -34,9 +35,24 @@ std::unique_ptr<Recording>& recording() {
   return r;
 }
 
+// Guards the running recording and its replacement: scenes stepped on other threads write to it
+// while a script may stop it.
+std::mutex& recording_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// The last line of `lines` (each line ends in '\n').
+std::string last_line(const std::string& lines) {
+  if (lines.size() < 2) return lines;
+  const size_t start = lines.rfind('\n', lines.size() - 2);
+  return start == std::string::npos ? lines : lines.substr(start + 1);
+}
+
 }  // namespace
 
 void start_recording(const std::string& path, double frame_interval) {
+  std::lock_guard lock(recording_mutex());
   auto& r = recording();
   if (r) throw Error("start_recording: a recording to '" + r->path + "' is already running");
   if (!(frame_interval >= 0) || !std::isfinite(frame_interval))
@@ -51,22 +67,37 @@ void start_recording(const std::string& path, double frame_interval) {
 }
 
 void stop_recording() {
+  std::lock_guard lock(recording_mutex());
   auto& r = recording();
   if (!r) return;
   r->out.flush();
   r.reset();
 }
 
-bool is_recording() { return recording() != nullptr; }
+bool is_recording() {
+  std::lock_guard lock(recording_mutex());
+  return recording() != nullptr;
+}
 
-double recorded_time() { return recording() ? recording()->latest_time : 0; }
+double recorded_time() {
+  std::lock_guard lock(recording_mutex());
+  return recording() ? recording()->latest_time : 0;
+}
 
-std::string recording_path() { return recording() ? recording()->path : std::string(); }
+long long recorded_frames() {
+  std::lock_guard lock(recording_mutex());
+  return recording() ? recording()->frames : 0;
+}
+
+std::string recording_path() {
+  std::lock_guard lock(recording_mutex());
+  return recording() ? recording()->path : std::string();
+}
 
 void record_step(const SceneData& s) {
+  std::lock_guard lock(recording_mutex());
   auto& r = recording();
   if (!r) return;
-  std::lock_guard lock(r->mutex);
   double& simulated = r->simulated[s.handle];
   simulated += s.last_time_step;
   r->latest_time = std::max(r->latest_time, simulated);
@@ -80,6 +111,24 @@ void record_step(const SceneData& s) {
   std::string lines;
   append_frame_lines(s, r->stream, lines);
   r->out << lines;
+  r->frames += 1;
+  r->last_frame_line[s.handle] = last_line(lines);
+}
+
+void record_current_frame(const SceneData& s) {
+  std::lock_guard lock(recording_mutex());
+  auto& r = recording();
+  if (!r) return;
+  std::string lines;
+  append_frame_lines(s, r->stream, lines);
+  // the frame line is the last; the same frame shows no change (nor a new actor, which would be
+  // in it) since the scene's last one
+  std::string& last = r->last_frame_line[s.handle];
+  const std::string frame = last_line(lines);
+  if (frame == last) return;
+  r->out << lines;
+  r->frames += 1;
+  last = frame;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

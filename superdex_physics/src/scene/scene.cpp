@@ -312,6 +312,12 @@ void Scene::step(double dt) {
 
 double Scene::last_time_step() const { return scene_data(handle_).last_time_step; }
 
+void Scene::update_debugger() {
+  const SceneData& s = scene_data(handle_);
+  record_current_frame(s);
+  debug_update(s);
+}
+
 void Scene::step_dynamics(real dt) {
   SceneData& s = scene_data(handle_);
   // the step's wall time, its parts counted by the stages in time-stamp ticks (step_ticks.h)

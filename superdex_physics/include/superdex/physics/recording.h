@@ -23,6 +23,8 @@ bool is_recording();
 /// The most simulated time (s) a recorded scene has run since the recording started: the sum of
 /// its step sizes (a restored state rewinds the scene's clock, not this); 0 before the first step.
 double recorded_time();
+/// How many frames the running recording has written (0 when none runs).
+long long recorded_frames();
 /// The recording's path ("" when none).
 std::string recording_path();
 

@@ -163,6 +163,11 @@ class Scene {
   void step(double time_step_sec);
   /// The time step (s) of the last step with a positive one; 0 before.
   double last_time_step() const;
+  /// Shows the scene's current state in the debugger without stepping: a frame to the connected
+  /// pages and to a running recording (written only when it differs from the scene's last one).
+  /// For scenes a script poses or solves rather than steps (an IK solver's scene, a checkpoint
+  /// that worker scenes restore from).
+  void update_debugger();
   /// Sets what step() does on a numerical fault (default Raise). Not thread-safe: call it while
   /// no thread steps this scene.
   void set_numerical_fault_policy(NumericalFaultPolicy policy);
