@@ -231,12 +231,13 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
                 std::to_string(s.articulations.size()));
   // read everything first so that a bad state changes nothing
   std::vector<ArticulationState> states(count);
+  // the actors' handles in the captured scene (another scene built the same way has others)
+  std::vector<std::int64_t> state_handles(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const Articulation& a = *s.articulations[i];
-    const auto handle = r.get<std::int64_t>("actor handle");
+    state_handles[i] = r.get<std::int64_t>("actor handle");
     const auto nq = r.get<std::uint32_t>("sizes"), nv = r.get<std::uint32_t>("sizes");
     // actors match by creation order and size, so a state restores into a scene built the same way
-    (void)handle;
     if (nq != static_cast<std::uint32_t>(a.model.nq) || nv != static_cast<std::uint32_t>(a.model.nv))
       throw Error("restore_state: actor " + std::to_string(i) + " of the state (" + std::to_string(nq) + " positions, " +
                   std::to_string(nv) + " velocities) does not match actor '" + a.model.name + "' of the scene (" +
@@ -336,8 +337,9 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
   }
   // pose controllers match by articulation, in body order
   std::vector<Articulation*> controlled;
-  for (const auto& a : s.articulations)
-    if (a->pose_controller) controlled.push_back(a.get());
+  std::vector<size_t> controlled_body;
+  for (size_t b = 0; b < s.articulations.size(); ++b)
+    if (s.articulations[b]->pose_controller) controlled.push_back(s.articulations[b].get()), controlled_body.push_back(b);
   const auto controller_count = r.get<std::uint32_t>("pose controller count");
   if (controller_count != controlled.size())
     throw Error("restore_state: the state has " + std::to_string(controller_count) + " pose controllers but the scene has " +
@@ -345,8 +347,10 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
   std::vector<std::pair<bool, std::vector<real>>> controller_states(controller_count);
   for (std::uint32_t i = 0; i < controller_count; ++i) {
     const Articulation& a = *controlled[i];
-    if (r.get<std::int64_t>("pose controller actor") != a.handle)
-      throw Error("restore_state: pose controller " + std::to_string(i) + " of the state is not on actor " + std::to_string(a.handle));
+    // on the captured scene's actor in the same place
+    if (r.get<std::int64_t>("pose controller actor") != state_handles[controlled_body[i]])
+      throw Error("restore_state: pose controller " + std::to_string(i) + " of the state is not on actor '" + a.model.name + "' (actor " +
+                  std::to_string(controlled_body[i]) + " in creation order)");
     controller_states[i].first = r.get<std::uint8_t>("pose controller velocity flag") != 0;
     controller_states[i].second.resize(2 * a.model.nv + 7 * a.model.num_links);
     r.get_reals(controller_states[i].second.data(), controller_states[i].second.size(), "pose controllers");
