@@ -21,6 +21,20 @@
   straight down and the tip of the lower arm is 5 cm above the ground. The scene's contact filter
   lets only the lower arm (layer EndEffector) touch the ball, and the ball the ground.
 
+- assets/articulated/mixed/mixed_articulation.mochi_prefab: an actor prefab of one articulation
+  (MixedArticulation) of five box links in a chain along +X, each joint of another kind:
+
+      0: Base     / BaseFree    (Free)      -> DoFs 0-5
+      1: Link1    / Hinge1      (Revolute)  -> DoF 6  (about +Z, +-2 rad)
+      2: Link2    / Slider      (Prismatic) -> DoF 7  (along +X, 0 to 5 cm)
+      3: Link3    / Ball        (Spherical) -> DoFs 8-10
+      4: EndEffector / Hinge2   (Revolute)  -> DoF 11 (about +Y, +-2 rad)
+
+  Each link is a 0.1 x 0.03 x 0.03 m box (1000 kg/m^3) whose link frame is its centre; a child's
+  joint sits at the centre of its parent's +X end face, and its box reaches 0.1 m on from there.
+  All links are on layer RigidLink. Made for the IK example (scaled by 2, the base pinned at
+  its +X end).
+
 Reuses the mesh builders of tools/make_model_assets.py; writes only the files above (and
 assets/samples/), then loads each back through the engine (model loader, load_shape_from_file,
 prefab.add_to_scene) and steps the scene to check it. Deterministic: two runs give the same files.
@@ -52,6 +66,7 @@ ASSETS = REPO / "assets"
 FINE_CUBE = ASSETS / "cube" / "cube_fine_mesh.mochi.json"
 FINE_SPHERE = ASSETS / "sphere" / "icosphere_4subdiv.1.mochi.json"
 RAIL_SCENE = ASSETS / "samples" / "articulations_double_pendulum_on_rail.mochi_scene"
+MIXED_PREFAB = ASSETS / "articulated" / "mixed" / "mixed_articulation.mochi_prefab"
 
 FINE_CUBE_CELLS = 4  # cells along each side of the fine cube (0.25 m cells: exact in float32)
 
@@ -68,6 +83,13 @@ SEED_JOINT_VELOCITIES = [0.3, 4.2, 0.0, 0.0, 0.0]  # m/s on the rail, rad/s on t
 BALL_RADIUS = 0.05
 BALL_POSITION = [0.15, BALL_RADIUS, 0.0]  # resting on the ground, in reach of the tip
 BALL_DENSITY = 500.0
+
+# ---- the mixed-joint chain (m, kg/m^3) ----------------------------------------------------------
+MIXED_NAME = "MixedArticulation"
+MIXED_LINK_SIZE = (0.1, 0.03, 0.03)  # each link, long along X
+MIXED_LINKS = ["Base", "Link1", "Link2", "Link3", "EndEffector"]
+HINGE_LIMIT = 2.0  # rad, both hinges
+SLIDER_TRAVEL = 0.05  # m
 
 
 # ------------------------------------------------------------------------------------ model files
@@ -162,6 +184,42 @@ def rail_scene() -> dict:
     }
 
 
+def mixed_prefab() -> dict:
+    """The actor prefab of the mixed-joint chain, as JSON."""
+    half = MIXED_LINK_SIZE[0] / 2
+
+    def at(translation):
+        return {"rotation": [0.0, 0.0, 0.0, 1.0], "translation": translation}
+
+    links = []
+    for i, name in enumerate(MIXED_LINKS):
+        entry = {"name": name, "parentLink": i - 1, "shape": box(MIXED_LINK_SIZE), "colliderType": "Box",
+                 "jointFromLink": [0.0 if i == 0 else half, 0.0, 0.0], "layer": "RigidLink", "density": LINK_DENSITY}
+        if i == 0:
+            del entry["parentLink"]
+        links.append(entry)
+    end = at([half, 0.0, 0.0])  # a child's joint: the parent's +X end face
+    joints = [
+        {"name": "BaseFree", "type": "Free"},
+        {"name": "Hinge1", "type": "Revolute", "axis": [0.0, 0.0, 1.0], "parentLinkFromJoint": end,
+         "minLimit": -HINGE_LIMIT, "maxLimit": HINGE_LIMIT},
+        {"name": "Slider", "type": "Prismatic", "axis": [1.0, 0.0, 0.0], "parentLinkFromJoint": end,
+         "minLimit": 0.0, "maxLimit": SLIDER_TRAVEL},
+        {"name": "Ball", "type": "Spherical", "parentLinkFromJoint": end},
+        {"name": "Hinge2", "type": "Revolute", "axis": [0.0, 1.0, 0.0], "parentLinkFromJoint": end,
+         "minLimit": -HINGE_LIMIT, "maxLimit": HINGE_LIMIT},
+    ]
+    return {
+        "actors": {"rigid": [], "soft": [], "articulated": [{"name": MIXED_NAME, "links": links, "joints": joints}]},
+        "constraints": [],
+        "prefabs": [],
+        "scene": {
+            "description": "Five 0.1 m box links in a chain along +X joined by a free, a revolute, a prismatic, a "
+                           "spherical and a revolute joint (12 DoFs); all on layer RigidLink.",
+        },
+    }
+
+
 def write_json(doc: dict, path: Path) -> None:
     text = json.dumps(doc, indent=2)
     # lists of numbers on one line each
@@ -199,6 +257,23 @@ def check_rail_scene() -> None:
           f"{[round(x, 3) for x in pose]}")
 
 
+def check_mixed_prefab() -> None:
+    """Adds the prefab scaled by 2, as the IK example does, and checks its structure and mass."""
+    rel = MIXED_PREFAB.relative_to(ASSETS)
+    scene = sdp.create_scene("check")
+    result = sdp.prefab.add_to_scene(prefab_path=str(ASSETS / rel), root_path=str(ASSETS), scene=scene,
+                                     params=sdp.prefab.PrefabParams(scale=2.0))
+    arm = result.actors[0]
+    info = arm.get_articulated_shape_info()
+    assert list(info.link_names) == MIXED_LINKS, list(info.link_names)
+    assert arm.get_num_dofs() == 12
+    mass = arm.get_mass()
+    expected = LINK_DENSITY * 8 * math.prod(MIXED_LINK_SIZE) * len(MIXED_LINKS)
+    assert math.isclose(mass, expected, rel_tol=1e-4), (mass, expected)
+    sdp.destroy_scene(scene)
+    print(f"{rel}: {MIXED_NAME} {list(info.link_names)}, 12 DoFs, {mass:.4f} kg at scale 2")
+
+
 def main() -> None:
     sdp.initialize(num_worker_threads=0)
 
@@ -220,6 +295,8 @@ def main() -> None:
 
     write_json(rail_scene(), RAIL_SCENE)
     check_rail_scene()
+    write_json(mixed_prefab(), MIXED_PREFAB)
+    check_mixed_prefab()
     sdp.shutdown()
 
 

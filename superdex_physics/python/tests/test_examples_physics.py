@@ -314,6 +314,54 @@ def test_filtered_pairs_never_touch_and_unfiltered_pairs_do():
 
 
 # --------------------------------------------------------------------------------------------
+# inverse_kinematics.py
+
+
+def test_inverse_kinematics_reaches_every_target():
+    """Each of the example's targets, read back from the end effector's pose after its solve:
+    positions of the tip within 1e-4 m, rotations within 1e-3 rad, the base still pinned."""
+    from contact_helpers import rotation_angle, rotation_matrix
+
+    ex = load_example("inverse_kinematics")
+    seen = []
+
+    def on_solve(i, scene, base, tip):
+        X = scene.get_actor(tip).get_root_transform()
+        B = scene.get_actor(base).get_root_transform()
+        base_pin = np.asarray(B.translation, dtype=float) + rotation_matrix(np.asarray(B.rotation, dtype=float)) @ ex.PIN_LOCAL
+        seen.append((np.asarray(X.translation, dtype=float), np.asarray(X.rotation, dtype=float), base_pin))
+
+    results = ex.run(on_solve=on_solve)
+    assert len(results) == len(seen) == len(ex.TARGETS)
+    for (kind, goal), (p, q, base_pin), r in zip(ex.TARGETS, seen, results):
+        assert r["reached"] and r["converged"], (kind, goal, r)
+        if kind == "position":
+            tip = p + rotation_matrix(q) @ np.array(ex.TIP_LOCAL)
+            np.testing.assert_allclose(tip, goal, atol=1e-4)
+        else:
+            g = np.array(goal)
+            axis, angle = g / np.linalg.norm(g), np.linalg.norm(g)
+            want = np.array([*(math.sin(angle / 2) * axis), math.cos(angle / 2)])
+            assert rotation_angle(q, want) < 1e-3, (goal, rotation_angle(q, want))
+        np.testing.assert_allclose(base_pin, 0, atol=1e-4)
+
+
+def test_inverse_kinematics_as_a_script_records_each_solution(tmp_path):
+    """python inverse_kinematics.py --targets 3 --debugger, recording: one frame per solution (the
+    scene is never stepped: the clock stays at 0), each pose another."""
+    recording = tmp_path / "ik.jsonl"
+    env = dict(os.environ, SUPERDEX_DEBUGGER_RECORD=str(recording))
+    proc = subprocess.run([sys.executable, str(EXAMPLES / "inverse_kinematics.py"), "--targets", "3", "--debugger"], env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ""
+    assert "3 of 3 targets reached" in proc.stdout
+    frames = [f for f in map(json.loads, recording.read_text().splitlines()) if f["type"] == "frame"]
+    assert [f["t"] for f in frames] == [0.0, 0.0, 0.0]
+    assert len({json.dumps(f["links"]) for f in frames}) == 3
+
+
+# --------------------------------------------------------------------------------------------
 # every example as a script
 
 

@@ -21,6 +21,7 @@ import superdex.physics as sdp
 from superdex.physics.paths import resolve_asset, resolve_asset_root
 
 from conftest import unit_sphere_triangles
+from contact_helpers import rotation_angle, rotation_matrix
 
 FINE_CUBE = "cube/cube_fine_mesh.mochi.json"
 FINE_SPHERE = "sphere/icosphere_4subdiv.1.mochi.json"
@@ -203,3 +204,81 @@ def test_rail_scene_pose_controller(rail):
     # the rail reaches its target; the hinge, loaded by the arm's weight, gets close to its
     assert pose[0] == pytest.approx(0.1, abs=0.01)
     assert pose[1] == pytest.approx(-0.3, abs=0.05)
+
+
+MIXED_PREFAB = "articulated/mixed/mixed_articulation.mochi_prefab"
+
+
+def add_mixed(scene, scale=1.0):
+    result = sdp.prefab.add_to_scene(prefab_path=str(resolve_asset(MIXED_PREFAB)), root_path=str(resolve_asset_root(MIXED_PREFAB)),
+                                     scene=scene, params=sdp.prefab.PrefabParams(scale=scale))
+    (articulation,) = result.actors
+    return articulation
+
+
+def test_mixed_articulation_structure(engine, log_messages):
+    """Five 0.1 m boxes chained along +X by a free, a revolute, a prismatic, a spherical and a
+    revolute joint; scaled by 2 (as the IK example adds it) every length doubles, every mass x8."""
+    scene = sdp.create_scene("mixed")
+    articulation = add_mixed(scene)
+    assert not log_messages
+    info = articulation.get_articulated_shape_info()
+    assert list(info.link_names) == ["Base", "Link1", "Link2", "Link3", "EndEffector"]
+    T = sdp.ArticulatedJointType
+    assert list(info.joint_types) == [T.FREE, T.REVOLUTE, T.PRISMATIC, T.SPHERICAL, T.REVOLUTE]
+    assert list(info.parents) == [-1, 0, 1, 2, 3]
+    assert articulation.get_num_dofs() == 6 + 1 + 1 + 3 + 1
+    links = [scene.get_actor(h) for h in articulation.get_nested_link_actors()]
+    np.testing.assert_allclose([link.get_mass() for link in links], 1000 * 0.1 * 0.03 * 0.03, rtol=1e-4)
+    transforms = sdp.DynamicArrayTransformRT(5)
+    articulation.get_articulated_link_transforms(transforms)
+    np.testing.assert_allclose([list(transforms[i].translation) for i in range(5)], [[0.1 * i, 0, 0] for i in range(5)], atol=1e-6)
+
+    scaled = add_mixed(sdp.create_scene("mixed x2"), scale=2.0)
+    assert scaled.get_mass() == pytest.approx(8 * articulation.get_mass(), rel=1e-4)
+    scaled.get_articulated_link_transforms(transforms)
+    np.testing.assert_allclose([list(transforms[i].translation) for i in range(5)], [[0.2 * i, 0, 0] for i in range(5)], atol=1e-6)
+
+
+def test_mixed_articulation_reaches_ik_targets(engine):
+    """As the IK example uses it: scaled by 2, its base pinned at its +X end to the origin by two
+    stiff pivot constraints, no gravity; the end effector's tip reaches a position target within
+    1e-4 m and, alone, a rotation target within 1e-3 rad."""
+    scene = sdp.create_scene("ik")
+    scene.set_gravity([0, 0, 0])
+    articulation = add_mixed(scene, scale=2.0)
+    scene.enable_layer_contact_symmetric("RigidLink", "RigidLink", enable=False)
+    links = articulation.get_nested_link_actors()
+    root, tip = links[0], links[4]
+    pin = sdp.RigidPivotPositionConstraintParams(actor=root, local_position=[0.1, 0, 0], target_position=[0, 0, 0], stiffness=1e4)
+    scene.create_rigid_pivot_position_constraint(pin)
+    turn = sdp.RigidPivotRotationConstraintParams(actor=root, local_rotation=[0, 0, 0], target_rotation=[0, 0, 0], stiffness=1e4)
+    scene.create_rigid_pivot_rotation_constraint(turn)
+    solver = sdp.experimental.create_ik_solver(scene)
+    params = solver.get_solver_params()
+    params.max_iter = 500
+    params.abs_tol, params.position_error_thres, params.rotation_error_thres = 1e-6, 1e-4, 1e-3
+    solver.set_solver_params(params)
+
+    tip_local = [0.1, 0, 0]  # the end effector's +X end (its link frame is its centre)
+    target = [0.4, -0.35, 0.2]  # the stretched arm's tip is at (0.8, 0, 0)
+    solver.create_position_target(tip, tip_local, target, 1.0)
+    assert solver.solve_ik()
+    assert scene.get_solver_stats().convergence_status == sdp.ConvergenceStatus.CONVERGED
+    xf = scene.get_actor(tip).get_root_transform()
+    R = rotation_matrix(xf.rotation)
+    reached = np.asarray(xf.translation, dtype=float) + R @ np.array(tip_local)
+    np.testing.assert_allclose(reached, target, atol=1e-4)
+    # the base stayed pinned
+    base = scene.get_actor(root).get_root_transform()
+    np.testing.assert_allclose(np.asarray(base.translation, dtype=float) + rotation_matrix(base.rotation) @ [0.1, 0, 0], 0, atol=1e-4)
+
+    solver.clear_position_target(tip)
+    solver.create_rotation_target(tip, [0, 0, 0], [0.3, -0.2, 0.4], 1.0)
+    assert solver.solve_ik()
+    goal = np.array([0.3, -0.2, 0.4])
+    want = sdp.Quaternion.from_axis_angle(list(goal / np.linalg.norm(goal)), float(np.linalg.norm(goal)))
+    got = scene.get_actor(tip).get_root_transform().rotation
+    assert rotation_angle(np.array(list(got), dtype=float), np.array(list(want), dtype=float)) < 1e-3
+    sdp.experimental.destroy_ik_solver(solver)
+

@@ -3,6 +3,7 @@
 
 #include "superdex/physics/ik_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -202,12 +203,22 @@ bool IKSolver::solve() {
   Rows rows, trial;
   problem.rows(rows);
   real f = Problem::energy(rows);
+  // the solve's statistics, as a step's: the scene's solver stats report them
+  StepStats stats;
+  stats.num_islands = 1;
+  bool converged = n == 0;
+  real gradient_norm = 0;
   for (int it = 0; it < params_.max_iter && n > 0 && !out_of_time(); ++it) {
     // the energy's gradient -A^T W e, and the Gauss-Newton system A^T W A delta = A^T W e
     const Eigen::Map<const VecX> e(rows.e.data(), static_cast<Eigen::Index>(rows.e.size()));
     const Eigen::Map<const VecX> w(rows.weight.data(), static_cast<Eigen::Index>(rows.weight.size()));
     const VecX b = rows.A.transpose() * w.cwiseProduct(e);
-    if (b.norm() < params_.abs_tol) break;
+    gradient_norm = b.norm();
+    if (gradient_norm < params_.abs_tol) {
+      converged = true;
+      break;
+    }
+    stats.newton_iterations = stats.total_newton_iterations = it + 1;
     MatX H = rows.A.transpose() * w.asDiagonal() * rows.A;
     // a little damping keeps a singular pose's step finite (Levenberg)
     const real mu = real(1e-9) * std::max(H.diagonal().maxCoeff(), real(1)) + std::numeric_limits<real>::epsilon();
@@ -221,6 +232,7 @@ bool IKSolver::solve() {
       problem.set_positions(problem.moved(q, step * delta));
       problem.rows(trial);
       f_new = Problem::energy(trial);
+      stats.line_search_iterations = std::max(stats.line_search_iterations, ls + 1);
       if (f_new < f) {
         lowered = true;
         break;
@@ -235,9 +247,18 @@ bool IKSolver::solve() {
     std::swap(rows, trial);
     const real decrease = f - f_new;
     f = f_new;
-    if (decrease <= params_.rel_tol * f) break;
+    if (decrease <= params_.rel_tol * f) {
+      converged = true;
+      break;
+    }
   }
+  stats.residual = gradient_norm;
+  stats.converged = converged;
+  stats.status = converged ? ConvergenceStatus::Converged : ConvergenceStatus::Stopped;
+  s.stats = stats;
   problem.zero_velocities();
+  // the solution shows in the debugger, as a step's state would
+  scene_.update_debugger();
   // success: every target within its threshold
   bool ok = true;
   for (const auto* targets : {&position_targets_, &rotation_targets_}) {

@@ -42,8 +42,11 @@ class IKSolver {
   /// (rotation vectors, rad) with stiffness `weight` (N m/rad); replaces the link's previous one.
   ConstraintHandle create_rotation_target(ActorHandle link, const Vec3& local_rotation, const Vec3& target_rotation, real weight);
   void clear_rotation_target(ActorHandle link);
-  /// Poses the articulations (velocities zeroed); true when every target is within its
-  /// threshold.
+  /// Poses the articulations (velocities zeroed) and shows the result in the debugger
+  /// (Scene::update_debugger); true when every target is within its threshold. The scene's
+  /// solver stats then describe the solve: its Gauss-Newton iterations, the final gradient norm
+  /// as residual, Converged when the gradient fell below abs_tol or an iteration lowered the
+  /// energy by no more than rel_tol of it, Stopped otherwise (iterations, time, line search).
   bool solve();
 
  private:
