@@ -12,6 +12,7 @@ Scenes (benchmarks/scenes/s<N>_*.py; each builds its models from one description
   7 threads: N independent scenes, 1 and 2 threads (SuperDex)
   8 the lab's batched vector env, 64 scenes, 1 and 2 worker threads (SuperDex)
   9 robots from MuJoCo model files: Shadow hand with block, humanoid (SuperDex, MuJoCo)
+ 10 the feature examples (constraints, pose control, IK) as users run them (SuperDex)
 then the Google Benchmark micro-benchmarks of the hot kernels (benchmarks/cpp, target
 superdex_microbench, built in the project's build directory).
 
@@ -46,7 +47,7 @@ from benchmarks import report  # noqa: E402
 from benchmarks.harness import BENCH, REPO, measure_cases  # noqa: E402
 
 SCENES = {1: "s1_seed", 2: "s2_arm_box", 3: "s3_panda", 4: "s4_pile", 5: "s5_soft_block", 6: "s6_python_overhead",
-          7: "s7_threads", 8: "s8_batched", 9: "s9_mjcf_robots"}
+          7: "s7_threads", 8: "s8_batched", 9: "s9_mjcf_robots", 10: "s10_feature_examples"}
 
 
 def build_dir():

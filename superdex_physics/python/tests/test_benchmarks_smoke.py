@@ -20,7 +20,7 @@ def test_benchmark_suite_quick_run_writes_every_table(tmp_path):
                          capture_output=True, text=True, timeout=300 * SLOW, cwd=REPO)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     text = out.read_text()
-    for number in range(1, 9):
+    for number in range(1, 11):
         section = text.split(f"\n## {number}. ", 1)
         assert len(section) == 2, f"no section for scene {number}"
         body = section[1].split("\n## ", 1)[0]
