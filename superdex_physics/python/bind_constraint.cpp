@@ -23,7 +23,8 @@ void export_constraints(nb::module_& m) {
       .value("ARTICULATED_SINGLE_DOF_TARGET", ConstraintType::ArticulatedSingleDofTarget)
       .value("ARTICULATED_3D_ROTATION_TARGET", ConstraintType::Articulated3dRotationTarget)
       .value("ARTICULATED_SINGLE_DOF_RANGE", ConstraintType::ArticulatedSingleDofRange)
-      .value("DEFORMABLE_NODE_TO_RIGID", ConstraintType::DeformableNodeToRigid);
+      .value("DEFORMABLE_NODE_TO_RIGID", ConstraintType::DeformableNodeToRigid)
+      .value("DEFORMABLE_NODE_TO_DEFORMABLE_NODE", ConstraintType::DeformableNodeToDeformableNode);
 
   StructBinder<ConstraintParams>(m, "ConstraintParams",
                                  "An implicit spring-damper on a constraint's deviation, per component: stiffness (N/m or N m/rad),\n"
@@ -104,6 +105,16 @@ void export_constraints(nb::module_& m) {
       .field("deformable_actor", &DeformableNodeToRigidConstraintParams::deformable_actor)
       .field("find_closest", &DeformableNodeToRigidConstraintParams::find_closest)
       .field("fix_to_deformable_pos", &DeformableNodeToRigidConstraintParams::fix_to_deformable_pos)
+      .done(false);
+  StructBinder<DeformableNodeToDeformableNodeConstraintParams, ConstraintParams>(
+      m, "DeformableNodeToDeformableNodeConstraintParams",
+      "Holds node node_index_a of soft actor actor_a and node node_index_b of soft actor actor_b together (m, world);\n"
+      "find_closest: each actor's surface node nearest the midpoint of the two actors' origins instead.")
+      .field("node_index_a", &DeformableNodeToDeformableNodeConstraintParams::node_index_a)
+      .field("node_index_b", &DeformableNodeToDeformableNodeConstraintParams::node_index_b)
+      .field("actor_a", &DeformableNodeToDeformableNodeConstraintParams::actor_a)
+      .field("actor_b", &DeformableNodeToDeformableNodeConstraintParams::actor_b)
+      .field("find_closest", &DeformableNodeToDeformableNodeConstraintParams::find_closest)
       .done(false);
   StructBinder<ArticulatedSingleDofTargetConstraintParams, ConstraintParams>(
       m, "ArticulatedSingleDofTargetConstraintParams",
@@ -210,6 +221,8 @@ void add_constraint_methods(nb::class_<Scene>& scene) {
              &Scene::create_deformable_node_position_constraint);
   add_create(scene, "create_deformable_node_to_rigid_constraint", "DeformableNodeToRigidConstraintParams",
              &Scene::create_deformable_node_to_rigid_constraint);
+  add_create(scene, "create_deformable_node_to_deformable_node_constraint", "DeformableNodeToDeformableNodeConstraintParams",
+             &Scene::create_deformable_node_to_deformable_node_constraint);
   add_create(scene, "create_articulated_single_dof_target_constraint", "ArticulatedSingleDofTargetConstraintParams",
              &Scene::create_articulated_single_dof_target_constraint);
   add_create(scene, "create_articulated_3d_rotation_target_constraint", "Articulated3dRotationTargetConstraintParams",

@@ -295,6 +295,94 @@ def test_a_soft_block_tied_under_a_rigid_box_hangs_from_it(scene):
     np.testing.assert_allclose(force[6:], [0, 0, soft_weight], rtol=1e-3, atol=1e-4 * soft_weight)
 
 
+def test_a_soft_block_tied_under_another_hangs_from_it_by_one_node(scene):
+    """Two soft blocks: the upper hung from the world by a node, the lower tied to it node to node
+    (find_closest: the two surface nodes nearest the midpoint of their origins, the facing
+    centres). At rest the tie carries the lower block's weight, up on its node and down on the
+    upper block's, the hanger both weights; the two nodes stay together within weight / K."""
+    from conftest import node_positions_world
+
+    upper = soft_block(scene, "upper", [0, 0, 1.0])
+    lower = soft_block(scene, "lower", [0, 0, 0.89])
+    scene.enable_actor_contact_symmetric(upper, lower, False, sdp.IncludeNestedActors.NO)
+    x_upper = node_positions_world(upper)
+    top = int(np.argmin(np.linalg.norm(x_upper - [0, 0, 1.05], axis=1)))
+    hanger = scene.create_deformable_node_position_constraint(actor=upper.get_handle(), node_index=top, position=list(x_upper[top]),
+                                                              stiffness=1e5, damping=20)
+    K = 1e5
+    tie = scene.create_deformable_node_to_deformable_node_constraint(actor_a=upper.get_handle(), actor_b=lower.get_handle(),
+                                                                     find_closest=True, stiffness=K, damping=20)
+    assert tie.get_type() == sdp.ConstraintType.DEFORMABLE_NODE_TO_DEFORMABLE_NODE
+    node_a = int(tie.get_dof_indices_for_actor(actor_index=0)[0]) // 3
+    node_b = int(tie.get_dof_indices_for_actor(actor_index=1)[0]) // 3
+    np.testing.assert_allclose(node_positions_world(upper)[node_a], [0, 0, 0.95], atol=1e-9)
+    np.testing.assert_allclose(node_positions_world(lower)[node_b], [0, 0, 0.94], atol=1e-9)
+    for c in (hanger, tie):
+        c.register_query(sdp.QueryType.CONSTRAINT_FORCE)
+    for _ in range(300):
+        scene.step(0.01)
+    w_upper, w_lower = upper.get_mass() * G, lower.get_mass() * G
+    np.testing.assert_allclose(np.asarray(hanger.get_force()), [0, 0, w_upper + w_lower], rtol=1e-3, atol=1e-4 * w_lower)
+    force = np.asarray(tie.get_force())
+    assert force.shape == (6,)
+    np.testing.assert_allclose(force[:3], [0, 0, -w_lower], rtol=1e-3, atol=1e-4 * w_lower)
+    np.testing.assert_allclose(force[3:], [0, 0, w_lower], rtol=1e-3, atol=1e-4 * w_lower)
+    gap = node_positions_world(upper)[node_a] - node_positions_world(lower)[node_b]
+    np.testing.assert_allclose(np.asarray(tie.get_deviation()), gap, atol=1e-9 if sdp.uses_double_precision() else 2e-7)
+    np.testing.assert_allclose(gap, [0, 0, w_lower / K], rtol=1e-2, atol=1e-8)
+
+
+def test_two_free_soft_blocks_pulled_together_keep_their_momentum(scene):
+    """Without gravity, a tie between two free blocks 5 cm apart draws their nodes together with
+    equal and opposite forces: the total momentum stays zero, the tied nodes meet."""
+    from conftest import node_positions_world
+
+    scene.set_gravity([0, 0, 0])
+    a = soft_block(scene, "a", [0, 0, 0])
+    b = soft_block(scene, "b", [0.15, 0, 0])
+    x_a, x_b = node_positions_world(a), node_positions_world(b)
+    node_a = int(np.argmin(np.linalg.norm(x_a - [0.05, 0, 0], axis=1)))
+    node_b = int(np.argmin(np.linalg.norm(x_b - [0.1, 0, 0], axis=1)))
+    tie = scene.create_deformable_node_to_deformable_node_constraint(actor_a=a.get_handle(), node_index_a=node_a, actor_b=b.get_handle(),
+                                                                     node_index_b=node_b, stiffness=1e3, damping=5)
+    np.testing.assert_allclose(np.asarray(tie.get_deviation()), [-0.05, 0, 0], atol=1e-9 if sdp.uses_double_precision() else 1e-7)
+    mass = a.get_mass()
+
+    def centre(actor):
+        return node_positions_world(actor).mean(axis=0)  # uniform grid of equal cells: the nodes' mean is the centre of mass
+
+    start = (centre(a) + centre(b)) / 2
+    for _ in range(200):
+        scene.step(0.01)
+    # the blocks' centre of mass has not moved (equal masses: the mean of their centres)
+    np.testing.assert_allclose((centre(a) + centre(b)) / 2, start, atol=1e-8 if sdp.uses_double_precision() else 1e-5)
+    assert np.linalg.norm(np.asarray(tie.get_deviation())) < 1e-3
+    assert centre(a)[0] > 0.02 and centre(b)[0] < 0.13  # both moved towards each other
+    assert mass == pytest.approx(b.get_mass())
+
+
+def test_node_to_node_constraint_errors(scene):
+    a = soft_block(scene, "a", [0, 0, 0])
+    b = soft_block(scene, "b", [0.2, 0, 0])
+    rigid = box(scene, "box", [0, 0.3, 0])
+    create = scene.create_deformable_node_to_deformable_node_constraint
+    with pytest.raises(sdp.Error, match="actor_b .* must be a soft actor"):
+        create(actor_a=a.get_handle(), actor_b=rigid.get_handle(), node_index_a=0, node_index_b=0)
+    with pytest.raises(sdp.Error, match="node_index_b 1000 out of range"):
+        create(actor_a=a.get_handle(), actor_b=b.get_handle(), node_index_a=0, node_index_b=1000)
+    with pytest.raises(sdp.Error, match="the same node"):
+        create(actor_a=a.get_handle(), actor_b=a.get_handle(), node_index_a=3, node_index_b=3)
+    # two nodes of one body: a spring inside it
+    c = create(actor_a=a.get_handle(), actor_b=a.get_handle(), node_index_a=0, node_index_b=1, stiffness=10.0)
+    assert c.get_num_actors() == 2 and c.get_actor(0) == c.get_actor(1)
+    scene.destroy_actor(b)
+    assert scene.get_constraint(c.get_handle()) is not None
+    # a constraint goes with either of its actors
+    tie = create(actor_a=a.get_handle(), actor_b=soft_block(scene, "c", [0, 0.5, 0]).get_handle(), node_index_a=0, node_index_b=0)
+    scene.destroy_actor(a)
+    assert scene.get_constraint(tie.get_handle()) is None and scene.get_constraint(c.get_handle()) is None
+
+
 def test_a_restored_state_brings_back_the_constraints_targets_and_springs(scene):
     # capture, then move the pivot's target and soften it; restoring the capture and stepping
     # again repeats the first run exactly

@@ -18,6 +18,8 @@ std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index) {
       return node(c.node_a);
     case ConstraintType::DeformableNodeToRigid:
       return index == 0 ? std::vector<int>{0, 1, 2, 3, 4, 5} : node(c.node_b);
+    case ConstraintType::DeformableNodeToDeformableNode:
+      return node(index == 0 ? c.node_a : c.node_b);
     case ConstraintType::RigidPivotRotation:
     case ConstraintType::JointRotationRange:
     case ConstraintType::JointRotationTracking:
@@ -206,6 +208,15 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
       }
       break;
     }
+    case ConstraintType::DeformableNodeToDeformableNode: {
+      // B's node onto A's
+      const Vec3 gap = t.a.node_W - t.b.node_W;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3 d = Vec3::Unit(i);
+        w.equality(-node_row(d), node_row(d), gap[i], 0);
+      }
+      break;
+    }
     case ConstraintType::ArticulatedSingleDofTarget:
       w.equality(dof_row(0), none, c.target_value - t.a.q_dof, (c.target_value - c.old_target_value) / dt);
       break;
@@ -271,6 +282,8 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Constrai
       return out(c.target_position - a.node_W);
     case ConstraintType::DeformableNodeToRigid:
       return out(X_WA * c.p_A - b.node_W);
+    case ConstraintType::DeformableNodeToDeformableNode:
+      return out(a.node_W - b.node_W);
     case ConstraintType::ArticulatedSingleDofTarget:
       return {c.target_value - a.q_dof};
     case ConstraintType::Articulated3dRotationTarget:
@@ -299,6 +312,9 @@ void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a
       return;
     case ConstraintType::DeformableNodeToRigid:
       p_a = X_WA * c.p_A, p_b = b.node_W;
+      return;
+    case ConstraintType::DeformableNodeToDeformableNode:
+      p_a = a.node_W, p_b = b.node_W;
       return;
     case ConstraintType::RigidPivotRotation:
     case ConstraintType::ArticulatedSingleDofTarget:

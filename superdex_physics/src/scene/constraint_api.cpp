@@ -23,6 +23,7 @@ const char* constraint_type_name(ConstraintType type) {
     case ConstraintType::RigidPivotRotation: return "RIGID_PIVOT_ROTATION";
     case ConstraintType::DeformableNodePosition: return "DEFORMABLE_NODE_POSITION";
     case ConstraintType::DeformableNodeToRigid: return "DEFORMABLE_NODE_TO_RIGID";
+    case ConstraintType::DeformableNodeToDeformableNode: return "DEFORMABLE_NODE_TO_DEFORMABLE_NODE";
     case ConstraintType::ArticulatedSingleDofTarget: return "ARTICULATED_SINGLE_DOF_TARGET";
     case ConstraintType::Articulated3dRotationTarget: return "ARTICULATED_3D_ROTATION_TARGET";
     case ConstraintType::ArticulatedSingleDofRange: return "ARTICULATED_SINGLE_DOF_RANGE";
@@ -281,6 +282,28 @@ ConstraintHandle Scene::create_deformable_node_to_rigid_constraint(const Deforma
   // the rigid actor's point: where the node is now, or as given
   c.p_A = p.fix_to_deformable_pos ? Vec3(X_WA.rotation.conjugate() * (body.state.x.segment<3>(3 * c.node_b) - X_WA.translation))
                                   : Vec3(p.rigid_local_pos);
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_deformable_node_to_deformable_node_constraint(const DeformableNodeToDeformableNodeConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_deformable_node_to_deformable_node_constraint";
+  check_spring(p, what);
+  const SoftBody& body_a = node_body(s, p.actor_a, what, "actor_a");
+  const SoftBody& body_b = node_body(s, p.actor_b, what, "actor_b");
+  ConstraintRecord c;
+  c.type = ConstraintType::DeformableNodeToDeformableNode;
+  c.actor_a = p.actor_a, c.actor_b = p.actor_b;
+  if (p.find_closest) {
+    // each surface's node nearest the midpoint of the two actors' origins
+    const Vec3 mid = (body_a.X_WL.translation + body_b.X_WL.translation) / 2;
+    c.node_a = closest_surface_node(body_a, mid), c.node_b = closest_surface_node(body_b, mid);
+  } else {
+    c.node_a = p.node_index_a, c.node_b = p.node_index_b;
+  }
+  check_node(body_a, c.node_a, what, "node_index_a");
+  check_node(body_b, c.node_b, what, "node_index_b");
+  check(p.actor_a != p.actor_b || c.node_a != c.node_b, what, "node_index_a and node_index_b are the same node of the same actor");
   return add(s, std::move(c), p);
 }
 

@@ -73,7 +73,10 @@ class SoftAlgebra {
     }
     first_factor_ = false;
     // contact couplings: within a soft block (one node's 3 x 3 block, in the pattern), between a
-    // soft block and the articulation DOFs, and among the articulation DOFs
+    // soft block and the articulation DOFs, and among the articulation DOFs; the others (a
+    // constraint between nodes of two soft bodies, or of one body's different elements) outside
+    // the factored matrix, in E
+    std::vector<Eigen::Triplet<real>> outside;
     for (int col = 0; col < n_; ++col) {
       const int kc = block_of(col);
       for (SparseMat::InnerIterator it(C, col); it; ++it) {
@@ -85,13 +88,17 @@ class SoftAlgebra {
           B_[kc](col - offset_[kc], row) += it.value();
         } else if (kc >= 0 && kr == kc) {
           const int slot = soft_[kc]->pattern.slot(row - offset_[kc], col - offset_[kc]);
-          if (slot < 0) throw Error("soft actor '" + soft_[kc]->body.model.name + "': a contact couples nodes of different elements");
-          H_[kc].valuePtr()[slot] += it.value();
+          if (slot < 0) outside.emplace_back(row, col, it.value());
+          else H_[kc].valuePtr()[slot] += it.value();
         } else if (kr >= 0 && kc >= 0) {
-          throw Error("soft actors '" + soft_[kr]->body.model.name + "' and '" + soft_[kc]->body.model.name +
-                      "' are coupled directly; soft-soft contact is not supported");
+          outside.emplace_back(row, col, it.value());
         }
       }
+    }
+    coupled_ = !outside.empty();
+    if (coupled_) {
+      E_.resize(n_, n_);
+      E_.setFromTriplets(outside.begin(), outside.end());
     }
     // after the first factorization of the solve, the matrix is solved by conjugate gradients
     // preconditioned by that factorization (solve()), and factored again only when they do not
@@ -104,7 +111,16 @@ class SoftAlgebra {
   }
 
   void solve(const VecX& b, VecX& x) {
-    if (current_ || !conjugate_gradients(b, x)) {
+    if (coupled_) {
+      // the factored matrix lacks E: conjugate gradients on the whole one, preconditioned by it
+      // (E's rank is three per coupling constraint: a few iterations more), refactored once if
+      // they stall; their last iterate otherwise (an inexact Newton direction)
+      if (conjugate_gradients(b, x, kCoupledCgIterations) || current_) return;
+      factor_current();
+      conjugate_gradients(b, x, kCoupledCgIterations);
+      return;
+    }
+    if (current_ || !conjugate_gradients(b, x, kCgIterations)) {
       if (!current_) factor_current();
       precondition(b, x);
     }
@@ -154,18 +170,19 @@ class SoftAlgebra {
         y.head(nr_).noalias() += B_[k].transpose() * x.segment(offset_[k], soft_[k]->size());
       }
     }
+    if (coupled_) y.noalias() += E_ * x;
   }
 
   // Preconditioned conjugate gradients on H x = b; false when the residual is not below
-  // kCgTolerance |b| within kCgIterations.
-  bool conjugate_gradients(const VecX& b, VecX& x) {
+  // kCgTolerance |b| within max_iterations.
+  bool conjugate_gradients(const VecX& b, VecX& x, int max_iterations) {
     const real target = kCgTolerance * b.norm();
     x.setZero(n_);
     VecX r = b, z, p, q;
     precondition(r, z);
     p = z;
     real rz = r.dot(z);
-    for (int i = 0; i < kCgIterations; ++i) {
+    for (int i = 0; i < max_iterations; ++i) {
       multiply(p, q);
       const real pq = p.dot(q);
       if (!(pq > 0)) return false;
@@ -186,6 +203,7 @@ class SoftAlgebra {
   // inexact direction costs no extra Newton iteration (the pressed duck and the soft blocks take
   // as many iterations as with direct solves, or fewer)
   static constexpr int kCgIterations = 12;
+  static constexpr int kCoupledCgIterations = 100;
   static constexpr real kCgTolerance = kUsesDoublePrecision ? real(1e-8) : real(1e-5);
 
   // soft block of variable i, or -1 for an articulation DOF
@@ -210,6 +228,8 @@ class SoftAlgebra {
   bool first_factor_ = true;
   bool factored_ = false;         // a matrix of this solve has been factored
   bool current_ = false;          // and it is the current one
+  bool coupled_ = false;          // the current matrix has couplings outside the factored one
+  SparseMat E_;                   // those couplings (n x n)
 };
 
 }  // namespace

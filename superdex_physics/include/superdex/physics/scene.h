@@ -304,6 +304,7 @@ class Scene {
   ConstraintHandle create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& params);
   ConstraintHandle create_deformable_node_position_constraint(const DeformableNodePositionConstraintParams& params);
   ConstraintHandle create_deformable_node_to_rigid_constraint(const DeformableNodeToRigidConstraintParams& params);
+  ConstraintHandle create_deformable_node_to_deformable_node_constraint(const DeformableNodeToDeformableNodeConstraintParams& params);
   ConstraintHandle create_articulated_single_dof_target_constraint(const ArticulatedSingleDofTargetConstraintParams& params);
   ConstraintHandle create_articulated_3d_rotation_target_constraint(const Articulated3dRotationTargetConstraintParams& params);
   /// Errors for a pose controller's constraint (remove the controller instead).

@@ -28,6 +28,7 @@ enum class ConstraintType {
   RigidPivotRotation,
   DeformableNodePosition,
   DeformableNodeToRigid,
+  DeformableNodeToDeformableNode,
   ArticulatedSingleDofTarget,
   Articulated3dRotationTarget,
   /// The position limits of a revolute or prismatic joint of an articulated actor (made with the
@@ -124,6 +125,16 @@ struct DeformableNodeToRigidConstraintParams : ConstraintParams {
   ActorHandle rigid_actor, deformable_actor;
   bool find_closest = false;
   bool fix_to_deformable_pos = true;
+};
+
+/// Holds node node_index_a of soft actor actor_a and node node_index_b of soft actor actor_b (the
+/// same actor or another) together: a spring-damper on their separation (m, world).
+/// find_closest: instead of the indices, each actor's surface node nearest the midpoint of the
+/// two actors' origins (a seam where two bodies meet).
+struct DeformableNodeToDeformableNodeConstraintParams : ConstraintParams {
+  int node_index_a = -1, node_index_b = -1;
+  ActorHandle actor_a, actor_b;
+  bool find_closest = false;
 };
 
 /// Pulls one DOF of a revolute or prismatic joint of an articulated actor to target_value (rad or
