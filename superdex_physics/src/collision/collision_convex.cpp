@@ -108,9 +108,13 @@ void collide_convex_convex(const ConvexFaces& a, const SpatialTransform& X_WA, c
     ccd.center1 = centre;
     ccd.center2 = centre;
     ccd.max_iterations = 100;
-    // EPA stops when a new support point lies within this squared distance (m^2) of the polytope
+    // EPA stops once a new support point advances the polytope's nearest face by little: its
+    // advance times the face's distance (m^2) below the square of a millionth of the pair's size,
+    // or below the support points' round-off times that size (else, in float, EPA chases the
+    // round-off, its polytope growing without end)
     const double tol = 1e-6 * std::max(double(size), 1e-3);
-    ccd.epa_tolerance = tol * tol;
+    const double round_off = 16.0 * std::numeric_limits<real>::epsilon() * (1.0 + X_WA.p.norm() + X_WB.p.norm());
+    ccd.epa_tolerance = std::max(tol * tol, round_off * std::max(double(size), 1e-3));
     ccd.dist_tolerance = tol;
     ccd_real_t depth = 0;
     ccd_vec3_t dir, pos;
