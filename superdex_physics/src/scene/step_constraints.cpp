@@ -61,15 +61,26 @@ void constraint_step_terms(Step& step) {
   ws.constraint_terms.resize(s.constraints.size());
   ws.constraint_bodies.resize(s.constraints.size());
   if (s.constraints.empty()) return;
+  // the bodies' indices, made at the first constraint that needs them
   std::unordered_map<const void*, int> index;
-  for (size_t i = 0; i < s.articulations.size(); ++i) index[s.articulations[i].get()] = static_cast<int>(i);
-  for (size_t i = 0; i < s.soft_bodies.size(); ++i) index[s.soft_bodies[i].get()] = static_cast<int>(i);
+  const auto make_index = [&] {
+    if (!index.empty()) return;
+    for (size_t i = 0; i < s.articulations.size(); ++i) index[s.articulations[i].get()] = static_cast<int>(i);
+    for (size_t i = 0; i < s.soft_bodies.size(); ++i) index[s.soft_bodies[i].get()] = static_cast<int>(i);
+  };
   // the islands' nodes: articulations, then soft bodies
   const int na = static_cast<int>(s.articulations.size());
   const auto island_node = [na](const ConstraintSide& side) { return side.soft >= 0 ? na + side.soft : side.body; };
   size_t k = 0;
   for (const auto& [handle, c] : s.constraints) {
     ConstraintTerms& t = ws.constraint_terms[k];
+    // a joint's limit: its articulation's own limit rows act (articulation_step.cpp), nothing here
+    if (c.type == ConstraintType::ArticulatedSingleDofRange) {
+      t.rows.clear();
+      ws.constraint_bodies[k++] = {-1, -1};
+      continue;
+    }
+    make_index();
     t.a = constraint_side(s, c, 0, &index);
     t.b = constraint_side(s, c, 1, &index);
     constraint_terms(c, step.dt, t);
@@ -89,6 +100,8 @@ void constraint_records(Step& step) {
   for (auto& [handle, c] : s.constraints) {
     const ConstraintTerms& t = ws.constraint_terms[i];
     const auto [k, j] = place[i++];
+    // a joint's limit reports no force (its rows are the articulation's)
+    if (c.type == ConstraintType::ArticulatedSingleDofRange) continue;
     const Vec6 F_a = k >= 0 ? ws.solutions[k].constraint_force_a[j] : Vec6::Zero();
     const Vec6 F_b = k >= 0 ? ws.solutions[k].constraint_force_b[j] : Vec6::Zero();
     c.force.clear();
