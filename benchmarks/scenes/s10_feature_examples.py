@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import importlib.util
+import inspect
 import io
 
 from benchmarks.harness import REPO, Timer, median_of_episodes
@@ -58,8 +59,8 @@ def run_episode(case):
         solves = len(result)
         return timer.wall, {"solves": solves, "ms_per_solve": 1e3 * timer.wall / solves,
                             "checks": {"reached": sum(r["reached"] for r in result)}}
-    signature = example.run.__defaults__
-    seconds = case["kwargs"].get("seconds", signature[0])
-    dt = case["kwargs"].get("dt", signature[1])
+    defaults = inspect.signature(example.run).parameters
+    seconds = case["kwargs"].get("seconds", defaults["seconds"].default)
+    dt = case["kwargs"].get("dt", defaults["dt"].default)
     steps = int(round(seconds / dt))
     return timer.wall, {"steps": steps, "sim_time": steps * dt, "checks": {}}

@@ -123,7 +123,7 @@ def attach(timeout_seconds: float = 5.0) -> bool:
 def is_attached() -> bool:
     """True while a page is connected, or while a headless recording runs (one with a duration
     ends, and closes its file, once the recorded scenes have been simulated that long)."""
-    global _mode
+    global _mode, _frames_since
     if _mode == "live":
         if _m.get_debug_server().has_connection():
             return True
@@ -139,7 +139,6 @@ def is_attached() -> bool:
             return False
         # a script that shows scenes without stepping them (Scene.update_debugger, an IK loop)
         # simulates nothing: its duration runs on the wall clock from its first frame
-        global _frames_since
         if _duration is not None and _m.recorded_time() == 0 and _m.recorded_frames() > 0:
             if _frames_since is None:
                 _frames_since = time.monotonic()

@@ -191,13 +191,13 @@ void collide_shapes(const LinkCollider& a, const SpatialTransform& X_WA, const L
           const real c45 = std::sqrt(real(0.5));
           const real dir_u[kDirections] = {1, c45, 0, -c45, -1, -c45, 0, c45};
           const real dir_v[kDirections] = {0, c45, 1, c45, 0, -c45, -1, -c45};
+          // the height above the deepest corner that the margin leaves
+          const real room = level - n_S.dot(f->corners[deepest]);
           int found[kDirections];
           for (int d = 0; d < kDirections; ++d) {
             found[d] = deepest;
             real tilt = real(0.3);
             int at = deepest;
-            // the height above the deepest corner that the margin leaves
-            const real room = level - n_S.dot(f->corners[deepest]);
             for (int attempt = 0; attempt < 4; ++attempt) {
               at = f->support(-n_S + tilt * (dir_u[d] * t1 + dir_v[d] * t2), at);
               const real rise = n_S.dot(f->corners[at] - f->corners[deepest]);

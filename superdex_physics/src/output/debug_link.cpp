@@ -44,6 +44,14 @@ void send_frame(DebugServer& server, const SceneData& s, LinkState& state) {
   server.broadcast(std::move(lines), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
+// Sends the scene's frame when the pages want one.
+void send_wanted_frame(DebugServer& server, const SceneData& s) {
+  if (!server.wants_frame()) return;
+  LinkState& state = link_state();
+  std::lock_guard lock(state.mutex);
+  send_frame(server, s, state);
+}
+
 }  // namespace
 
 void debug_before_step(Scene& scene) {
@@ -86,20 +94,14 @@ void debug_after_step(Scene& scene, const SceneData& s) {
   if (!server.has_started()) return;
   server.report_progress(s.time, s.step_count);
   server.pace(s.handle, s.time);
-  if (!server.wants_frame()) return;
-  LinkState& state = link_state();
-  std::lock_guard lock(state.mutex);
-  send_frame(server, s, state);
+  send_wanted_frame(server, s);
 }
 
 void debug_update(const SceneData& s) {
   DebugServer& server = get_debug_server();
   if (!server.has_started()) return;
   server.report_progress(s.time, s.step_count);
-  if (!server.wants_frame()) return;
-  LinkState& state = link_state();
-  std::lock_guard lock(state.mutex);
-  send_frame(server, s, state);
+  send_wanted_frame(server, s);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -49,6 +49,20 @@ std::string last_line(const std::string& lines) {
   return start == std::string::npos ? lines : lines.substr(start + 1);
 }
 
+// Writes the scene's frame (with the descriptions it needs), unless `skip_repeat` and its frame
+// line repeats the scene's last one (then it shows no change, nor a new actor, which would be in
+// it).
+void write_frame(Recording& r, const SceneData& s, bool skip_repeat) {
+  std::string lines;
+  append_frame_lines(s, r.stream, lines);
+  std::string frame = last_line(lines);
+  std::string& last = r.last_frame_line[s.handle];
+  if (skip_repeat && frame == last) return;
+  r.out << lines;
+  r.frames += 1;
+  last = std::move(frame);
+}
+
 }  // namespace
 
 void start_recording(const std::string& path, double frame_interval) {
@@ -108,27 +122,14 @@ void record_step(const SceneData& s) {
   if (auto it = last.find(s.handle);
       it != last.end() && s.time >= it->second && s.time - it->second < r->frame_interval * (1 - 1e-6) - 1e-12)
     return;
-  std::string lines;
-  append_frame_lines(s, r->stream, lines);
-  r->out << lines;
-  r->frames += 1;
-  r->last_frame_line[s.handle] = last_line(lines);
+  write_frame(*r, s, false);
 }
 
 void record_current_frame(const SceneData& s) {
   std::lock_guard lock(recording_mutex());
   auto& r = recording();
   if (!r) return;
-  std::string lines;
-  append_frame_lines(s, r->stream, lines);
-  // the frame line is the last; the same frame shows no change (nor a new actor, which would be
-  // in it) since the scene's last one
-  std::string& last = r->last_frame_line[s.handle];
-  const std::string frame = last_line(lines);
-  if (frame == last) return;
-  r->out << lines;
-  r->frames += 1;
-  last = frame;
+  write_frame(*r, s, true);
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

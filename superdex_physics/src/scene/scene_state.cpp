@@ -336,17 +336,16 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
       if (!std::isfinite(x)) throw Error("restore_state: constraint " + std::to_string(i) + " has non-finite values in the state");
   }
   // pose controllers match by articulation, in body order
-  std::vector<Articulation*> controlled;
   std::vector<size_t> controlled_body;
   for (size_t b = 0; b < s.articulations.size(); ++b)
-    if (s.articulations[b]->pose_controller) controlled.push_back(s.articulations[b].get()), controlled_body.push_back(b);
+    if (s.articulations[b]->pose_controller) controlled_body.push_back(b);
   const auto controller_count = r.get<std::uint32_t>("pose controller count");
-  if (controller_count != controlled.size())
+  if (controller_count != controlled_body.size())
     throw Error("restore_state: the state has " + std::to_string(controller_count) + " pose controllers but the scene has " +
-                std::to_string(controlled.size()));
+                std::to_string(controlled_body.size()));
   std::vector<std::pair<bool, std::vector<real>>> controller_states(controller_count);
   for (std::uint32_t i = 0; i < controller_count; ++i) {
-    const Articulation& a = *controlled[i];
+    const Articulation& a = *s.articulations[controlled_body[i]];
     // on the captured scene's actor in the same place
     if (r.get<std::int64_t>("pose controller actor") != state_handles[controlled_body[i]])
       throw Error("restore_state: pose controller " + std::to_string(i) + " of the state is not on actor '" + a.model.name + "' (actor " +
@@ -358,7 +357,7 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
       if (!std::isfinite(x)) throw Error("restore_state: pose controller " + std::to_string(i) + " has non-finite values in the state");
   }
   if (!r.done()) throw Error("restore_state: unexpected bytes after the last pose controller");
-  for (std::uint32_t i = 0; i < controller_count; ++i) restore_controller_state(*controlled[i], controller_states[i].first, controller_states[i].second);
+  for (std::uint32_t i = 0; i < controller_count; ++i) restore_controller_state(*s.articulations[controlled_body[i]], controller_states[i].first, controller_states[i].second);
   constraint = s.constraints.begin();
   for (std::uint32_t i = 0; i < constraint_count; ++i, ++constraint) restore_constraint_state(constraint->second, constraint_states[i]);
   for (std::uint32_t i = 0; i < soft_count; ++i) {
