@@ -35,6 +35,16 @@
   All links are on layer RigidLink. Made for the IK example (scaled by 2, the base pinned at
   its +X end).
 
+- assets/samples/articulations_parts/skin.mochi.json: the skin of the skinned double pendulum, a
+  square tube (0.03 m side, open ends) along +X from x = 0 to 0.5 m on the arms' centreline
+  (y = 0.5, z = 0), rings of eight nodes every 12.5 mm (328 nodes, 640 triangles, counter-clockwise
+  seen from outside). mesh.skinning binds each node to links 0 and 1 (weights_per_node 2): weight 1
+  on link 0 up to x = 0.225, on link 1 from x = 0.275, linear between (the elbow at x = 0.25).
+- assets/samples/articulations_parts/soft.mochi.json: the soft arm of the soft-skinned double
+  pendulum, a tetrahedral bar from x = 0.375 to 0.475 m, 0.025 m square on the same centreline,
+  8 cells of six tetrahedra (36 nodes, 48 tetrahedra), nodes numbered along X; constrainedNodes
+  [0, 1, 2, 3] are the four corners at x = 0.375, where it attaches to the second arm.
+
 Reuses the mesh builders of tools/make_model_assets.py; writes only the files above (and
 assets/samples/), then loads each back through the engine (model loader, load_shape_from_file,
 prefab.add_to_scene) and steps the scene to check it. Deterministic: two runs give the same files.
@@ -67,6 +77,18 @@ FINE_CUBE = ASSETS / "cube" / "cube_fine_mesh.mochi.json"
 FINE_SPHERE = ASSETS / "sphere" / "icosphere_4subdiv.1.mochi.json"
 RAIL_SCENE = ASSETS / "samples" / "articulations_double_pendulum_on_rail.mochi_scene"
 MIXED_PREFAB = ASSETS / "articulated" / "mixed" / "mixed_articulation.mochi_prefab"
+
+SKIN_MODEL = ASSETS / "samples" / "articulations_parts" / "skin.mochi.json"
+SOFT_MODEL = ASSETS / "samples" / "articulations_parts" / "soft.mochi.json"
+
+# ---- the skinned double pendulums' parts (m; the skeleton's rest frame, +Y up) -------------------
+PIVOT_HEIGHT = 0.5  # the arms' centreline: y = 0.5, z = 0, along +X from the pivot at x = 0
+SKIN_ARM_LENGTH = 0.25  # each arm of the skinned pendulum; the elbow at x = 0.25
+SKIN_SIDE = 0.03  # the skin tube's square cross-section (the arms are 0.025 thick)
+SKIN_STATION = 0.0125  # spacing of the tube's rings along X
+SKIN_BLEND = 0.025  # the weights ramp from link 0 to link 1 over elbow -+ this
+SOFT_START, SOFT_LENGTH, SOFT_SIDE = 0.375, 0.1, 0.025  # the soft arm beyond the shorter second arm
+SOFT_CELLS = 8  # cells along the soft arm (one across)
 
 FINE_CUBE_CELLS = 4  # cells along each side of the fine cube (0.25 m cells: exact in float32)
 
@@ -115,6 +137,65 @@ def save_model(model: sdp.ModelData, path: Path) -> None:
     assert back.mesh.nodes_per_element == model.mesh.nodes_per_element
     assert list(back.mesh.connectivity) == list(model.mesh.connectivity)
     np.testing.assert_allclose(back.mesh.coordinates, model.mesh.coordinates, atol=1e-7)
+
+
+def make_skin() -> sdp.ModelData:
+    """A square tube along +X over both arms of the skinned double pendulum, rings of eight nodes
+    (corners and side midpoints) every SKIN_STATION, open at its ends, each node skinned to link 0
+    (UpperArm) and link 1 (LowerArm) with weights ramping linearly across the elbow."""
+    h = SKIN_SIDE / 2
+    ring = [(-h, -h), (0, -h), (h, -h), (h, 0), (h, h), (0, h), (-h, h), (-h, 0)]  # (y, z) around +X
+    stations = round(2 * SKIN_ARM_LENGTH / SKIN_STATION) + 1
+    nodes, indices, weights, triangles = [], [], [], []
+    for i in range(stations):
+        x = i * SKIN_STATION
+        w1 = min(max((x - (SKIN_ARM_LENGTH - SKIN_BLEND)) / (2 * SKIN_BLEND), 0.0), 1.0)
+        for y, z in ring:
+            nodes += [x, PIVOT_HEIGHT + y, z]
+            indices += [0, 1]
+            weights += [1.0 - w1, w1]
+    n = len(ring)
+    for i in range(stations - 1):
+        for k in range(n):
+            a, b = i * n + k, i * n + (k + 1) % n
+            c, d = a + n, b + n
+            # counter-clockwise seen from outside the tube
+            triangles += [a, b, d, a, d, c]
+    mesh = sdp.MeshData(nodes_per_element=3, coordinates=nodes, connectivity=triangles,
+                        skinning=sdp.SkinningData(weights_per_node=2, indices=indices, weights=weights))
+    return sdp.ModelData(mesh=mesh)
+
+
+def make_soft_arm() -> sdp.ModelData:
+    """A tetrahedral bar from x = SOFT_START to SOFT_START + SOFT_LENGTH, SOFT_SIDE square on the
+    arms' centreline, SOFT_CELLS cells along X of six tetrahedra each; its nodes numbered along X,
+    so that nodes 0-3 are the four corners at x = SOFT_START, its constrained (attached) nodes."""
+    dims = (SOFT_CELLS, 1, 1)
+    grid = np.array([(i, 0, 0) for i in range(SOFT_CELLS)])
+    unit = grid_nodes(np.zeros(3), 1.0, dims)
+    tets = kuhn_tets(grid, dims)
+    # numbered by X first (stable: y then z within a cross-section)
+    order = np.lexsort((unit[:, 1], unit[:, 2], unit[:, 0]))
+    remap = np.empty(len(order), dtype=np.int64)
+    remap[order] = np.arange(len(order))
+    scale = np.array([SOFT_LENGTH / SOFT_CELLS, SOFT_SIDE, SOFT_SIDE])
+    nodes = unit[order] * scale + np.array([SOFT_START, PIVOT_HEIGHT - SOFT_SIDE / 2, -SOFT_SIDE / 2])
+    tets = remap[tets]
+    assert np.all(signed_volumes(nodes, tets) > 0)
+    assert np.allclose(nodes[:4, 0], SOFT_START) and np.all(nodes[4:, 0] > SOFT_START)
+    return sdp.ModelData(mesh=tet_mesh(nodes, tets), constrained_nodes=[0, 1, 2, 3])
+
+
+def save_skinned_parts() -> None:
+    skin = make_skin()
+    save_model(skin, SKIN_MODEL)
+    back = sdp.model.load_from_file(str(SKIN_MODEL))
+    np.testing.assert_allclose(back.mesh.skinning.weights, skin.mesh.skinning.weights, atol=1e-7)
+    print(f"skin: {skin.mesh.get_num_nodes()} nodes, {len(skin.mesh.connectivity) // 3} triangles")
+    soft = make_soft_arm()
+    save_model(soft, SOFT_MODEL)
+    assert list(sdp.model.load_from_file(str(SOFT_MODEL)).constrained_nodes) == [0, 1, 2, 3]
+    print(f"soft arm: {soft.mesh.get_num_nodes()} nodes, {len(soft.mesh.connectivity) // 4} tetrahedra")
 
 
 # ------------------------------------------------------------------------------------- the prefab
@@ -297,6 +378,7 @@ def main() -> None:
     check_rail_scene()
     write_json(mixed_prefab(), MIXED_PREFAB)
     check_mixed_prefab()
+    save_skinned_parts()
     sdp.shutdown()
 
 

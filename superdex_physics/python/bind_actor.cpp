@@ -107,8 +107,8 @@ void export_actor(nb::module_& m) {
              return nb::borrow(out_forces);
            }, "out_forces"_a.none() = nb::none(), "Per DOF, zero where unset; into out_forces when given, else a new array.")
       .def("is_nested_link_actor", [](const Actor& a) { return a.scene.is_nested_link_actor(a.handle); })
-      .def("is_nested_soft_actor", [](const Actor&) { return false; },
-           "False: this engine's soft actors are never parts of an articulation.")
+      .def("is_nested_soft_actor", [](const Actor& a) { return a.scene.is_nested_soft_actor(a.handle); },
+           "Whether this is a soft body of a soft-skinned actor.")
       .def("__eq__", [](const Actor& a, const Actor& b) { return a.handle == b.handle && a.scene.handle() == b.scene.handle(); }, nb::is_operator())
       .def("__ne__", [](const Actor& a, const Actor& b) { return !(a.handle == b.handle && a.scene.handle() == b.scene.handle()); }, nb::is_operator())
       .def("__hash__", [](const Actor& a) { return std::hash<std::int64_t>()(a.handle); })

@@ -24,10 +24,8 @@ NumpyArray matrix_to_numpy(const MatX& M) {
 void add_articulated_methods(ActorClass& c) {
   c.def("get_nested_link_actors", [](const Actor& a) { return SpanOf<const ActorHandle>::owning(a.scene.nested_link_actors(a.handle)); },
         "The link actors, in link order.")
-      .def("get_nested_soft_actors", [](const Actor& a) {
-             a.scene.nested_link_actors(a.handle);  // raises for actors that are not articulated
-             return SpanOf<const ActorHandle>::owning({});
-           }, "Empty: this engine's articulations have no soft parts.")
+      .def("get_nested_soft_actors", [](const Actor& a) { return SpanOf<const ActorHandle>::owning(a.scene.nested_soft_actors(a.handle)); },
+           "A soft-skinned actor's soft actors (create_soft_skinned_actor), in soft_params order; empty for other articulations.")
       .def("get_articulated_actor", [](const Actor& a) { return a.scene.articulated_actor_of_link(a.handle); },
            "The articulated actor this link belongs to.")
       .def("get_link_index", [](const Actor& a) { return a.scene.link_index(a.handle); }, "This link's index in its articulation.")

@@ -274,13 +274,36 @@ void export_actor_params(nb::module_& m) {
   bind_dynamic_array<ArticulatedJointParams>(m, "DynamicArrayArticulatedJointParams");
   bind_dynamic_array<ArticulatedLinkParams>(m, "DynamicArrayArticulatedLinkParams");
   bind_dynamic_array<ArticulatedCycleJointParams>(m, "DynamicArrayArticulatedCycleJointParams");
+  StructBinder<ArticulatedSkinParams>(m, "ArticulatedSkinParams",
+                                      "A triangle surface bound to the links by linear-blend skinning (its shape's mesh.skinning: "
+                                      "weights over link indices), authored in the root joint's parent frame at the rest pose. "
+                                      "Colliding only: its nodes probe other actors' colliders.")
+      .field("shape", &ArticulatedSkinParams::shape)
+      .field("layer", &ArticulatedSkinParams::layer)
+      .field("contact", &ArticulatedSkinParams::contact)
+      .field("boundary_element_type", &ArticulatedSkinParams::boundary_element_type)
+      .field("boundary_subsampling", &ArticulatedSkinParams::boundary_subsampling)
+      .done();
   StructBinder<ArticulatedActorParams>(m, "ArticulatedActorParams", "Creates an articulated actor (Scene.create_articulated_actor).")
       .field("name", &ArticulatedActorParams::name)
       .field("world_from_root", &ArticulatedActorParams::world_from_root)
       .field("cycles", &ArticulatedActorParams::cycles)
       .field("joints", &ArticulatedActorParams::joints)
       .field("links", &ArticulatedActorParams::links)
+      .field("skin", &ArticulatedActorParams::skin)
       .field("joint_velocities", &ArticulatedActorParams::joint_velocities)
+      .done();
+  bind_dynamic_array<SoftActorParams>(m, "DynamicArraySoftActorParams");
+  StructBinder<SoftSkinnedActorParams>(m, "SoftSkinnedActorParams",
+                                       "A skeleton carrying soft bodies whose constrained nodes are tied to its links "
+                                       "(Scene.create_soft_skinned_actor).")
+      .field("skeleton_params", &SoftSkinnedActorParams::skeleton_params)
+      .field("soft_params", &SoftSkinnedActorParams::soft_params)
+      .field("soft_attach_links", &SoftSkinnedActorParams::soft_attach_links)
+      .field("enable_colliding_links", &SoftSkinnedActorParams::enable_colliding_links)
+      .field("has_gravity", &SoftSkinnedActorParams::has_gravity)
+      .field("has_inertia", &SoftSkinnedActorParams::has_inertia)
+      .field("has_stress", &SoftSkinnedActorParams::has_stress)
       .done();
   StructBinder<ArticulatedDofInfo>(m, "ArticulatedDofInfo", "One joint's slice of the generalized coordinates.")
       .field("offset", &ArticulatedDofInfo::offset)

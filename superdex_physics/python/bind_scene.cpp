@@ -182,6 +182,13 @@ void export_scene(nb::module_& m) {
              nb::object params = nb::module_::import_("superdex.physics").attr("ArticulatedActorParams")(**kwargs);
              return Actor{s, s.create_articulated_actor(nb::cast<const ArticulatedActorParams&>(params))};
            }, "An articulated actor from ArticulatedActorParams, or from its fields as keywords.")
+      .def("create_soft_skinned_actor", [](Scene& s, const SoftSkinnedActorParams& p) { return Actor{s, s.create_soft_skinned_actor(p)}; },
+           "params"_a)
+      .def("create_soft_skinned_actor", [](Scene& s, nb::kwargs kwargs) {
+             nb::object params = nb::module_::import_("superdex.physics").attr("SoftSkinnedActorParams")(**kwargs);
+             return Actor{s, s.create_soft_skinned_actor(nb::cast<const SoftSkinnedActorParams&>(params))};
+           }, "A soft-skinned actor (an articulated actor with soft bodies tied to its links) from SoftSkinnedActorParams, or from its "
+              "fields as keywords.")
       .def("destroy_actor", [](Scene& s, nb::handle actor) {
              if (actor.is_none()) return;
              // an Actor knows its scene: one of another live scene is a mistake, not a destroyed actor

@@ -16,7 +16,7 @@ STRUCTS = [
     "ContactParams", "GridSdfParams", "BoundarySubsamplingParams", "RecenteringParams",
     "RigidActorParams", "SoftActorParams", "ArticulatedActorParams", "ArticulatedLinkParams",
     "ArticulatedJointParams", "ArticulatedJointFrictionParams", "ArticulatedCycleJointParams",
-    "ArticulatedDofInfo", "ArticulatedCycleJoint",
+    "ArticulatedDofInfo", "ArticulatedCycleJoint", "ArticulatedSkinParams",
     "SoftMaterialParams", "NeoHookeanMaterialParams", "StVenantKirchhoffMaterialParams",
     "LinearElasticMaterialParams", "ArapMaterialParams", "ActiveAnisoArapMaterialParams",
     "ActiveNeoHookeanMaterialParams", "ActiveShapeTargetingArapMaterialParams",
@@ -33,6 +33,7 @@ OPTIONAL_VALUES = {
     "linear_velocity": sdp.Real3(1, 2, 3), "angular_velocity": sdp.Real3(-1, 0.5, 0),
     "min_limit": sdp.Real3(-1, 0, 0), "max_limit": sdp.Real3(1, 0, 0),
     "joint_velocities": [0.5, -0.25],
+    "skin": sdp.ArticulatedSkinParams(layer="skin"),
 }
 
 

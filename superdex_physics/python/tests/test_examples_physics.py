@@ -373,6 +373,8 @@ def test_inverse_kinematics_as_a_script_records_each_solution(tmp_path):
     ("double_pendulum", ["--seconds", "0.5"]),
     ("constraints_double_pendulum", ["--seconds", "0.5"]),
     ("articulations_pose_controller", ["--seconds", "0.5"]),
+    ("skinned_double_pendulum", ["--seconds", "0.5"]),
+    ("soft_skinned_double_pendulum", ["--seconds", "0.5"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr and prints its summary; with
@@ -402,6 +404,12 @@ def test_runs_as_a_script(name, args, tmp_path):
         # rail's and the shoulder's joint targets
         types = [c["type"] for c in frames[-1]["constraints"]]
         assert types == ["RIGID_PIVOT_TO_RIGID_TARGET", "RIGID_PIVOT_ROTATION"] + ["ARTICULATED_SINGLE_DOF_TARGET"] * 2
+    if name == "skinned_double_pendulum":
+        # the skin is drawn as a deforming surface of its own, its nodes in every frame
+        skin = [line for line in lines if line["type"] == "actor" and line["name"] == "skinned_pendulum/skin"]
+        assert len(skin) == 1 and len(skin[0]["surfaceTriangles"]) == 640
+        moved = [np.asarray(f["soft"][str(skin[0]["handle"])]).reshape(-1, 3) for f in (frames[0], frames[-1])]
+        assert moved[0].shape == (328, 3) and np.abs(moved[1] - moved[0]).max() > 0.05
 
 
 def test_constraints_double_pendulum_swings_as_the_jointed_one():
@@ -584,3 +592,21 @@ def test_pose_controller_link_phase_carries_lower_arm_on_its_circle(pose_control
     assert np.linalg.norm(error, axis=1).max() <= 1.25 * largest
     steady = t[phase] > ex.JOINT_END + 0.3
     assert np.linalg.norm(error - expected, axis=1)[steady].max() <= 0.25 * largest
+
+
+# --------------------------------------------------------------------------------------------
+# skinned_double_pendulum.py, soft_skinned_double_pendulum.py
+
+
+@pytest.mark.parametrize("name", ["skinned_double_pendulum", "soft_skinned_double_pendulum"])
+def test_the_skinned_pendulums_strike_the_ball_with_their_soft_or_skinned_part(name):
+    """The arms' own colliders touch nothing, so the ball is struck by the skin (or the soft bar)
+    alone: within 0.5 s a skin-ball (bar-ball) force acts and the ball is knocked more than 10 cm
+    along the ground (it stays on it: its centre at y = r within 1 mm once the strike is over)."""
+    example = load_example(name)
+    result = example.run(seconds=1.0, dt=0.005, print_every=1.0)
+    forces, positions = result["forces"], result["ball_positions"]
+    first = int(np.flatnonzero(forces > 0)[0])
+    assert first * result["dt"] < 0.5
+    assert np.linalg.norm(positions[-1] - example.BALL_POSITION) > 0.1
+    assert abs(positions[-1][1] - example.BALL_RADIUS) < 1e-3

@@ -21,6 +21,7 @@ struct Contact {
   Vec3 n_W = Vec3::UnitZ(); // unit normal from b towards a
   real phi = 0;             // signed distance (m), negative when penetrating
   ContactMaterial material; // combined for the pair
+  int skin_node = -1;       // >= 0: side a is this node of body_a's skin, moved by its links' weights
 };
 
 // A collider posed in the world for this step, with its world bounds grown by the margin and

@@ -21,7 +21,11 @@ void ContactRows::add_rigid() {
     Vec3 W_diag = Vec3::Zero();
     real vn_free = 0;
     J_.begin_block(3);
-    add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W_diag, vn_free);
+    if (c.skin_node >= 0) {
+      add_skin_side(c, R_C, W_diag, vn_free);
+    } else {
+      add_link_side(c.body_a, c.link_a, c.p_W, R_C, 1, W_diag, vn_free);
+    }
     add_link_side(c.body_b, c.link_b, c.p_W, R_C, -1, W_diag, vn_free);
     push_contact_block(c.material, c.phi, W_diag, vn_free);
   }
@@ -45,16 +49,17 @@ void ContactRows::add_soft() {
   }
 }
 
-// adds the rows of one side (an articulation link) of a contact in frame R_C, with the diagonal
-// of its Delassus block (the only part the contact block reads) and free-motion normal velocity
-void ContactRows::add_link_side(int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Vec3& W_diag, real& vn_free) {
+// adds the rows of one side (an articulation link) of a contact in frame R_C, scaled by `scale`
+// (+1 side a, -1 side b, a skin weight), with the diagonal of its Delassus block (the only part
+// the contact block reads) and free-motion normal velocity
+void ContactRows::add_link_side(int body, int link, const Vec3& p_W, const Mat3& R_C, real scale, Vec3& W_diag, real& vn_free) {
   const SceneData& s = in_.s;
   const int nb = s.articulations[body]->model.nv;
   if (nb == 0) return;
   const IslandWorkspace::LinkJacobian& lj = link_compliance(s, body, link, in_.terms[body].A_factor, w_);
   const MatXR& J = lj.J_WL;
   const Vec3 r = p_W - s.articulations[body]->kin.X_WL[link].p;
-  const Mat3 R = sign * R_C.transpose();
+  const Mat3 R = scale * R_C.transpose();
   const int o = w_.body_offset[body];
   // on the sparse path the side's rows on all its body's DOFs (zeros included: the structure
   // is the contact's bodies), adding to the other side's when both are on one body
@@ -76,6 +81,24 @@ void ContactRows::add_link_side(int body, int link, const Vec3& p_W, const Mat3&
   RS.leftCols<3>() = R;
   RS.rightCols<3>().noalias() = -R * skew(r);
   W_diag += (RS * lj.W_L).cwiseProduct(RS).rowwise().sum();
+}
+
+// a skin node (side a) moves with its links by their weights: the rows of each link's point,
+// weighted; the Delassus diagonal of the weighted sum is bounded by (sum_k w_k sqrt(W_k))^2
+// (Cauchy-Schwarz over the links' coupled compliances)
+void ContactRows::add_skin_side(const Contact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free) {
+  const Articulation& a = *in_.s.articulations[c.body_a];
+  const ArticulationSkin& skin = *a.skin;
+  Vec3 root_sum = Vec3::Zero();
+  for (int j = skin.first[c.skin_node]; j < skin.first[c.skin_node + 1]; ++j) {
+    const SkinInfluence& f = skin.influences[j];
+    const SpatialTransform& X = a.kin.X_WL[f.link];
+    Vec3 W_k = Vec3::Zero();
+    add_link_side(c.body_a, f.link, X.R * f.p_L + X.p, R_C, f.weight, W_k, vn_free);
+    // add_link_side scaled the rows by the weight, so W_k holds w^2 W: its root is w sqrt(W)
+    root_sum += W_k.cwiseSqrt();
+  }
+  W_diag += root_sum.cwiseAbs2();
 }
 
 // a contact point on a reduced body moves with its nodes' modal and residual velocities: adds

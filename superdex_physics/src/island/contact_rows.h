@@ -21,7 +21,8 @@ class ContactRows {
   void add_soft();
 
  private:
-  void add_link_side(int body, int link, const Vec3& p_W, const Mat3& R_C, real sign, Vec3& W_diag, real& vn_free);
+  void add_link_side(int body, int link, const Vec3& p_W, const Mat3& R_C, real scale, Vec3& W_diag, real& vn_free);
+  void add_skin_side(const Contact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free);
   void add_reduced_side(const ReducedVariables& rv, const SoftContact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free);
   void add_node_side(const SoftContact& c, const Mat3& R_C, Vec3& W_diag, real& vn_free);
   void push_contact_block(const ContactMaterial& material, real phi, const Vec3& W_diag, real vn_free);

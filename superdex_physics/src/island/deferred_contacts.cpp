@@ -21,7 +21,7 @@ real allowed_closing_speed(const ContactMaterial& m, real phi, real dt) {
 // island's bodies move at `v(body)` (a body's DOF velocities).
 template <class Velocities>
 Vec3 relative_velocity(const IslandInputs& in, const Contact& c, IslandWorkspace& w, LinkMotion motion, const Velocities& v) {
-  return link_point_velocity(in.s, c.body_a, c.link_a, c.p_W, motion, v(c.body_a), w) -
+  return contact_point_velocity_a(in.s, c, motion, v(c.body_a), w) -
          link_point_velocity(in.s, c.body_b, c.link_b, c.p_W, motion, v(c.body_b), w);
 }
 

@@ -58,6 +58,19 @@ Vec3 link_point_velocity(const SceneData& s, int body, int link, const Vec3& p_W
   return V.head<3>() + V.tail<3>().cross(p_W - a.kin.X_WL[link].p);
 }
 
+Vec3 contact_point_velocity_a(const SceneData& s, const Contact& c, LinkMotion motion, const VecX& v_body, IslandWorkspace& w) {
+  if (c.skin_node < 0) return link_point_velocity(s, c.body_a, c.link_a, c.p_W, motion, v_body, w);
+  const Articulation& a = *s.articulations[c.body_a];
+  const ArticulationSkin& skin = *a.skin;
+  Vec3 v = Vec3::Zero();
+  for (int j = skin.first[c.skin_node]; j < skin.first[c.skin_node + 1]; ++j) {
+    const SkinInfluence& f = skin.influences[j];
+    const SpatialTransform& X = a.kin.X_WL[f.link];
+    v += f.weight * link_point_velocity(s, c.body_a, f.link, X.R * f.p_L + X.p, motion, v_body, w);
+  }
+  return v;
+}
+
 void forget_link_velocities(LinkMotion motion, IslandWorkspace& w) {
   for (size_t i = 0; i < w.link_jacobians_used; ++i) w.link_jacobians[i].has_V &= ~(1u << static_cast<int>(motion));
 }

@@ -31,6 +31,9 @@ enum class LinkMotion { Current = 0, Free = 1, Solution = 2 };
 // velocity is kept for each motion (forget_link_velocities).
 Vec3 link_point_velocity(const SceneData& s, int body, int link, const Vec3& p_W, LinkMotion motion, const VecX& v_body,
                          IslandWorkspace& w);
+// Velocity (m/s, world) of side a's point of a rigid contact: a link's material point, or a skin
+// node moving with its links by their weights (articulation_skin.h).
+Vec3 contact_point_velocity_a(const SceneData& s, const Contact& c, LinkMotion motion, const VecX& v_body, IslandWorkspace& w);
 // Forgets the links' velocities at `motion` (the solution, once solved again).
 void forget_link_velocities(LinkMotion motion, IslandWorkspace& w);
 

@@ -110,6 +110,17 @@ json soft_json(const SceneData& s, const SoftBody& b) {
           {"mass", round7(b.model.total_mass)}, {"nodes", nodes}, {"surfaceTriangles", faces}};
 }
 
+// A skinned articulation's skin, drawn as a deforming surface under its own display id.
+json skin_json(const SceneData& s, const Articulation& a) {
+  VecX x;
+  skin_positions_world(*a.skin, a.kin.X_WL, x);
+  json nodes = json::array(), faces = json::array();
+  for (Eigen::Index i = 0; i + 2 < x.size(); i += 3) nodes.push_back(vec(x.segment<3>(i)));
+  for (const auto& f : a.skin->faces) faces.push_back(f);
+  return {{"type", "actor"}, {"scene", s.handle}, {"handle", a.skin->display}, {"name", a.model.name + "/skin"}, {"kind", "soft"},
+          {"skinOf", a.handle}, {"mass", 0}, {"nodes", nodes}, {"surfaceTriangles", faces}};
+}
+
 // Named signals of the frame: joint velocities and efforts of one-DOF joints, contact force
 // totals on moving links and soft bodies, then the scene's signal sources.
 std::vector<NamedSignal> frame_signals(const SceneData& s) {
@@ -167,6 +178,9 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
   for (const auto& a : s.articulations) {
     live.insert(a->handle);
     if (seen.insert(a->handle).second) line(articulation_json(s, *a));
+    if (!a->skin) continue;
+    live.insert(a->skin->display);
+    if (seen.insert(a->skin->display).second) line(skin_json(s, *a));
   }
   for (const auto& b : s.soft_bodies) {
     live.insert(b->handle);
@@ -203,6 +217,12 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
     joints[std::to_string(a->handle)] = {{"q", values(a->state.q)}, {"qd", values(a->state.v)}};
   }
   for (const auto& b : s.soft_bodies) soft[std::to_string(b->handle)] = values(b->state.x);
+  for (const auto& a : s.articulations)
+    if (a->skin) {
+      VecX x;
+      skin_positions_world(*a->skin, a->kin.X_WL, x);
+      soft[std::to_string(a->skin->display)] = values(x);
+    }
   for (const ContactRecord& c : s.contacts)
     contacts.push_back({{"a", c.actor_a}, {"b", c.actor_b}, {"p", vec(c.position)}, {"n", vec(c.normal)}, {"f", vec(c.force)}});
   // constraints: the two points each draws between

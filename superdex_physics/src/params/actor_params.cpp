@@ -148,6 +148,21 @@ void validate(const ArticulatedActorParams& p, const std::string& where) {
   }
   if (!p.cycles.empty()) c.fail("cycles", "closed kinematic loops are not available yet");
   if (p.joint_velocities) c.finite_vector("joint_velocities", *p.joint_velocities);
+  if (p.skin) {
+    const FieldCheck sc(where + ".skin");
+    if (!p.skin->shape.is_valid()) sc.fail("shape", "is not set: a skin needs a triangle mesh with skinning weights");
+    validate(p.skin->contact, sc.where() + ".contact");
+    check_subsampling(sc, p.skin->boundary_subsampling);
+  }
+}
+
+void validate(const SoftSkinnedActorParams& p, const std::string& where) {
+  const FieldCheck c(where);
+  validate(p.skeleton_params, where + ".skeleton_params");
+  if (p.soft_params.empty()) c.fail("soft_params", "must hold at least one soft actor's params");
+  if (p.soft_attach_links.size() > 1 && p.soft_attach_links.size() != p.soft_params.size())
+    c.fail("soft_attach_links", "must name one link for all soft bodies or one per soft body (" + std::to_string(p.soft_params.size()) +
+                                    "), got " + std::to_string(p.soft_attach_links.size()));
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -6,6 +6,7 @@
 
 #include "collision/collision_geometry.h"
 #include "multibody/joint_from_params.h"
+#include "multibody/kinematics.h"
 #include "scene/actor_records.h"
 #include "scene/scene_data.h"
 #include "soft/material_from_params.h"
@@ -251,6 +252,20 @@ ActorHandle Scene::create_articulated_actor(const ArticulatedActorParams& p) {
     a->joint_friction.push_back(p.joints[i].friction);
   }
   a->model = build_articulation_model(desc, where);
+  if (p.skin) {
+    auto shape = shape_data(p.skin->shape, where + ".skin.shape");
+    // the links' rest poses in the root joint's parent frame: every joint at zero
+    const VecX zero = VecX::Zero(a->model.nv);
+    VecX q0 = VecX::Zero(a->model.nq);
+    q_from_pose(a->model, zero.data(), false, q0);
+    ArticulationKinematics rest;
+    update_kinematics(a->model, q0, zero, SpatialTransform{}, rest);
+    auto skin = build_articulation_skin(*p.skin, std::move(shape), a->model, rest.X_WL, where + ".skin.shape");
+    skin->layer_index = contact_layer_index(s, p.skin->layer, where + ".skin.layer");
+    skin->display = ActorHandle(next_handle());
+    warn_unused_contact_fields(p.skin->contact, where + ".skin");
+    a->skin = std::move(skin);
+  }
   const ActorHandle h = add_articulation(s, std::move(a));
   if (p.joint_velocities) {
     const Articulation& art = *s.articulations.back();

@@ -57,6 +57,11 @@ inline std::pair<Articulation*, int> link_of(SceneData& s, ActorHandle h, const 
   return {r.articulation, r.link < 0 ? 0 : r.link};
 }
 
+// The skin of an articulated actor that has one (ArticulatedActorParams::skin), else null.
+inline const ArticulationSkin* skin_of(const ActorRef& r) {
+  return !r.soft && r.link < 0 && r.articulation->skin ? r.articulation->skin.get() : nullptr;
+}
+
 // The soft body behind a soft actor; others are refused.
 inline SoftBody& soft_of(SceneData& s, ActorHandle h, const char* what) {
   ActorRef r = lookup(s, h, what);

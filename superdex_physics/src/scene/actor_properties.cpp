@@ -230,6 +230,8 @@ Aabb Scene::aabb_world(ActorHandle h) const {
       b.extend(w.min);
       b.extend(w.max);
     }
+    if (const ArticulationSkin* skin = skin_of(r))
+      for (int i = 0; i < skin->num_nodes(); ++i) b.extend(skin_node_world(*skin, a.kin.X_WL, i));
   }
   if (!(b.min.array() <= b.max.array()).all()) return Aabb{};
   return Aabb{b.min, b.max};
@@ -248,6 +250,8 @@ ShapeHandle Scene::reference_shape(ActorHandle h) const {
 ShapeMeshes Scene::meshes(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
   const ActorRef r = lookup(s, h, "get_mesh");
+  // a skinned articulation's surface is its skin (every skin node is a surface node)
+  if (const ArticulationSkin* skin = skin_of(r)) return {skin->mesh, skin->mesh, nullptr};
   const std::shared_ptr<const ShapeData> data = actor_shape(r);
   if (!data) return {};
   ShapeMeshes m = meshes_of(*data);

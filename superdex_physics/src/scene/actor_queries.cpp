@@ -77,13 +77,15 @@ bool Scene::is_query_supported(ActorHandle actor, QueryType type) const {
     case QueryType::ContactPoints:
     case QueryType::TotalContactForce:
       return true;
+    case QueryType::SurfaceNodePositions:
+    case QueryType::SurfaceNodeNormals:
+      if (!r.soft && r.link < 0 && r.articulation->skin) return true;  // a skinned articulation's skin surface
+      [[fallthrough]];
     case QueryType::NodePositions:
     case QueryType::ElementsDeformationGradient:
     case QueryType::ElasticEnergy:
     case QueryType::NodeContactForces:
     case QueryType::SdfDistances:
-    case QueryType::SurfaceNodePositions:
-    case QueryType::SurfaceNodeNormals:
       return r.soft != nullptr && !(type == QueryType::ElementsDeformationGradient && r.soft->reduced);
     case QueryType::ArticulatedControllerForce:
       return !r.soft && r.link < 0 && !r.articulation->is_rigid;

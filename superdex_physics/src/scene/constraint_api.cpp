@@ -346,6 +346,7 @@ void Scene::destroy_constraint(ConstraintHandle h) {
   if (c.owner.is_valid())
     throw Error("destroy_constraint: constraint " + std::to_string(h) + " belongs to actor " + std::to_string(c.owner) +
                 (c.type == ConstraintType::ArticulatedSingleDofRange ? " (one of its joint limits); it goes with the actor"
+                 : c.type == ConstraintType::DeformableNodeToRigid   ? " (a soft body's tie to its skeleton); it goes with the actor"
                                                                      : " (its pose controller); remove_articulated_pose_controller removes it"));
   s.constraints.erase(h);
 }

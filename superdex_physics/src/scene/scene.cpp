@@ -167,6 +167,9 @@ void Scene::destroy_actor(ActorHandle actor) {
   auto it = s.actors.find(actor);
   if (it == s.actors.end()) throw Error("destroy_actor: actor " + std::to_string(actor) + " does not exist in scene '" + s.name + "'");
   if (SoftBody* soft = it->second.soft) {
+    if (soft->skeleton.is_valid() && s.actors.count(soft->skeleton))
+      throw Error("destroy_actor: actor " + std::to_string(actor) + " is a soft body of soft-skinned actor " + std::to_string(soft->skeleton) +
+                  "; destroy that actor instead");
     s.actors.erase(it);
     std::erase_if(s.queries, [&](const auto& q) { return q.second.actor == actor; });
     std::erase_if(s.constraints, [&](const auto& c) { return c.second.actor_a == actor || c.second.actor_b == actor; });
@@ -183,6 +186,12 @@ void Scene::destroy_actor(ActorHandle actor) {
     throw Error("destroy_actor: actor " + std::to_string(actor) + " is a link of articulation " +
                 std::to_string(it->second.articulation->handle) + "; destroy the articulation instead");
   Articulation* a = it->second.articulation;
+  // a soft-skinned actor's soft bodies go first (their ties to the links with them)
+  for (ActorHandle soft : a->nested_softs)
+    if (auto found = s.actors.find(soft); found != s.actors.end()) {
+      found->second.soft->skeleton = ActorHandle();
+      destroy_actor(soft);
+    }
   std::set<ActorHandle> gone(a->link_handles.begin(), a->link_handles.end());
   gone.insert(a->handle);
   for (ActorHandle h : gone) s.actors.erase(h);

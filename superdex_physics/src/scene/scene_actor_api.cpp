@@ -223,6 +223,17 @@ std::vector<ActorHandle> Scene::nested_link_actors(ActorHandle h) const {
   return a.link_handles;
 }
 
+std::vector<ActorHandle> Scene::nested_soft_actors(ActorHandle h) const {
+  Articulation& a = whole(scene_data(handle_), h, "get_nested_soft_actors");
+  if (a.is_rigid) throw Error("get_nested_soft_actors: " + describe(h) + " is a rigid actor, not an articulation");
+  return a.nested_softs;
+}
+
+bool Scene::is_nested_soft_actor(ActorHandle h) const {
+  const ActorRef r = lookup(scene_data(handle_), h, "is_nested_soft_actor");
+  return r.soft && r.soft->skeleton.is_valid();
+}
+
 ActorHandle Scene::articulated_actor_of_link(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_articulated_actor");
   if (!is_link_actor(r)) throw Error("get_articulated_actor: " + describe(h) + " is not a link actor");

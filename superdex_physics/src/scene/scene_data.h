@@ -17,6 +17,7 @@
 #include "constraint/constraint_record.h"
 #include "constraint/pose_controller.h"
 #include "multibody/articulation_model.h"
+#include "multibody/articulation_skin.h"
 #include "output/debug_draw_features.h"
 #include "scene/actor_records.h"
 #include "shape/shape_data.h"
@@ -47,6 +48,8 @@ struct Articulation {
   std::vector<ActorHandle> link_handles;
   std::optional<PoseController> pose_controller;  // add_pose_controller
   std::vector<ConstraintHandle> limit_constraints;  // per limited single-DOF joint, in joint order
+  std::shared_ptr<const ArticulationSkin> skin;     // ArticulatedActorParams::skin, else null
+  std::vector<ActorHandle> nested_softs;            // a soft-skinned actor's soft bodies
 };
 
 // What an actor handle refers to: a whole articulation (link -1) or one of its links.

@@ -223,8 +223,31 @@ std::vector<real> Scene::elements_deformation_gradient(ActorHandle h) const {
   return out;
 }
 
+namespace {
+
+// A skinned articulation's skin nodes (positions, or unit normals when `normals`) in the root
+// joint's parent frame (its "local" frame), 3 per node.
+std::vector<real> skin_nodes_local(const Articulation& a, bool normals) {
+  VecX x;
+  skin_positions_world(*a.skin, a.kin.X_WL, x);
+  const SpatialTransform& X_WB = a.state.X_W_base;
+  if (normals) {
+    x = skin_normals(*a.skin, x);
+    for (Eigen::Index i = 0; i < x.size(); i += 3) x.segment<3>(i) = X_WB.R.transpose() * x.segment<3>(i);
+  } else {
+    for (Eigen::Index i = 0; i < x.size(); i += 3) x.segment<3>(i) = X_WB.R.transpose() * (x.segment<3>(i) - X_WB.p);
+  }
+  return {x.data(), x.data() + x.size()};
+}
+
+}  // namespace
+
 std::vector<real> Scene::surface_node_positions_local(ActorHandle h) const {
   const SceneData& s = scene_data(handle_);
+  if (const ArticulationSkin* skin = skin_of(lookup(const_cast<SceneData&>(s), h, "get_surface_mesh_node_positions_local")); skin) {
+    require_query(s, h, QueryType::SurfaceNodePositions, "get_surface_mesh_node_positions_local");
+    return skin_nodes_local(*s.actors.at(h).articulation, false);
+  }
   const SoftBody& b = soft_of(const_cast<SceneData&>(s), h, "get_surface_mesh_node_positions_local");
   require_query(s, h, QueryType::SurfaceNodePositions, "get_surface_mesh_node_positions_local");
   const Transform X_LW = b.X_WL.inverse();
@@ -244,6 +267,14 @@ std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, c
   const auto inside = [&](const Real3& p) { return std::visit([&](const auto& v) { return v.contains(p); }, volume); };
   std::vector<std::pair<int, Real3>> out;
   ActorRef r = lookup(s, h, what);
+  if (skin_of(r) && boundary_only) {
+    // a skinned articulation's surface nodes: its skin's, in the root joint's parent frame
+    require_query(s, h, QueryType::SurfaceNodePositions, what);
+    const std::vector<real> x = skin_nodes_local(*r.articulation, false);
+    for (size_t i = 0; 3 * i + 2 < x.size(); ++i)
+      if (const Real3 p(x[3 * i], x[3 * i + 1], x[3 * i + 2]); inside(p)) out.emplace_back(static_cast<int>(i), p);
+    return out;
+  }
   if (!r.soft) {
     // a rigid body's nodes are its mesh shape's surface nodes, fixed in its frame
     const std::shared_ptr<const ShapeData> shape = actor_shape(r);
@@ -271,6 +302,10 @@ std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, c
 
 std::vector<real> Scene::surface_node_normals_local(ActorHandle h) const {
   const SceneData& s = scene_data(handle_);
+  if (const ArticulationSkin* skin = skin_of(lookup(const_cast<SceneData&>(s), h, "get_surface_mesh_node_normals_local")); skin) {
+    require_query(s, h, QueryType::SurfaceNodeNormals, "get_surface_mesh_node_normals_local");
+    return skin_nodes_local(*s.actors.at(h).articulation, true);
+  }
   const SoftBody& b = soft_of(const_cast<SceneData&>(s), h, "get_surface_mesh_node_normals_local");
   require_query(s, h, QueryType::SurfaceNodeNormals, "get_surface_mesh_node_normals_local");
   // area-weighted face normals summed at their nodes (the cross product's length is twice the area)

@@ -2,6 +2,7 @@
 // contact lists.
 
 #include "collision/collision_detection.h"
+#include "collision/skin_contact.h"
 #include "scene/step_stages.h"
 
 namespace superdex::physics {
@@ -16,6 +17,7 @@ void find_step_contact_pairs(Step& step) {
 void gather_contacts(Step& step) {
   const Ticks k = ticks_now();
   join_contacts(step.ws.chunk_contacts, step.ws.contacts);
+  detect_skin_contacts(step.s, step.s.params.contact_margin, step.dt, step.ws.contacts);
   step.soft_contacts = detect_soft_contacts(step.s, step.s.params.contact_margin, step.dt);
   step.collision_ticks += ticks_now() - k;
 }

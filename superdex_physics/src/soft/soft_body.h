@@ -84,6 +84,7 @@ struct SoftStepStorage {
 
 struct SoftBody {
   ActorHandle handle = 0;
+  ActorHandle skeleton;  // the soft-skinned actor it belongs to, if any
   SoftModel model;
   SoftState state;
   // the actor frame (its root transform): where the mesh's rest nodes were placed, then, with

@@ -189,6 +189,9 @@ class Scene {
   /// data is shared with the actor: the shape handle may be released afterwards.
   ActorHandle create_rigid_actor(const RigidActorParams& params);
   ActorHandle create_soft_actor(const SoftActorParams& params);
+  /// A skeleton with soft bodies tied to its links (SoftSkinnedActorParams): returns the
+  /// articulated actor; its soft actors are nested_soft_actors() and go with it when destroyed.
+  ActorHandle create_soft_skinned_actor(const SoftSkinnedActorParams& params);
   ActorHandle create_articulated_actor(const ArticulatedActorParams& params);
   /// A soft body from a tet-mesh shape placed at X_WL, with pinned nodes (indices into the mesh),
   /// in this engine's material description (reduced models included): the form prefab files use.
@@ -236,6 +239,11 @@ class Scene {
   VecX external_forces(ActorHandle actor) const;
 
   std::vector<ActorHandle> nested_link_actors(ActorHandle articulation) const;
+  /// The soft actors of a soft-skinned actor (create_soft_skinned_actor), in soft_params order;
+  /// empty for other articulations.
+  std::vector<ActorHandle> nested_soft_actors(ActorHandle articulation) const;
+  /// Whether a soft actor belongs to a soft-skinned actor.
+  bool is_nested_soft_actor(ActorHandle actor) const;
   ActorHandle articulated_actor_of_link(ActorHandle link) const;
   int link_index(ActorHandle link) const;
   ArticulatedShapeInfo articulated_shape_info(ActorHandle articulation) const;

@@ -163,6 +163,21 @@ struct ArticulatedCycleJointParams {
   bool operator==(const ArticulatedCycleJointParams&) const = default;
 };
 
+/// A skin: one triangle surface bound to an articulation's links by linear-blend skinning. Its
+/// shape is a triangle mesh whose nodes carry skinning data (weights over link indices; the
+/// model's mesh.skinning), authored in the root joint's parent frame with every joint at zero.
+/// Each node then sits at sum_k w_k X_WL_k X_LR_k p_R, X_LR_k the link's rest pose inverted. The
+/// skin is colliding only: its nodes probe the colliders of other actors (it is no collider
+/// itself), and a contact pushes on the links by their weights.
+struct ArticulatedSkinParams {
+  ShapeHandle shape;
+  std::string layer;
+  ContactParams contact;
+  ActorBoundaryElementType boundary_element_type = ActorBoundaryElementType::Default;  ///< kept; this engine probes the nodes
+  std::optional<BoundarySubsamplingParams> boundary_subsampling;
+  bool operator==(const ArticulatedSkinParams&) const = default;
+};
+
 /// An articulation: a tree of links and joints.
 struct ArticulatedActorParams {
   std::string name;               ///< its links are named "<name>/<link name>"
@@ -170,8 +185,25 @@ struct ArticulatedActorParams {
   std::vector<ArticulatedCycleJointParams> cycles;
   std::vector<ArticulatedJointParams> joints;  ///< one per link
   std::vector<ArticulatedLinkParams> links;    ///< at least one, parents first
+  std::optional<ArticulatedSkinParams> skin;   ///< a surface skinned to the links
   std::optional<std::vector<real>> joint_velocities;  ///< initial, one per DOF (m/s, rad/s)
   bool operator==(const ArticulatedActorParams&) const = default;
+};
+
+/// A skeleton (an articulation) carrying soft bodies. Each soft body is authored, like the
+/// skeleton, in the root joint's parent frame at the rest pose; its shape's constrained nodes are
+/// tied to a link: soft_attach_links[i] for soft_params[i] (one name for all when there is one),
+/// or, without names, the link of each node's largest skinning weight. Contact between a soft
+/// body and its link is off. The soft bodies simulate in the world with gravity, inertia and
+/// elastic stress where either their own params or these flags ask for them.
+struct SoftSkinnedActorParams {
+  ArticulatedActorParams skeleton_params;
+  std::vector<SoftActorParams> soft_params;
+  std::vector<std::string> soft_attach_links;
+  bool enable_colliding_links = false;  ///< false: the links touch nothing (the soft bodies wrap them)
+  bool has_gravity = false;
+  bool has_inertia = false;
+  bool has_stress = false;
 };
 
 /// One joint's slice of the generalized coordinates.
@@ -213,6 +245,7 @@ struct ArticulatedShapeInfo {
 void validate(const RigidActorParams& params, const std::string& where);
 void validate(const SoftActorParams& params, const std::string& where);
 void validate(const ArticulatedActorParams& params, const std::string& where);
+void validate(const SoftSkinnedActorParams& params, const std::string& where);
 void validate(const GridSdfParams& params, const std::string& where);
 void validate(const RecenteringParams& params, const std::string& where);
 void validate(const ArticulatedJointFrictionParams& params, const std::string& where);
