@@ -39,6 +39,16 @@ void export_experimental(nb::module_& m) {
       .field("allow_compressive_force", &ForceControlActuatorParams::allow_compressive_force, "the transmission can push")
       .done();
 
+  StructBinder<McKibbenActuatorParams>(e, "McKibbenActuatorParams",
+                                       "A McKibben pneumatic muscle pulling along the transmission (Chou and Hannaford's model).")
+      .field("pressure", &McKibbenActuatorParams::pressure, "Pa (the state variable)")
+      .field("minimum_pressure", &McKibbenActuatorParams::minimum_pressure, "Pa: the inner tube presses on the braid above it")
+      .field("thread_length", &McKibbenActuatorParams::thread_length, "m, > 0")
+      .field("number_of_wraps", &McKibbenActuatorParams::number_of_wraps, "> 0")
+      .field("deflated_stiffness", &McKibbenActuatorParams::deflated_stiffness, "N/m, > 0")
+      .field("deflated_equilibrium_length", &McKibbenActuatorParams::deflated_equilibrium_length, "m, > 0: the length at zero displacement")
+      .done();
+
   nb::enum_<RoutingElementType>(m, "RoutingElementType", "What a spatial tendon's routing element is.")
       .value("WAYPOINT", RoutingElementType::Waypoint)
       .value("LINEAR_JOINT", RoutingElementType::LinearJoint);
@@ -75,9 +85,12 @@ void export_experimental(nb::module_& m) {
   e.def("attach_force_control_actuator", [](Actor& actor, int transmission_index, const ForceControlActuatorParams& params) {
           actor.scene.attach_force_control_actuator(actor.handle, transmission_index, params);
         }, "actor"_a, "transmission_index"_a, "params"_a, "Attaches (replacing any) a force-control actuator.");
+  e.def("attach_mc_kibben_actuator", [](Actor& actor, int transmission_index, const McKibbenActuatorParams& params) {
+          actor.scene.attach_mc_kibben_actuator(actor.handle, transmission_index, params);
+        }, "actor"_a, "transmission_index"_a, "params"_a, "Attaches (replacing any) a McKibben muscle; its state variable is the pressure.");
   e.def("get_num_transmission_actuator_state_variables", [](const Actor& actor, int transmission_index) {
           return actor.scene.num_transmission_actuator_state_variables(actor.handle, transmission_index);
-        }, "actor"_a, "transmission_index"_a, "1 (the target displacement or the force); an error when no actuator is attached.");
+        }, "actor"_a, "transmission_index"_a, "1 (the target displacement, the force or the pressure); an error when no actuator is attached.");
   e.def("get_transmission_actuator_state_variables", [](const Actor& actor, int transmission_index, nb::handle out_state_variables) {
           write_out(out_state_variables, actor.scene.transmission_actuator_state_variables(actor.handle, transmission_index),
                     "get_transmission_actuator_state_variables: out_state_variables");

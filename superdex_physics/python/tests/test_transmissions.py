@@ -7,6 +7,8 @@
   force -f c), balances gravity; it pulls but never pushes unless allowed, and follows a target
   set through its state variable;
 - a force-control actuator's tension f accelerates a free slider at -f c / m;
+- a McKibben muscle holds a hanging slider where its model tension equals the weight, is slack
+  when it would have to push, and keeps its pressure as its state variable;
 - spatial tendons: the route's length change and its rate, and a tendon holding a rod up where
   the torques balance;
 - bad indices, actors and values raise superdex.physics.Error naming the argument.
@@ -166,6 +168,75 @@ def test_a_captured_state_keeps_the_actuator_target(scene):
     out = np.zeros(1, dtype=REAL)
     ex.get_transmission_actuator_state_variables(actor, k, out)
     assert out[0] == pytest.approx(0.1)
+
+
+# ---- McKibben muscles
+
+
+def muscle_tension(d, pressure, minimum, b, n, k, L0):
+    """Chou and Hannaford's static tension of a McKibben muscle of length L0 + d (N), with the
+    deflated spring k d, written from the model: F = (P - P_min) b^2 / (4 pi n^2) (3 L^2 / b^2 - 1)."""
+    L = L0 + d
+    return max(0.0, pressure - minimum) * (3 * L * L - b * b) / (4 * np.pi * n * n) + k * d
+
+
+MUSCLE = dict(pressure=1e5, minimum_pressure=1e3, thread_length=0.15, number_of_wraps=3.0, deflated_stiffness=500.0,
+              deflated_equilibrium_length=0.1)
+
+
+@pytest.mark.parametrize("pressure", [1e5, 500.0])
+def test_a_mc_kibben_muscle_holds_a_slider_where_its_tension_is_the_weight(scene, pressure):
+    """The slider hangs from the muscle (d = -q: falling stretches it). At rest its tension equals
+    the weight m g: the root of the model's tension (numpy's polynomial roots, here) within 1e-5 m;
+    below the minimum pressure only the deflated spring acts (d = m g / k)."""
+    actor = slider(scene, mass=2.0)
+    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[-1.0]))
+    params = dict(MUSCLE, pressure=pressure)
+    ex.attach_mc_kibben_actuator(actor, k, ex.McKibbenActuatorParams(**params))
+    actor.set_articulated_joint_friction_params([sdp.ArticulatedJointFrictionParams(), sdp.ArticulatedJointFrictionParams(viscous=20.0)])
+    for _ in range(1500):
+        scene.step(0.004)
+    d = -float(actor.get_articulated_pose()[0])
+    b, n, kd, L0 = params["thread_length"], params["number_of_wraps"], params["deflated_stiffness"], params["deflated_equilibrium_length"]
+    c = max(0.0, pressure - params["minimum_pressure"]) / (4 * np.pi * n * n)
+    # 3 c (L0 + d)^2 - c b^2 + kd d - m g = 0 in d
+    roots = np.roots([3 * c, 6 * c * L0 + kd, 3 * c * L0 * L0 - c * b * b - 2.0 * G]) if c > 0 else np.array([2.0 * G / kd])
+    expected = float(roots[np.argmin(np.abs(roots))].real)
+    assert d == pytest.approx(expected, abs=1e-5)
+    assert muscle_tension(d, pressure, params["minimum_pressure"], b, n, kd, L0) == pytest.approx(2.0 * G, rel=1e-3)
+    if pressure < params["minimum_pressure"]:
+        assert d == pytest.approx(2.0 * G / kd, abs=1e-5)
+
+
+def test_a_mc_kibben_muscle_never_pushes_and_its_pressure_is_its_state(scene):
+    """Compressed below the length where its tension would turn negative, the muscle is slack: a
+    slider it would have to push falls freely. Its one state variable is the pressure; raising it
+    pulls the slider up, and a captured state restores it."""
+    actor = slider(scene, mass=1.0)
+    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[1.0]))
+    ex.attach_mc_kibben_actuator(actor, k, ex.McKibbenActuatorParams(**dict(MUSCLE, pressure=0.0)))
+    for _ in range(50):  # d = q < 0: the deflated spring's tension k d < 0 is slack: 0.2 s of free fall
+        scene.step(0.004)
+    assert float(actor.get_articulated_pose()[0]) == pytest.approx(-0.5 * G * 0.2 * 0.2, rel=0.03)
+    assert ex.get_num_transmission_actuator_state_variables(actor, k) == 1
+    out = np.zeros(1, dtype=REAL)
+    ex.get_transmission_actuator_state_variables(actor, k, out)
+    assert out[0] == 0.0
+    state = scene.capture_state()
+    ex.set_transmission_actuator_state_variables(actor, k, np.array([2e5]))
+    ex.get_transmission_actuator_state_variables(actor, k, out)
+    assert out[0] == pytest.approx(2e5)
+    scene.restore_state(state, True)
+    ex.get_transmission_actuator_state_variables(actor, k, out)
+    assert out[0] == 0.0
+
+
+@pytest.mark.parametrize("field", ["thread_length", "number_of_wraps", "deflated_stiffness", "deflated_equilibrium_length"])
+def test_mc_kibben_params_must_be_positive(scene, field):
+    actor = slider(scene)
+    k = ex.add_linear_transmission(actor, ex.LinearTransmissionParams(joint_indices=[1], joint_coefficients=[1.0]))
+    with pytest.raises(sdp.Error, match=rf"params\.{field} must be a positive"):
+        ex.attach_mc_kibben_actuator(actor, k, ex.McKibbenActuatorParams(**dict(MUSCLE, **{field: 0.0})))
 
 
 # ---- spatial tendons: a route of waypoints on links, and linear-joint elements

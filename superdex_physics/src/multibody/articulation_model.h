@@ -111,11 +111,13 @@ struct ArticulationModel {
 // The actuator of a transmission (Scene::attach_*_actuator): its kind, its one state variable
 // (the target displacement or the force) and its constants.
 struct TransmissionActuator {
-  enum class Kind { None, DisplacementControl, ForceControl };
+  enum class Kind { None, DisplacementControl, ForceControl, McKibben };
   Kind kind = Kind::None;
-  real value = 0;
-  real stiffness = 0, damping = 0;  // DisplacementControl
+  real value = 0;                   // the state variable: target, force, pressure
+  real stiffness = 0, damping = 0;  // DisplacementControl; McKibben: the deflated stiffness
   bool allow_compressive_force = false;
+  // McKibben (McKibbenActuatorParams)
+  real minimum_pressure = 0, thread_length = 0, wraps = 0, deflated_length = 0;
 };
 
 // Evolving state: what capture_state copies.

@@ -140,14 +140,23 @@ void tendon_springs(const ArticulationModel& model, const ArticulationState& sta
   }
 }
 
-// Force-controlled transmissions: the tension's joint efforts -f dd/dv (it shortens the
-// transmission), explicit (into r).
+// Force-controlled transmissions and McKibben muscles: the tension's joint efforts -f dd/dv (it
+// shortens the transmission) into r; a muscle's tension is its energy's derivative, linearized
+// over the step: f(d + dt J v+) = f + dt k J v+ adds dt^2 k J J^T to A.
 void transmission_forces(const ArticulationModel& model, const ArticulationState& state, const ArticulationKinematics& kin, real dt,
                          ArticulationTerms& t) {
   for (size_t i = 0; i < model.transmissions.size(); ++i) {
     const TransmissionActuator& act = state.transmission_actuators[i];
-    if (act.kind != TransmissionActuator::Kind::ForceControl) continue;
-    t.r -= dt * act.value * transmission_jacobian(model, kin, model.transmissions[i]);
+    if (act.kind == TransmissionActuator::Kind::ForceControl) {
+      t.r -= dt * act.value * transmission_jacobian(model, kin, model.transmissions[i]);
+    } else if (act.kind == TransmissionActuator::Kind::McKibben) {
+      const ArticulationModel::Transmission& path = model.transmissions[i];
+      const MuscleTension m = mc_kibben_tension(act, transmission_displacement(model, state, kin, path));
+      if (m.tension <= 0) continue;
+      const VecX J = transmission_jacobian(model, kin, path);
+      t.r -= dt * m.tension * J;
+      t.A.noalias() += (dt * dt * m.stiffness) * J * J.transpose();
+    }
   }
 }
 

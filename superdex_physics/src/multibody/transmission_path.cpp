@@ -2,6 +2,9 @@
 
 #include "multibody/transmission_path.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "multibody/kinematics.h"
 
 namespace superdex::physics {
@@ -48,6 +51,17 @@ VecX transmission_jacobian(const ArticulationModel& model, const ArticulationKin
          (J_a.topRows<3>().transpose() * u + J_a.bottomRows<3>().transpose() * m_a);
   }
   return J;
+}
+
+MuscleTension mc_kibben_tension(const TransmissionActuator& act, real d) {
+  const real L = act.deflated_length + d;
+  const real b2 = act.thread_length * act.thread_length;
+  // the pressure term's scale: P_eff b^2 / (4 pi n^2) (N)
+  const real c = std::max<real>(0, act.value - act.minimum_pressure) * b2 / (4 * real(M_PI) * act.wraps * act.wraps);
+  const real tension = c * (3 * L * L / b2 - 1) + act.stiffness * d;
+  // a muscle never pushes: below zero tension it is slack
+  if (!(tension > 0)) return {};
+  return {tension, c * 6 * L / b2 + act.stiffness};
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

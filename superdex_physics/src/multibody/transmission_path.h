@@ -18,5 +18,12 @@ real transmission_displacement(const ArticulationModel& model, const Articulatio
 // dd/dv over the articulation's DOFs at the kinematics' state.
 VecX transmission_jacobian(const ArticulationModel& model, const ArticulationKinematics& kin, const ArticulationModel::Transmission& t);
 
+// A McKibben muscle's tension (N, >= 0) and its derivative in the displacement (N/m) at
+// displacement d (m) (McKibbenActuatorParams gives the model).
+struct MuscleTension {
+  real tension = 0, stiffness = 0;
+};
+MuscleTension mc_kibben_tension(const TransmissionActuator& act, real d);
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

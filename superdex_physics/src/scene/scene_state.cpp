@@ -6,8 +6,9 @@
 // joint drives (stiffness, damping, target position, target velocity, max effort per DOF), then
 // 19 reals per link of link drives (target rotation xyzw, translation, linear and angular target
 // velocity, linear stiffness and damping, angular stiffness and damping, max force and torque),
-// then u32 transmission actuator count and per actuator u8 kind and 4 reals (state variable,
-// stiffness, damping, allow_compressive_force as 0 or 1).
+// then u32 transmission actuator count and per actuator u8 kind and 8 reals (state variable,
+// stiffness, damping, allow_compressive_force as 0 or 1, and a McKibben muscle's minimum
+// pressure, thread length, wraps and deflated length).
 // Then u32 soft body count; per soft body: its frame X_WL (rotation xyzw, translation: 7 reals),
 // u32 3N, node positions, velocities and forces (3N each),
 // u32 r (the modes of a reduced body, else 0) and, when r > 0, its modal amplitudes and their
@@ -36,7 +37,7 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 namespace {
 
 constexpr char kMagic[4] = {'S', 'D', 'X', 'S'};
-constexpr std::uint32_t kVersion = 8;
+constexpr std::uint32_t kVersion = 9;
 
 class Writer {
  public:
@@ -175,8 +176,9 @@ std::vector<std::uint8_t> state_bytes(const SceneData& s) {
     w.put(static_cast<std::uint32_t>(a->state.transmission_actuators.size()));
     for (const TransmissionActuator& t : a->state.transmission_actuators) {
       w.put(static_cast<std::uint8_t>(t.kind));
-      const real x[4] = {t.value, t.stiffness, t.damping, real(t.allow_compressive_force ? 1 : 0)};
-      w.put_reals(x, 4);
+      const real x[8] = {t.value, t.stiffness, t.damping, real(t.allow_compressive_force ? 1 : 0),
+                         t.minimum_pressure, t.thread_length, t.wraps, t.deflated_length};
+      w.put_reals(x, 8);
     }
   }
   w.put(static_cast<std::uint32_t>(s.soft_bodies.size()));
@@ -276,12 +278,13 @@ void restore_state_bytes(SceneData& s, std::span<const std::uint8_t> bytes) {
     for (std::uint32_t k = 0; k < actuators; ++k) {
       TransmissionActuator& t = st.transmission_actuators[k];
       const auto kind = r.get<std::uint8_t>("transmission actuator kind");
-      if (kind > static_cast<std::uint8_t>(TransmissionActuator::Kind::ForceControl))
+      if (kind > static_cast<std::uint8_t>(TransmissionActuator::Kind::McKibben))
         throw Error("restore_state: actor " + std::to_string(i) + ": unknown transmission actuator kind " + std::to_string(kind));
-      real x[4];
-      r.get_reals(x, 4, "transmission actuators");
+      real x[8];
+      r.get_reals(x, 8, "transmission actuators");
       t.kind = static_cast<TransmissionActuator::Kind>(kind);
       t.value = x[0], t.stiffness = x[1], t.damping = x[2], t.allow_compressive_force = x[3] != 0;
+      t.minimum_pressure = x[4], t.thread_length = x[5], t.wraps = x[6], t.deflated_length = x[7];
     }
     if (!st.q.allFinite() || !st.v.allFinite() || !st.tau_external.allFinite())
       throw Error("restore_state: actor " + std::to_string(i) + " has non-finite values in the state");

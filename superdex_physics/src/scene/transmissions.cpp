@@ -147,6 +147,29 @@ void Scene::attach_force_control_actuator(ActorHandle h, int transmission, const
   attach(a, transmission, act, what);
 }
 
+void Scene::attach_mc_kibben_actuator(ActorHandle h, int transmission, const McKibbenActuatorParams& p) {
+  const char* what = "attach_mc_kibben_actuator";
+  Articulation& a = articulated(scene_data(handle_), h, what);
+  auto positive = [&](real v, const char* field) {
+    if (!std::isfinite(v) || v <= 0) throw Error(std::string(what) + ": params." + field + " must be a positive finite number, got " + std::to_string(v));
+  };
+  positive(p.deflated_equilibrium_length, "deflated_equilibrium_length");
+  positive(p.deflated_stiffness, "deflated_stiffness");
+  positive(p.number_of_wraps, "number_of_wraps");
+  positive(p.thread_length, "thread_length");
+  if (!std::isfinite(p.pressure)) throw Error(std::string(what) + ": params.pressure must be finite");
+  if (!std::isfinite(p.minimum_pressure)) throw Error(std::string(what) + ": params.minimum_pressure must be finite");
+  TransmissionActuator act;
+  act.kind = TransmissionActuator::Kind::McKibben;
+  act.value = p.pressure;
+  act.stiffness = p.deflated_stiffness;
+  act.minimum_pressure = p.minimum_pressure;
+  act.thread_length = p.thread_length;
+  act.wraps = p.number_of_wraps;
+  act.deflated_length = p.deflated_equilibrium_length;
+  attach(a, transmission, act, what);
+}
+
 int Scene::num_transmission_actuator_state_variables(ActorHandle h, int transmission) const {
   const char* what = "get_num_transmission_actuator_state_variables";
   attached(articulated(scene_data(handle_), h, what), transmission, what);

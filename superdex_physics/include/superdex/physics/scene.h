@@ -294,6 +294,7 @@ class Scene {
   /// Attaches (replacing any) an actuator to a transmission.
   void attach_displacement_control_actuator(ActorHandle articulation, int transmission, const DisplacementControlActuatorParams& params);
   void attach_force_control_actuator(ActorHandle articulation, int transmission, const ForceControlActuatorParams& params);
+  void attach_mc_kibben_actuator(ActorHandle articulation, int transmission, const McKibbenActuatorParams& params);
   /// The attached actuator's state variables (the target displacement, or the force): error
   /// when none is attached.
   int num_transmission_actuator_state_variables(ActorHandle articulation, int transmission) const;

@@ -56,5 +56,22 @@ struct ForceControlActuatorParams {
   bool allow_compressive_force = false;
 };
 
+/// A McKibben pneumatic muscle along the transmission (Chou and Hannaford's static model). Its
+/// length is L = deflated_equilibrium_length + d; it pulls with tension
+///   T = max(0, pressure - minimum_pressure) b^2 / (4 pi n^2) (3 L^2 / b^2 - 1) + deflated_stiffness d
+/// (b the thread length, n the number of wraps), the derivative of its energy in d, and never
+/// pushes (T < 0 acts as 0). Integrated implicitly (its stiffness dT/dd in the step's matrix).
+/// State variable: the pressure (Pa; gauge pressures may be negative, as long as the minimum is
+/// measured the same way). thread_length, number_of_wraps, deflated_stiffness and
+/// deflated_equilibrium_length must be positive.
+struct McKibbenActuatorParams {
+  real pressure = 0;                     ///< Pa
+  real minimum_pressure = 0;             ///< Pa: below it the inner tube does not press on the braid
+  real thread_length = 0;                ///< m (b)
+  real number_of_wraps = 0;              ///< turns of a thread around the muscle (n)
+  real deflated_stiffness = 0;           ///< N/m
+  real deflated_equilibrium_length = 0;  ///< m: the muscle's length at zero displacement
+};
+
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics
