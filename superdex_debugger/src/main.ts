@@ -7,7 +7,7 @@ import { Toolbar } from './controls';
 import { Playback } from './playback';
 import { PlotsPanel } from './plots';
 import { PropertiesPanel } from './properties';
-import type { ActorMsg, ControlAction, FrameMsg } from './protocol';
+import type { ActorMsg, Axes, ControlAction, FrameMsg } from './protocol';
 import { SceneView } from './sceneView';
 import { type Selection, sameSelection } from './selection';
 import { DebugStore, type SceneState } from './store';
@@ -34,6 +34,8 @@ class App {
   selection: Selection | null = null;
   /** Handle of the scene shown in the view, plots and timeline. */
   shownScene: number | undefined;
+  private sessionAxes: Axes = 'FLU';
+  private shownAxes: Axes | undefined;
   /** Absolute index (see Ring) of the shown frame in the shown scene, -1 for none. */
   currentAbs = -1;
   /** Live: show the newest frame as it arrives. */
@@ -72,7 +74,8 @@ class App {
     const st = this.store;
     st.on('session', (s) => {
       this.toolbar.setSession(s);
-      this.view.setAxes(s.axes === 'RUB' ? 'RUB' : 'FLU');
+      this.sessionAxes = s.axes === 'RUB' ? 'RUB' : 'FLU';
+      this.applyAxes();
       this.following = s.mode !== 'replay';
       document.title = `SuperDex Debugger${s.source ? ` — ${s.source}` : ''}`;
       this.dataDirty = true;
@@ -175,9 +178,21 @@ class App {
     this.propsDirty = true;
   }
 
+  /** The session's axis convention, unless the shown scene's gravity points down y (SuperDex's
+   * default, (0, -9.8, 0)): such a scene is shown Y up. */
+  private applyAxes(): void {
+    const g = this.scene()?.gravity;
+    const yDown = !!g && g[1] < 0 && Math.abs(g[1]) > Math.abs(g[0]) && Math.abs(g[1]) > Math.abs(g[2]);
+    const axes: Axes = yDown ? 'RUB' : this.sessionAxes;
+    if (axes === this.shownAxes) return;
+    this.shownAxes = axes;
+    this.view.setAxes(axes);
+  }
+
   private showScene(handle: number | undefined): void {
     this.shownScene = handle;
     const scene = this.scene();
+    this.applyAxes();
     this.view.refit();
     this.plots.setScene(scene);
     this.currentAbs = scene && scene.frames.length ? (this.replay ? scene.frames.start : scene.frames.end - 1) : -1;
@@ -288,6 +303,7 @@ class App {
       renderModelCount: () => this.view.renderModelCount(),
       drawCount: () => this.view.drawCount(),
       shownActors: () => this.view.shownActors(),
+      upAxis: () => this.view.upAxis(),
     });
   }
 }

@@ -134,6 +134,11 @@ export class SceneView {
     this.requestRender();
   }
 
+  /** The axis convention the view shows. */
+  upAxis(): Axes {
+    return this.axes;
+  }
+
   private upVector(): THREE.Vector3 {
     return this.axes === 'RUB' ? new THREE.Vector3(0, 1, 0) : new THREE.Vector3(0, 0, 1);
   }

@@ -40,6 +40,8 @@ export interface SuperdexHook {
   /** Handles of the actors drawn in the 3D view (a replay shows destroyed actors up to their
    * last frame). */
   shownActors(): number[];
+  /** The 3D view's axis convention: FLU (z up) or RUB (y up). */
+  upAxis(): 'FLU' | 'RUB';
 }
 
 declare global {

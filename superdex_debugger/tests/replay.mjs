@@ -114,6 +114,7 @@ try {
   out.renderModelCount = await page.evaluate(modelCount);
   out.canvas = await settledCanvasStats(page, timeoutMs);
   out.drawCount = await page.evaluate(() => window.superdex.drawCount());
+  out.upAxis = await page.evaluate(() => window.superdex.upAxis());
   out.canvasNonBlank = isNonBlank(out.canvas);
   if (opt.screenshot) {
     await page.waitForTimeout(300);

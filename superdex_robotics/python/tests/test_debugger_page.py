@@ -158,6 +158,30 @@ def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(t
     assert r["replayEnded"], details
     assert upper in r["shownActorsFirst"], details
     assert upper not in r["shownActorsLast"], details
+    assert r["upAxis"] == "FLU", details  # the example's gravity is -z
+
+
+def test_a_scene_with_gravity_down_y_is_shown_y_up(tmp_path):
+    """SuperDex's default gravity is (0, -9.8, 0): the skinned pendulum example keeps it, and the
+    replayed page shows its scene Y up (RUB), its skin among the drawn actors."""
+    recording = tmp_path / "skin.jsonl"
+    env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
+    example = REPO / "superdex_physics" / "examples" / "skinned_double_pendulum.py"
+    subprocess.run([sys.executable, str(example), "--seconds", "0.3", "--debugger"], env=env, check=True, capture_output=True,
+                   timeout=900 * SLOW, cwd=REPO)
+    lines = [json.loads(l) for l in recording.read_text().splitlines()]
+    (skin,) = [l["handle"] for l in lines if l["type"] == "actor" and l.get("name") == "skinned_pendulum/skin"]
+    proc, url, _ = start_and_read_url([sys.executable, "-m", "superdex", "view", str(recording), "--no-browser"],
+                                      headless_env(), "superdex view: replaying")
+    try:
+        r = run_node("replay.mjs", url, recording)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+    details = json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
+    assert r["upAxis"] == "RUB", details
+    assert skin in r["shownActorsFirst"], details
+    assert r["canvasNonBlank"], details
 
 
 RECORD_A_BALL = """
