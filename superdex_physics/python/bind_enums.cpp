@@ -58,7 +58,9 @@ void export_enums(nb::module_& m) {
       .value("PRECONDITIONED_RESIDUAL_L2", LinearSolverConvergenceNorm::PreconditionedResidualL2)
       .value("RESIDUAL_PRECONDITIONER_INDUCED", LinearSolverConvergenceNorm::ResidualPreconditionerInduced);
   add_default_alias<LinearSolverConvergenceNorm>(m, "LinearSolverConvergenceNorm");
-  nb::enum_<IntegrationMethod>(m, "IntegrationMethod", "This engine integrates by backward Euler (BACKWARD_EULER, DEFAULT).")
+  nb::enum_<IntegrationMethod>(m, "IntegrationMethod", "BACKWARD_EULER (DEFAULT) or BDF2 (second order: a backward Euler step of 2/3 h from the extrapolated state of the "
+                                                          "last two steps; the first step, and the first after the state was changed outside a step, "
+                                                          "is backward Euler). The others are refused.")
       .value("BACKWARD_EULER", IntegrationMethod::BackwardEuler).value("BDF2", IntegrationMethod::BDF2).value("BDF3", IntegrationMethod::BDF3)
       .value("DIRK22", IntegrationMethod::DIRK22).value("DIRK23", IntegrationMethod::DIRK23).value("DIRK33", IntegrationMethod::DIRK33)
       .value("SYMPLECTIC_DIRK12", IntegrationMethod::SymplecticDIRK12).value("SYMPLECTIC_DIRK22", IntegrationMethod::SymplecticDIRK22);

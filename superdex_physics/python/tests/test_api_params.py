@@ -249,7 +249,7 @@ BAD = [
     ("non_linear_solver.abs_tol", lambda s: s.set_solver_params(solver(non_linear_solver__abs_tol=-1.0))),
     ("non_linear_solver.solver_type", lambda s: s.set_solver_params(solver(non_linear_solver__solver_type=sdp.NonLinearSolverType.BFGS))),
     ("linear_solver.solver_type", lambda s: s.set_solver_params(solver(linear_solver__solver_type=sdp.LinearSolverType.GMRES))),
-    ("integration_method", lambda s: s.set_solver_params(solver(integration_method=sdp.IntegrationMethod.BDF2))),
+    ("integration_method", lambda s: s.set_solver_params(solver(integration_method=sdp.IntegrationMethod.BDF3))),
     ("implicit_step.friction_sigma", lambda s: s.set_solver_params(solver(implicit_step__friction_sigma=0.0))),
 ]
 

@@ -288,6 +288,35 @@ void run_callbacks(Scene& scene, SceneData& s, bool post, double dt) {
 
 }  // namespace
 
+namespace {
+
+// A BDF2 step (bdf2_step.h): `be_step` (the implicit step) over 2/3 dt from the extrapolated
+// state when the last steps allow it, else over dt (backward Euler); the scene's time moves by dt.
+template <class BackwardEulerStep>
+void step_bdf2(SceneData& s, double dt, BackwardEulerStep&& be_step) {
+  if (!s.step_workspace) s.step_workspace = std::make_shared<StepWorkspace>();
+  Bdf2History& history = s.step_workspace->bdf2;
+  Bdf2History start;
+  bdf2_capture(s, start);
+  const double t0 = s.time;
+  if (bdf2_can_extrapolate(s, history, dt)) {
+    bdf2_extrapolate(s, history);
+    try {
+      be_step(static_cast<real>(2 * dt / 3));
+    } catch (...) {
+      bdf2_restore(s, start);
+      history.valid = false;
+      throw;
+    }
+    s.time = t0 + dt;
+  } else {
+    be_step(static_cast<real>(dt));
+  }
+  bdf2_advance(s, dt, start, history);
+}
+
+}  // namespace
+
 void Scene::step(double dt) {
   if (!std::isfinite(dt) || dt < 0) throw Error("step: time_step_sec must be a finite number of seconds >= 0, got " + std::to_string(dt));
   // the step's wall time and its parts (PerformanceStats), in time-stamp ticks
@@ -296,8 +325,13 @@ void Scene::step(double dt) {
   run_callbacks(*this, scene_data(handle_), false, dt);
   const Ticks after_pre = ticks_now();
   if (dt > 0) {
-    step_dynamics(static_cast<real>(dt));
-    scene_data(handle_).last_time_step = dt;
+    SceneData& s = scene_data(handle_);
+    if (s.solver_params.integration_method == IntegrationMethod::BDF2) {
+      step_bdf2(s, dt, [this](real h) { step_dynamics(h); });
+    } else {
+      step_dynamics(static_cast<real>(dt));
+    }
+    s.last_time_step = dt;
   } else {
     // a zero step changes no state: queries registered before it become readable
     SceneData& s = scene_data(handle_);

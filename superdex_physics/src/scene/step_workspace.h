@@ -12,6 +12,7 @@
 #include "collision/collision_detection.h"
 #include "island/island_solver.h"
 #include "island/islands.h"
+#include "scene/bdf2_step.h"
 #include "soft/soft_body.h"
 #include "soft/soft_contact.h"
 #include "solver/sparse_newton_system.h"
@@ -45,6 +46,7 @@ struct StepWorkspace {
   std::vector<ArticulationKinematics> kin_next;        // per articulation: the next state's kinematics
   std::vector<SoftContactRecordKey> soft_record_keys;  // the soft contact results' order
   std::vector<std::pair<int, int>> record_places;      // per contact: its island and index there
+  Bdf2History bdf2;                                    // the last two steps' states (integration_method BDF2)
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

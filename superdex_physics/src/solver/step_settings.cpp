@@ -82,8 +82,8 @@ void validate(const SolverParams& params, const std::string& where) {
   require(l.max_iter > 0 || l.max_iter == kAutoLinearSolverMaxIter, ls, "max_iter",
           "must be > 0 or AUTO_LINEAR_SOLVER_MAX_ITER (-1), got " + std::to_string(l.max_iter));
   require(l.restart_size >= 1, ls, "restart_size", "must be >= 1");
-  require(params.integration_method == IntegrationMethod::BackwardEuler, where, "integration_method",
-          "only BACKWARD_EULER (DEFAULT) is available, got " + enum_value(params.integration_method));
+  require(params.integration_method == IntegrationMethod::BackwardEuler || params.integration_method == IntegrationMethod::BDF2, where,
+          "integration_method", "BACKWARD_EULER (DEFAULT) and BDF2 are available, got " + enum_value(params.integration_method));
   const ExperimentalEvalParams& e = params.experimental_eval;
   require(!(e.implicit_normal_force_for_dissipation && e.explicit_normals), where + ".experimental_eval", "implicit_normal_force_for_dissipation",
           "cannot be combined with explicit_normals");

@@ -141,7 +141,7 @@ struct ImplicitStepParams {
 struct SolverParams {
   NonLinearSolverParams non_linear_solver;
   LinearSolverParams linear_solver;
-  IntegrationMethod integration_method = IntegrationMethod::Default;  ///< BackwardEuler only
+  IntegrationMethod integration_method = IntegrationMethod::Default;  ///< BackwardEuler or BDF2 (scene/bdf2_step.h)
   ExperimentalEvalParams experimental_eval;
   ImplicitStepParams implicit_step;
   bool operator==(const SolverParams&) const = default;
