@@ -375,6 +375,7 @@ def test_inverse_kinematics_as_a_script_records_each_solution(tmp_path):
     ("articulations_pose_controller", ["--seconds", "0.5"]),
     ("skinned_double_pendulum", ["--seconds", "0.5"]),
     ("soft_skinned_double_pendulum", ["--seconds", "0.5"]),
+    ("mc_kibben_muscle", ["--hold", "0.25"]),
 ])
 def test_runs_as_a_script(name, args, tmp_path):
     """python <example> --debugger exits 0 with nothing on stderr and prints its summary; with
@@ -389,7 +390,9 @@ def test_runs_as_a_script(name, args, tmp_path):
     lines = [json.loads(line) for line in recording.read_text().splitlines()]
     assert lines[0]["type"] == "header"
     frames = [line for line in lines if line["type"] == "frame"]
-    assert frames and frames[-1]["t"] == pytest.approx(float(args[1]), abs=1e-4)
+    # the run's simulated length: --seconds, or four pressures held --hold each
+    length = float(args[1]) * (4 if args[0] == "--hold" else 1)
+    assert frames and frames[-1]["t"] == pytest.approx(length, abs=1e-4)
     if name == "constraints_double_pendulum":
         # the frames carry the constraints' points: the pivot's target on the anchor's circle
         # (5 cm around the anchor), each constraint's two points within a millimetre
@@ -610,3 +613,36 @@ def test_the_skinned_pendulums_strike_the_ball_with_their_soft_or_skinned_part(n
     assert first * result["dt"] < 0.5
     assert np.linalg.norm(positions[-1] - example.BALL_POSITION) > 0.1
     assert abs(positions[-1][1] - example.BALL_RADIUS) < 1e-3
+
+
+# --------------------------------------------------------------------------------------------
+# mc_kibben_muscle.py
+
+
+def test_the_muscle_holds_the_forearm_where_the_torques_balance():
+    """At each pressure the forearm settles where the muscle's torque T(d) r, T from Chou and
+    Hannaford's model written here and d = -r q its length change, balances the forearm's weight
+    m g (l / 2) cos q (the root found by bisection here): within 0.5 degree; higher pressures hold
+    it higher."""
+    example = load_example("mc_kibben_muscle")
+    result = example.run(hold=2.0, dt=0.002)
+    m, l, r = example.FOREARM_MASS, example.FOREARM_LENGTH, example.MOMENT_ARM
+    p = example.MUSCLE
+
+    def tension(pressure, d):
+        b, n = p["thread_length"], p["number_of_wraps"]
+        L = p["deflated_equilibrium_length"] + d
+        t = max(0.0, pressure - p["minimum_pressure"]) * (3 * L * L - b * b) / (4 * math.pi * n * n) + p["deflated_stiffness"] * d
+        return max(t, 0.0)
+
+    for pressure, q in zip(result["pressures"], result["angles"]):
+        # the net torque raising the forearm falls as it rises: one root in (-pi/2, pi/2)
+        lo, hi = -math.pi / 2, math.pi / 2
+        for _ in range(80):
+            mid = (lo + hi) / 2
+            if tension(pressure, -r * mid) * r - m * G * (l / 2) * math.cos(mid) > 0:
+                lo = mid
+            else:
+                hi = mid
+        assert math.degrees(abs(q - lo)) < 0.5, (pressure, math.degrees(q), math.degrees(lo))
+    assert np.all(np.diff(result["angles"]) > 0.05)
