@@ -96,13 +96,13 @@ void bdf2_restore(SceneData& s, const Bdf2History& start) {
     s.soft_bodies[i]->state.x = start.softs[i].q, s.soft_bodies[i]->state.v = start.softs[i].v;
 }
 
-void bdf2_advance(const SceneData& s, double dt, const Bdf2History& start, Bdf2History& h) {
+void bdf2_advance(const SceneData& s, double dt, Bdf2History& start, Bdf2History& h) {
   bdf2_capture(s, h);
   // the step may have created or destroyed nothing: the start matches body for body
   h.valid = start.bodies.size() == h.bodies.size() && start.softs.size() == h.softs.size();
   if (!h.valid) return;
-  for (size_t i = 0; i < h.bodies.size(); ++i) h.bodies[i].q_prev = start.bodies[i].q, h.bodies[i].v_prev = start.bodies[i].v;
-  for (size_t i = 0; i < h.softs.size(); ++i) h.softs[i].q_prev = start.softs[i].q, h.softs[i].v_prev = start.softs[i].v;
+  for (size_t i = 0; i < h.bodies.size(); ++i) h.bodies[i].q_prev.swap(start.bodies[i].q), h.bodies[i].v_prev.swap(start.bodies[i].v);
+  for (size_t i = 0; i < h.softs.size(); ++i) h.softs[i].q_prev.swap(start.softs[i].q), h.softs[i].v_prev.swap(start.softs[i].v);
   h.dt = dt;
 }
 

@@ -37,8 +37,9 @@ bool bdf2_can_extrapolate(const SceneData& s, const Bdf2History& history, double
 void bdf2_extrapolate(SceneData& s, const Bdf2History& history);
 // Puts the bodies back in the captured state `start` (a step that failed after extrapolating).
 void bdf2_restore(SceneData& s, const Bdf2History& start);
-// After a step of dt that began in `start`: the history for the next one.
-void bdf2_advance(const SceneData& s, double dt, const Bdf2History& start, Bdf2History& history);
+// After a step of dt that began in `start`: the history for the next one (the start state moves
+// into it; `start` keeps the storage it gets back).
+void bdf2_advance(const SceneData& s, double dt, Bdf2History& start, Bdf2History& history);
 
 }  // namespace SUPERDEX_REAL_NAMESPACE
 }  // namespace superdex::physics

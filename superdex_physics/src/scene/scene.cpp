@@ -296,7 +296,7 @@ template <class BackwardEulerStep>
 void step_bdf2(SceneData& s, double dt, BackwardEulerStep&& be_step) {
   if (!s.step_workspace) s.step_workspace = std::make_shared<StepWorkspace>();
   Bdf2History& history = s.step_workspace->bdf2;
-  Bdf2History start;
+  Bdf2History& start = s.step_workspace->bdf2_start;
   bdf2_capture(s, start);
   const double t0 = s.time;
   if (bdf2_can_extrapolate(s, history, dt)) {

@@ -47,6 +47,7 @@ struct StepWorkspace {
   std::vector<SoftContactRecordKey> soft_record_keys;  // the soft contact results' order
   std::vector<std::pair<int, int>> record_places;      // per contact: its island and index there
   Bdf2History bdf2;                                    // the last two steps' states (integration_method BDF2)
+  Bdf2History bdf2_start;                              // a BDF2 step's start state (its storage kept)
 };
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -136,17 +136,15 @@ def test_a_recording_of_the_seed_example_replays_frame_for_frame(tmp_path):
     assert proc.returncode == 0
 
 
-def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(tmp_path):
-    """The constraints example destroys its upper box before 0.5 s: replayed, the page draws the
-    box at the first frame and not at the last."""
-    recording = tmp_path / "pendulum.jsonl"
+def record_and_replay(tmp_path, example, seconds):
+    """Runs a physics example headless for `seconds`, recording it, then replays the recording in
+    the page: (the recording's lines, replay.mjs's report, that report as text for messages)."""
+    recording = tmp_path / f"{example}.jsonl"
     env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
-    example = REPO / "superdex_physics" / "examples" / "constraints_double_pendulum.py"
-    subprocess.run([sys.executable, str(example), "--seconds", "0.5", "--debugger"], env=env, check=True, capture_output=True,
+    script = REPO / "superdex_physics" / "examples" / f"{example}.py"
+    subprocess.run([sys.executable, str(script), "--seconds", str(seconds), "--debugger"], env=env, check=True, capture_output=True,
                    timeout=900 * SLOW, cwd=REPO)
     lines = [json.loads(l) for l in recording.read_text().splitlines()]
-    (upper,) = [l["handle"] for l in lines if l["type"] == "actor" and l.get("name") == "upper"]
-    assert any(l["type"] == "destroy" and l["handle"] == upper for l in lines)
     proc, url, _ = start_and_read_url([sys.executable, "-m", "superdex", "view", str(recording), "--no-browser"],
                                       headless_env(), "superdex view: replaying")
     try:
@@ -154,7 +152,15 @@ def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(t
     finally:
         proc.send_signal(signal.SIGINT)
         proc.wait(timeout=30)
-    details = json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
+    return lines, r, json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
+
+
+def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(tmp_path):
+    """The constraints example destroys its upper box before 0.5 s: replayed, the page draws the
+    box at the first frame and not at the last."""
+    lines, r, details = record_and_replay(tmp_path, "constraints_double_pendulum", 0.5)
+    (upper,) = [l["handle"] for l in lines if l["type"] == "actor" and l.get("name") == "upper"]
+    assert any(l["type"] == "destroy" and l["handle"] == upper for l in lines)
     assert r["replayEnded"], details
     assert upper in r["shownActorsFirst"], details
     assert upper not in r["shownActorsLast"], details
@@ -164,21 +170,8 @@ def test_a_replay_shows_an_actor_destroyed_during_the_run_up_to_its_last_frame(t
 def test_a_scene_with_gravity_down_y_is_shown_y_up(tmp_path):
     """SuperDex's default gravity is (0, -9.8, 0): the skinned pendulum example keeps it, and the
     replayed page shows its scene Y up (RUB), its skin among the drawn actors."""
-    recording = tmp_path / "skin.jsonl"
-    env = headless_env(SUPERDEX_DEBUGGER_RECORD=str(recording), SUPERDEX_DEBUGGER_FRAME_INTERVAL="0.02")
-    example = REPO / "superdex_physics" / "examples" / "skinned_double_pendulum.py"
-    subprocess.run([sys.executable, str(example), "--seconds", "0.3", "--debugger"], env=env, check=True, capture_output=True,
-                   timeout=900 * SLOW, cwd=REPO)
-    lines = [json.loads(l) for l in recording.read_text().splitlines()]
+    lines, r, details = record_and_replay(tmp_path, "skinned_double_pendulum", 0.3)
     (skin,) = [l["handle"] for l in lines if l["type"] == "actor" and l.get("name") == "skinned_pendulum/skin"]
-    proc, url, _ = start_and_read_url([sys.executable, "-m", "superdex", "view", str(recording), "--no-browser"],
-                                      headless_env(), "superdex view: replaying")
-    try:
-        r = run_node("replay.mjs", url, recording)
-    finally:
-        proc.send_signal(signal.SIGINT)
-        proc.wait(timeout=30)
-    details = json.dumps({k: v for k, v in r.items() if k != "actorNames"}, indent=1)
     assert r["upAxis"] == "RUB", details
     assert skin in r["shownActorsFirst"], details
     assert r["canvasNonBlank"], details
