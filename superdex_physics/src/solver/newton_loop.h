@@ -249,8 +249,10 @@ ConvexResult& newton(Algebra& alg, const VecX& r, const std::vector<ConstraintBl
     if (smooth) {
       // Newton converges quadratically: two iterations in a row that do not halve the residual
       // mean it has reached the round-off floor of the elastic forces (float positions limit the
-      // strain to about 1e-7 of the element size)
-      stalled = out.residual < real(0.5) * best ? 0 : stalled + 1;
+      // strain to about 1e-7 of the element size). Only once the residual is well below the first
+      // one: a stiff rod's first iterations can raise it (the energy falls) on their way in
+      const bool near_floor = out.residual <= real(0.01) * first_residual;
+      stalled = out.residual < real(0.5) * best || !near_floor ? 0 : stalled + 1;
       best = std::min(best, out.residual);
       if (stalled >= 2) {
         out.converged = true;
