@@ -16,6 +16,7 @@ void export_constraints(nb::module_& m) {
       .value("RIGID_PRISMATIC_JOINT", ConstraintType::RigidPrismaticJoint)
       .value("JOINT_ROTATION_RANGE", ConstraintType::JointRotationRange)
       .value("JOINT_ROTATION_TRACKING", ConstraintType::JointRotationTracking)
+      .value("ROD_ELEMENT_ROTATION_TO_RIGID", ConstraintType::RodElementRotationToRigid)
       .value("RIGID_PIVOT_POSITION", ConstraintType::RigidPivotPosition)
       .value("RIGID_PIVOT_TO_RIGID_TARGET", ConstraintType::RigidPivotToRigidTarget)
       .value("RIGID_PIVOT_ROTATION", ConstraintType::RigidPivotRotation)
@@ -68,6 +69,15 @@ void export_constraints(nb::module_& m) {
       .field("ref_frame_rot_vec", &JointRotationTrackingConstraintParams::ref_frame_rot_vec)
       .field("actor_a", &JointRotationTrackingConstraintParams::actor_a)
       .field("actor_b", &JointRotationTrackingConstraintParams::actor_b)
+      .done(false);
+  StructBinder<RodElementRotationToRigidConstraintParams, ConstraintParams>(
+      m, "RodElementRotationToRigidConstraintParams",
+      "Holds the material frame of element element_index of rod_actor at its rotation relative to rigid_actor at creation,\n"
+      "turned by ref_frame_rot_vec (rad, element frame). Its force is the torque on the element (N m, world).")
+      .field("ref_frame_rot_vec", &RodElementRotationToRigidConstraintParams::ref_frame_rot_vec)
+      .field("rigid_actor", &RodElementRotationToRigidConstraintParams::rigid_actor)
+      .field("rod_actor", &RodElementRotationToRigidConstraintParams::rod_actor)
+      .field("element_index", &RodElementRotationToRigidConstraintParams::element_index)
       .done(false);
   StructBinder<RigidPivotPositionConstraintParams, ConstraintParams>(
       m, "RigidPivotPositionConstraintParams", "Pulls the point local_position (m, actor frame) of actor to target_position (m, world).")
@@ -213,6 +223,8 @@ void add_constraint_methods(nb::class_<Scene>& scene) {
   add_create(scene, "create_joint_rotation_range_constraint", "JointRotationRangeConstraintParams", &Scene::create_joint_rotation_range_constraint);
   add_create(scene, "create_joint_rotation_tracking_constraint", "JointRotationTrackingConstraintParams",
              &Scene::create_joint_rotation_tracking_constraint);
+  add_create(scene, "create_rod_element_rotation_to_rigid_constraint", "RodElementRotationToRigidConstraintParams",
+             &Scene::create_rod_element_rotation_to_rigid_constraint);
   add_create(scene, "create_rigid_pivot_position_constraint", "RigidPivotPositionConstraintParams", &Scene::create_rigid_pivot_position_constraint);
   add_create(scene, "create_rigid_pivot_to_rigid_target_constraint", "RigidPivotToRigidTargetConstraintParams",
              &Scene::create_rigid_pivot_to_rigid_target_constraint);

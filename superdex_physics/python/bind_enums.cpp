@@ -87,7 +87,7 @@ void export_enums(nb::module_& m) {
       .value("EXPLICIT", GridSdfResolutionMode::Explicit);
   nb::enum_<ActorType>(m, "ActorType", "The kind of an actor (an articulation's links are RIGID actors nested in it).")
       .value("NONE", ActorType::None).value("RIGID", ActorType::Rigid).value("SOFT", ActorType::Soft)
-      .value("ARTICULATED", ActorType::Articulated);
+      .value("ARTICULATED", ActorType::Articulated).value("SHELL", ActorType::Shell).value("ROD", ActorType::Rod);
   nb::enum_<ActorBoundaryElementType>(m, "ActorBoundaryElementType")
       .value("P1Q1", ActorBoundaryElementType::P1Q1).value("P1Q3", ActorBoundaryElementType::P1Q3).value("P1Q6", ActorBoundaryElementType::P1Q6)
       .value("EXPERIMENTAL_P1Q7", ActorBoundaryElementType::ExperimentalP1Q7)

@@ -8,10 +8,12 @@
 namespace superdex::python {
 
 void export_ik_solver(nb::module_& e);  // bind_ik_solver.cpp
+void export_rod(nb::module_& m, nb::module_& e);  // bind_rod.cpp
 
 void export_experimental(nb::module_& m) {
   nb::module_ e = m.def_submodule("experimental", "Functions whose form may still change.");
   export_ik_solver(e);
+  export_rod(m, e);
   e.def("set_soft_material_params_field", [](Actor& actor, const SoftMaterialParams& params, int element_index) {
           actor.scene.set_soft_material_params_field(actor.handle, params, element_index);
         }, "actor"_a, "params"_a, "element_index"_a,

@@ -228,7 +228,7 @@ TEST_F(MochiH5Test, MalformedMeshGroups) {
               HasSubstr("e.mochi.h5: mesh/coordinates: NaN at row 1, column 1"));
   EXPECT_THAT(error_of(read(write("f.mochi.h5", {0, 3}, {}, {1, 3}, {0, 1, 2}))), HasSubstr("f.mochi.h5: mesh/coordinates: empty mesh"));
   EXPECT_THAT(error_of(read(write("g.mochi.h5", {3, 3}, tri, {1, 5}, {0, 1, 2, 0, 1}))),
-              HasSubstr("mesh/connectivity: wrong shape: expected M x 3 (triangles) or M x 4 (tetrahedra), got [1, 5]"));
+              HasSubstr("mesh/connectivity: wrong shape: expected M x 2 (a rod's polyline), M x 3 (triangles) or M x 4 (tetrahedra), got [1, 5]"));
   // a degenerate triangle is caught when the file becomes a shape
   EXPECT_THAT(error_of([&] { shape_from_mochi_h5(write("h.mochi.h5", {3, 3}, {0, 0, 0, 1, 0, 0, 2, 0, 0}, {1, 3}, {0, 1, 2})); }),
               HasSubstr("h.mochi.h5: mesh/: 1 degenerate (zero-area) triangle; the first is triangle 0"));

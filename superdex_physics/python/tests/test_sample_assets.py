@@ -282,3 +282,40 @@ def test_mixed_articulation_reaches_ik_targets(engine):
     assert rotation_angle(np.array(list(got), dtype=float), np.array(list(want), dtype=float)) < 1e-3
     sdp.experimental.destroy_ik_solver(solver)
 
+
+
+def test_rod_helix(engine):
+    """rods/helix_with_visual.mochi.h5 (tools/make_rod_assets.py): a polyline of 193 nodes on a
+    tapered helix of 8 turns along +X from the origin to (0.5, 0, 0), coil radius 5 cm between the
+    tapers; frame axes unit and normal to their elements; a tube of radius 1 cm skinned to the
+    elements; as a rod actor held at its first node it stays finite."""
+    path = str(resolve_asset("rods/helix_with_visual.mochi.h5"))
+    model = sdp.model.load_from_file(path)
+    nodes = np.asarray(model.mesh.coordinates, dtype=np.float64).reshape(-1, 3)
+    assert model.mesh.nodes_per_element == 2 and len(nodes) == 193
+    np.testing.assert_allclose(nodes[0], [0, 0, 0], atol=1e-6)
+    np.testing.assert_allclose(nodes[-1], [0.5, 0, 0], atol=1e-6)
+    radius = np.linalg.norm(nodes[:, 1:], axis=1)
+    assert radius.max() == pytest.approx(0.05, rel=1e-5)
+    # eight turns: the coil angle winds 8 * 2 pi (nodes off the axis)
+    angle = np.unwrap(np.arctan2(nodes[1:-1, 2], nodes[1:-1, 1]))
+    assert abs(angle[-1] - angle[0]) == pytest.approx(8 * 2 * math.pi, rel=0.02)
+    axes = np.asarray(model.element_frame_axes, dtype=np.float64).reshape(-1, 3)
+    tangents = np.diff(nodes, axis=0)
+    tangents /= np.linalg.norm(tangents, axis=1, keepdims=True)
+    np.testing.assert_allclose(np.linalg.norm(axes, axis=1), 1.0, atol=1e-5)
+    assert np.abs(np.sum(axes * tangents, axis=1)).max() < 1e-5
+    tube = np.asarray(model.visual_mesh.coordinates, dtype=np.float64).reshape(-1, 3)
+    assert len(tube) == 193 * 8 + 2
+    np.testing.assert_allclose(np.linalg.norm(tube[:8] - nodes[0], axis=1), 0.01, atol=1e-6)
+    assert model.visual_mesh.skinning.weights_per_node == 2
+    scene = sdp.create_scene("helix")
+    shape = sdp.load_shape_from_file(path, bake_scale=[1.0, 1.0, 1.0])
+    rod = sdp.experimental.create_rod_actor(scene, sdp.experimental.RodActorParams(name="Spring", shape=shape))
+    assert rod.get_type() == sdp.ActorType.ROD
+    scene.create_deformable_node_position_constraint(actor=rod.get_handle(), node_index=0, position=[0.0, 0.0, 0.0])
+    rod.register_query(sdp.QueryType.NODE_POSITIONS)
+    for _ in range(5):
+        scene.step(DT)
+    assert np.all(np.isfinite(rod.get_node_positions_local()))
+    sdp.destroy_scene(scene)

@@ -17,6 +17,7 @@ struct ConstraintRecord {
   real stiffness = 0, damping = 0, saturation = -1;
   ActorHandle actor_a, actor_b;  // actor_b invalid for the one-actor kinds
   int node_a = -1, node_b = -1;  // the constrained node of a soft actor A or B
+  int element = -1;              // the constrained element of a rod actor B
   // the constrained points (m): on A in frame A, on B in frame B
   Vec3 p_A = Vec3::Zero(), p_B = Vec3::Zero();
   // prismatic: the free axis in frame A (unit), B's origin relative to A's at creation (frame A),

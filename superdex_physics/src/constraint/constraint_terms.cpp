@@ -23,6 +23,7 @@ std::vector<int> constraint_dof_indices(const ConstraintRecord& c, int index) {
     case ConstraintType::RigidPivotRotation:
     case ConstraintType::JointRotationRange:
     case ConstraintType::JointRotationTracking:
+    case ConstraintType::RodElementRotationToRigid:
       return {3, 4, 5};
     case ConstraintType::RigidPrismaticJoint:
       // B's origin is held on a line fixed in A: B's rotation is free
@@ -182,7 +183,8 @@ void constraint_terms(const ConstraintRecord& c, real dt, ConstraintTerms& t) {
       if (c.max) w.limit(-row_a(d), -row_b(d), *c.max - s);
       break;
     }
-    case ConstraintType::JointRotationTracking: {
+    case ConstraintType::JointRotationTracking:
+    case ConstraintType::RodElementRotationToRigid: {
       // the rotation that takes B to R_A T (world), and the target's own turning (in A)
       const Vec3 error = quat_log(X_WA.rotation * c.target_rotation * X_WB.rotation.conjugate());
       const Vec3 rate = X_WA.rotation * quat_log(c.target_rotation * c.old_target_rotation.conjugate()) / dt;
@@ -267,6 +269,7 @@ std::vector<real> constraint_deviation(const ConstraintRecord& c, const Constrai
       const real beyond = c.min && s < *c.min ? *c.min - s : c.max && s > *c.max ? *c.max - s : 0;
       return {-u1.dot(offset), -u2.dot(offset), beyond};
     }
+    case ConstraintType::RodElementRotationToRigid:
     case ConstraintType::JointRotationTracking: {
       const Quat F_a = X_WA.rotation * c.J_A;
       return out(F_a.conjugate() * quat_log(X_WA.rotation * c.target_rotation * X_WB.rotation.conjugate()));
@@ -329,6 +332,11 @@ void constraint_anchor_points(const ConstraintRecord& c, const ConstraintSide& a
 
 void side_generalized_force(const ConstraintSide& side, const Vec6& F_origin, const std::vector<int>& dofs, std::vector<real>& out) {
   const Vec3 f = F_origin.head<3>();
+  // a rod's element: the torque on it (world)
+  if (side.soft >= 0 && side.element >= 0) {
+    for (int k : dofs) out.push_back(F_origin[k]);
+    return;
+  }
   // a node: the force on it, by the node's DOFs (3 n + 0-2)
   if (side.soft >= 0) {
     for (int k : dofs) out.push_back(f[k % 3]);

@@ -3,6 +3,7 @@
 // links it joins, each an implicit spring-damper block (constraint_params.h), from the state at
 // the step's start. Also its deviation now.
 
+#include <array>
 #include <vector>
 
 #include "constraint/constraint_record.h"
@@ -21,6 +22,12 @@ struct ConstraintSide {
   Vec3 com_W = Vec3::Zero();     // its centre of mass (m, world)
   int soft = -1, node = -1;      // soft body index and node; -1: none
   Vec3 node_W = Vec3::Zero();    // the node's position now (m, world)
+  // a rod's element (soft >= 0, element >= 0): its nodes (a, b and its ghost) and the map of their
+  // velocities to its frame's angular velocity, w = sum_k omega_map[k] v_k; X_WL is its frame
+  // (rotation) at its midpoint, whose velocity is (v_a + v_b) / 2
+  int element = -1;
+  std::array<int, 3> element_nodes{};
+  std::array<Mat3, 3> omega_map{};
   // joint DOFs: the first (articulation DOF index; -1: none), a 1-DOF joint's value now (rad or
   // m) and a 3-D joint's rotation now (child link in joint frame)
   int dof = -1;

@@ -285,7 +285,9 @@ ShapeHandle load_shape_from_file(const std::string& path, const ShapeBake& bake)
   if (ext == ".h5") {
     // tetrahedra make a tet-mesh shape (for soft actors); other .mochi.h5 files a rigid shape
     const MochiH5 file = read_mochi_h5(path);
-    if (std::optional<TetMesh> tets = tet_mesh_from_mochi_h5(file, path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
+    // a polyline (a rod's centreline, with its frame axes and tube) is kept whole as a model
+    if (file.mesh && file.mesh->nodes_per_element == 2) data = shape_from_model(baked(model::load_from_file(path), bake, path), path);
+    else if (std::optional<TetMesh> tets = tet_mesh_from_mochi_h5(file, path, bake)) data = shape_from_tet_mesh(std::move(*tets), path);
     else data = shape_from_geometry(shape_from_mochi_h5(file, path, bake));
   } else if (is_surface_mesh_file(path)) {
     data = shape_from_geometry(load_shape_file(path, bake));

@@ -78,9 +78,9 @@ MochiMesh read_mesh(const Reader& r, const std::string& g) {
     m.coordinates[i] = Eigen::Vector3d(c.values[3 * i], c.values[3 * i + 1], c.values[3 * i + 2]).cast<real>();
 
   const Numbers e = r.dataset(epath, true);
-  const std::string expected = "M x 3 (triangles) or M x 4 (tetrahedra)";
+  const std::string expected = "M x 2 (a rod's polyline), M x 3 (triangles) or M x 4 (tetrahedra)";
   if (e.dims.size() != 2) r.fail(epath, "wrong rank: expected a 2-D dataset " + expected + ", got " + dims_text(e.dims));
-  if (e.dims[1] != 3 && e.dims[1] != 4) r.fail(epath, "wrong shape: expected " + expected + ", got " + dims_text(e.dims));
+  if (e.dims[1] < 2 || e.dims[1] > 4) r.fail(epath, "wrong shape: expected " + expected + ", got " + dims_text(e.dims));
   if (e.dims[0] == 0) r.fail(epath, "empty mesh: no elements");
   m.nodes_per_element = static_cast<int>(e.dims[1]);
   const double n = static_cast<double>(m.coordinates.size());

@@ -15,6 +15,25 @@ namespace {
 // Adds one side's part g . V of the open row (V its link's spatial velocity, J_WL v), and returns
 // its compliance g^T W_L g.
 real add_side(const IslandInputs& in, IslandWorkspace& w, IslandJacobian& J, const ConstraintSide& side, const Vec6& g) {
+  // a rod's element: its nodes' free DOFs, the row's angular part mapped through the element's
+  // turning and its linear part shared by the segment's two ends (compliance: the two ends')
+  if (side.soft >= 0 && side.element >= 0) {
+    const SoftStep* st = in.soft_steps[side.soft].get();
+    if (st == nullptr || w.soft_offset[side.soft] < 0) return 0;
+    real compliance = 0;
+    for (int k = 0; k < 3; ++k) {
+      Vec3 c = side.omega_map[k].transpose() * g.tail<3>();
+      if (k < 2) c += g.head<3>() / 2;
+      for (int a = 0; a < 3; ++a) {
+        const int f = st->pattern.free_of_dof[3 * side.element_nodes[k] + a];
+        if (f < 0 || c[a] == 0) continue;
+        J.add_column(w.soft_offset[side.soft] + f, &c[a]);
+        // (the ghost's small mass stands for the element's spin only: left out of the floor)
+        if (k < 2) compliance += c[a] * c[a] / st->mass[f];
+      }
+    }
+    return compliance;
+  }
   // a node of a full soft body: its free DOFs (compliance: their lumped masses)
   if (side.soft >= 0) {
     const SoftStep* st = in.soft_steps[side.soft].get();

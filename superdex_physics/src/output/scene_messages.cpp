@@ -12,6 +12,7 @@
 
 #include "constraint/constraint_terms.h"
 #include "core/base64.h"
+#include "output/rod_display.h"
 #include "scene/step_stages.h"
 
 namespace superdex::physics {
@@ -102,12 +103,29 @@ json articulation_json(const SceneData& s, const Articulation& a) {
           {"kind", a.is_rigid ? (a.is_static ? "static" : "rigid") : "articulated"}, {"numDofs", a.model.nv}, {"links", links}};
 }
 
+// A soft body's nodes now (world, 3 per node): a rod's are its tube's (rod_display.h).
+void soft_display_nodes(const SoftBody& b, VecX& x) {
+  if (b.model.rod) {
+    rod_display_vertices(b, x);
+  } else {
+    x = b.state.x;
+  }
+}
+
 json soft_json(const SceneData& s, const SoftBody& b) {
   json nodes = json::array(), faces = json::array();
-  for (Eigen::Index i = 0; i + 2 < b.state.x.size(); i += 3) nodes.push_back(vec(b.state.x.segment<3>(i)));
-  for (const auto& f : b.model.surface_faces) faces.push_back(f);
-  return {{"type", "actor"}, {"scene", s.handle}, {"handle", b.handle}, {"name", b.model.name}, {"kind", "soft"},
-          {"mass", round7(b.model.total_mass)}, {"nodes", nodes}, {"surfaceTriangles", faces}};
+  VecX x;
+  soft_display_nodes(b, x);
+  for (Eigen::Index i = 0; i + 2 < x.size(); i += 3) nodes.push_back(vec(x.segment<3>(i)));
+  if (b.model.rod) {
+    for (const auto& f : rod_display_faces(b)) faces.push_back(f);
+  } else {
+    for (const auto& f : b.model.surface_faces) faces.push_back(f);
+  }
+  json out = {{"type", "actor"}, {"scene", s.handle}, {"handle", b.handle}, {"name", b.model.name}, {"kind", "soft"},
+              {"mass", round7(b.model.total_mass)}, {"nodes", nodes}, {"surfaceTriangles", faces}};
+  if (b.model.rod) out["rod"] = {{"nodes", b.model.rod->num_nodes}, {"closed", b.model.rod->closed}};
+  return out;
 }
 
 // A skinned articulation's skin, drawn as a deforming surface under its own display id.
@@ -216,7 +234,11 @@ void append_frame_lines(const SceneData& s, StreamState& state, std::string& out
     for (int l = 0; l < a->model.num_links; ++l) links[std::to_string(a->link_handles[l])] = pose(a->kin.X_WL[l]);
     joints[std::to_string(a->handle)] = {{"q", values(a->state.q)}, {"qd", values(a->state.v)}};
   }
-  for (const auto& b : s.soft_bodies) soft[std::to_string(b->handle)] = values(b->state.x);
+  for (const auto& b : s.soft_bodies) {
+    VecX x;
+    soft_display_nodes(*b, x);
+    soft[std::to_string(b->handle)] = values(x);
+  }
   for (const auto& a : s.articulations)
     if (a->skin) {
       VecX x;

@@ -13,6 +13,8 @@ const char* actor_type_name(ActorType type) {
     case ActorType::Rigid: return "Rigid";
     case ActorType::Soft: return "Soft";
     case ActorType::Articulated: return "Articulated";
+    case ActorType::Shell: return "Shell";
+    case ActorType::Rod: return "Rod";
   }
   return "?";
 }
@@ -97,6 +99,25 @@ void validate(const SoftActorParams& p, const std::string& where) {
   validate(p.contact, where + ".contact");
   if (!p.has_gravity && !p.has_inertia && !p.has_stress)
     c.fail("has_stress", "at least one of has_gravity, has_inertia and has_stress must be true");
+}
+
+void validate(const RodActorParams& p, const std::string& where) {
+  const FieldCheck c(where);
+  if (!p.shape.is_valid()) c.fail("shape", "is not set (a polyline model shape is required: generate_tubular_rod_model_data)");
+  check_transform(c, "world_from_local", p.world_from_local);
+  validate(p.contact, where + ".contact");
+  const FieldCheck m(where + ".material");
+  m.positive("linear_density", p.material.linear_density);
+  m.non_negative("linear_rotational_inertia", p.material.linear_rotational_inertia);
+  m.positive("axial_stiffness", p.material.axial_stiffness);
+  m.non_negative("torsional_stiffness", p.material.torsional_stiffness);
+  m.non_negative("flexural_stiffness[0]", p.material.flexural_stiffness[0]);
+  m.non_negative("flexural_stiffness[1]", p.material.flexural_stiffness[1]);
+  m.non_negative("mass_damping_coefficient", p.material.mass_damping_coefficient);
+  m.non_negative("stiffness_damping_coefficient", p.material.stiffness_damping_coefficient);
+  if (p.material.linear_rotational_inertia == 0 && p.material.torsional_stiffness == 0)
+    m.fail("torsional_stiffness", "must be positive when linear_rotational_inertia is 0 (the twist would be free and massless)");
+  if (p.use_contact_skin) c.fail("use_contact_skin", "rods do not touch other actors yet (keep it False)");
 }
 
 void validate(const ArticulatedActorParams& p, const std::string& where) {

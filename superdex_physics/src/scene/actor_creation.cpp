@@ -146,6 +146,8 @@ LinkDesc link_desc(const LinkInput& in, const std::string& where, real& density_
   return link;
 }
 
+}  // namespace
+
 // Warns once per field when an actor is given a contact parameter this engine's contact model
 // does not use (contact_params.h says which it uses).
 void warn_unused_contact_fields(const ContactParams& p, const std::string& where) {
@@ -168,6 +170,8 @@ void warn_unused_contact_fields(const ContactParams& p, const std::string& where
   check(p.obj_scale != d.obj_scale, "obj_scale");
   check(p.colliding_penalty_length_scale != d.colliding_penalty_length_scale, "colliding_penalty_length_scale");
 }
+
+namespace {
 
 }  // namespace
 

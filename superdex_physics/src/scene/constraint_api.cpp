@@ -27,6 +27,7 @@ const char* constraint_type_name(ConstraintType type) {
     case ConstraintType::ArticulatedSingleDofTarget: return "ARTICULATED_SINGLE_DOF_TARGET";
     case ConstraintType::Articulated3dRotationTarget: return "ARTICULATED_3D_ROTATION_TARGET";
     case ConstraintType::ArticulatedSingleDofRange: return "ARTICULATED_SINGLE_DOF_RANGE";
+    case ConstraintType::RodElementRotationToRigid: return "ROD_ELEMENT_ROTATION_TO_RIGID";
   }
   return "?";
 }
@@ -86,7 +87,8 @@ const SoftBody& node_body(SceneData& s, ActorHandle actor, const std::string& wh
 }
 
 void check_node(const SoftBody& b, int node, const std::string& what, const char* field) {
-  const int n = static_cast<int>(b.state.x.size() / 3);
+  // a rod's nodes are its polyline's (its ghosts are internal)
+  const int n = b.model.rod ? b.model.rod->num_nodes : static_cast<int>(b.state.x.size() / 3);
   check(node >= 0 && node < n, what, std::string(field) + " " + std::to_string(node) + " out of range [0, " + std::to_string(n) + ")");
 }
 
@@ -204,6 +206,31 @@ ConstraintHandle Scene::create_joint_rotation_tracking_constraint(const JointRot
   c.J_A = (X_WA.rotation.conjugate() * quat_exp(p.ref_frame_rot_vec)).normalized();
   // the target: the relative rotation now
   c.target_rotation = (X_WA.rotation.conjugate() * X_WB.rotation).normalized();
+  return add(s, std::move(c), p);
+}
+
+ConstraintHandle Scene::create_rod_element_rotation_to_rigid_constraint(const RodElementRotationToRigidConstraintParams& p) {
+  SceneData& s = scene_data(handle_);
+  const std::string what = "create_rod_element_rotation_to_rigid_constraint";
+  check_spring(p, what);
+  check_finite(p.ref_frame_rot_vec, what, "ref_frame_rot_vec");
+  const Transform X_WA = rigid_frame(s, p.rigid_actor, what, "rigid_actor");
+  if (!p.rod_actor.is_valid()) throw Error(what + ": rod_actor is not set");
+  const ActorRef r = lookup(s, p.rod_actor, (what + " (rod_actor)").c_str());
+  if (!r.soft || !r.soft->model.rod) throw Error(what + ": rod_actor (" + describe(p.rod_actor) + ") must be a rod actor");
+  const SoftBody& b = *r.soft;
+  const int ne = static_cast<int>(b.model.rod->elements.size());
+  check(p.element_index >= 0 && p.element_index < ne, what,
+        "element_index " + std::to_string(p.element_index) + " out of range [0, " + std::to_string(ne) + ")");
+  const std::array<int, 3>& nodes = b.model.rod->elements[p.element_index].nodes;
+  const Mat3 R_e = rod_element_frame(b.state.x.segment<3>(3 * nodes[0]), b.state.x.segment<3>(3 * nodes[1]),
+                                     b.state.x.segment<3>(3 * nodes[2]));
+  ConstraintRecord c;
+  c.type = ConstraintType::RodElementRotationToRigid;
+  c.actor_a = p.rigid_actor, c.actor_b = p.rod_actor;
+  c.element = p.element_index;
+  // the target: the element's frame relative to the rigid actor now, turned in the element's frame
+  c.target_rotation = (X_WA.rotation.conjugate() * Quat(R_e) * quat_exp(p.ref_frame_rot_vec)).normalized();
   return add(s, std::move(c), p);
 }
 

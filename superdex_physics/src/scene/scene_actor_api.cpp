@@ -41,7 +41,7 @@ bool root_pose_is_joint_position(const Articulation& a) {
 
 ActorType Scene::actor_type(ActorHandle h) const {
   ActorRef r = lookup(scene_data(handle_), h, "get_type");
-  if (r.soft) return ActorType::Soft;
+  if (r.soft) return r.soft->model.rod ? ActorType::Rod : ActorType::Soft;
   if (r.articulation->is_rigid || r.link >= 0) return ActorType::Rigid;
   return ActorType::Articulated;
 }

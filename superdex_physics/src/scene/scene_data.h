@@ -194,6 +194,8 @@ ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body);
 // The index of a contact layer by name, registered on first use; throws naming `where` when the
 // scene has 64 layers already.
 int contact_layer_index(SceneData& s, const std::string& name, const std::string& where);
+// Warns once per field when an actor is given a contact parameter this engine does not use.
+void warn_unused_contact_fields(const ContactParams& p, const std::string& where);
 // The data of a live shape; throws superdex::Error "<where>: ..." for an invalid or released handle.
 std::shared_ptr<const ShapeData> shape_data(const ShapeHandle& shape, const std::string& where);
 // The file cache's data for `key` (a path and a bake), or null; and its storage when enabled.

@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "constraint/constraint_terms.h"
+#include "soft/rod_model.h"
 #include "scene/step_stages.h"
 
 namespace superdex::physics {
@@ -27,6 +28,19 @@ ConstraintSide constraint_side(const SceneData& s, const ConstraintRecord& c, in
   const ActorHandle actor = which == 0 ? c.actor_a : c.actor_b;
   if (!actor.is_valid()) return side;
   const ActorRef& r = s.actors.at(actor);
+  if (r.soft && c.element >= 0 && which == 1) {
+    // a rod's element: its frame and the map of its nodes' velocities to its turning
+    const SoftBody& b = *r.soft;
+    side.soft = index_in(s.soft_bodies, r.soft, index);
+    side.element = c.element;
+    side.element_nodes = b.model.rod->elements[c.element].nodes;
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = b.state.x.segment<3>(3 * side.element_nodes[k]);
+    const Mat3 R = rod_element_frame(p[0], p[1], p[2], &side.omega_map);
+    side.X_WL = {Quat(R).normalized(), (p[0] + p[1]) / 2};
+    side.com_W = side.X_WL.translation;
+    return side;
+  }
   if (r.soft) {
     side.soft = index_in(s.soft_bodies, r.soft, index);
     side.node = which == 0 ? c.node_a : c.node_b;

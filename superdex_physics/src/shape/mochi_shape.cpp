@@ -87,6 +87,8 @@ ShapeGeometry shape_from_mochi_h5(const MochiH5& h, const std::string& path, con
   }
   if (h.mesh->nodes_per_element == 4)
     throw Error(path + ": mesh/ holds tetrahedra (connectivity M x 4): tet meshes become soft bodies, not rigid shapes; load it as a soft actor");
+  if (h.mesh->nodes_per_element == 2)
+    throw Error(path + ": mesh/ holds a polyline (connectivity M x 2): polylines become rods (experimental.create_rod_actor), not rigid shapes");
   TriangleMesh m;
   m.vertices = h.mesh->coordinates;
   for (int e = 0; e < h.mesh->num_elements(); ++e)

@@ -9,6 +9,7 @@
 #include <map>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
+#include <type_traits>
 
 #include "soft/reduced_soft.h"
 #include "scene/scene_data.h"
@@ -77,6 +78,7 @@ real elastic_energy(const SoftBody& b, const VecX& x, const std::vector<Mat3>& R
         energy = tet_energy(b.model.material[t], b.model.rest[t], xs, R[t], nullptr, nullptr, false);
       },
       [&](size_t, const real& energy) { total += energy; });
+  if (b.model.rod) total += rod_energy(*b.model.rod, x);
   return total;
 }
 
@@ -93,6 +95,19 @@ void elastic_gradient(const SoftBody& b, const VecX& x, const std::vector<Mat3>&
       [&](size_t t, const Vec12& g) {
         for (int i = 0; i < 4; ++i) grad.segment<3>(3 * b.model.tets[t][i]) += g.segment<3>(3 * i);
       });
+  if (!b.model.rod) return;
+  const RodModel& rod = *b.model.rod;
+  Vec9 g9;
+  for (int e = 0; e < static_cast<int>(rod.elements.size()); ++e) {
+    rod_element_terms(rod, e, x, &g9, nullptr);
+    for (int i = 0; i < 3; ++i) grad.segment<3>(3 * rod.elements[e].nodes[i]) += g9.segment<3>(3 * i);
+  }
+  Vec18 g18;
+  for (int j = 0; j < static_cast<int>(rod.joints.size()); ++j) {
+    rod_joint_terms(rod, j, x, &g18, nullptr);
+    const std::array<int, 6> nodes = rod_joint_nodes(rod, j);
+    for (int i = 0; i < 6; ++i) grad.segment<3>(3 * nodes[i]) += g18.segment<3>(3 * i);
+  }
 }
 
 }  // namespace
@@ -188,6 +203,23 @@ std::unique_ptr<SoftPattern> build_pattern(const SoftModel& m) {
     if (!m.pinned[d / 3]) p->free_of_dof[d] = p->num_free++, p->dof_of_free.push_back(d);
   std::vector<Eigen::Triplet<real>> entries;
   for (int f = 0; f < p->num_free; ++f) entries.emplace_back(f, f, real(1));
+  // a rod's stencils: each element's three nodes, each joint's six
+  std::vector<std::vector<int>> stencils;
+  if (m.rod) {
+    for (const RodElement& e : m.rod->elements) stencils.push_back({e.nodes.begin(), e.nodes.end()});
+    for (int j = 0; j < static_cast<int>(m.rod->joints.size()); ++j) {
+      const std::array<int, 6> nodes = rod_joint_nodes(*m.rod, j);
+      stencils.push_back({nodes.begin(), nodes.end()});
+    }
+  }
+  for (const std::vector<int>& nodes : stencils)
+    for (int i : nodes)
+      for (int j : nodes)
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const int r = p->free_of_dof[3 * i + a], col = p->free_of_dof[3 * j + c];
+            if (r >= 0 && col >= 0) entries.emplace_back(r, col, real(1));
+          }
   for (const auto& tet : m.tets)
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)
@@ -208,6 +240,14 @@ std::unique_ptr<SoftPattern> build_pattern(const SoftModel& m) {
             const int r = p->free_of_dof[3 * m.tets[t][i] + a], col = p->free_of_dof[3 * m.tets[t][j] + c];
             if (r >= 0 && col >= 0) p->tet_slots[144 * t + 12 * (3 * i + a) + 3 * j + c] = p->slot(r, col);
           }
+  for (const std::vector<int>& nodes : stencils) {
+    const int n = 3 * static_cast<int>(nodes.size());
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const int r = p->free_of_dof[3 * nodes[i / 3] + i % 3], col = p->free_of_dof[3 * nodes[j / 3] + j % 3];
+        p->rod_slots.push_back(r >= 0 && col >= 0 ? p->slot(r, col) : -1);
+      }
+  }
   std::fill(p->H.valuePtr(), p->H.valuePtr() + p->H.nonZeros(), real(0));
   p->cholesky.analyze(p->H);
   return p;
@@ -219,6 +259,24 @@ void scatter_hessian(const SoftPattern& p, size_t t, real scale, const Mat12& H,
   const int* slots = p.tet_slots.data() + 144 * t;
   for (int k = 0; k < 144; ++k)
     if (slots[k] >= 0) values[slots[k]] += scale * H(k / 12, k % 12);
+}
+
+// Adds scale * the Hessian of a rod at positions x into the values of a matrix with the pattern's
+// structure.
+void add_rod_hessian(const RodModel& rod, const SoftPattern& p, const VecX& x, real scale, real* values) {
+  const int* slots = p.rod_slots.data();
+  Mat9 H9;
+  for (int e = 0; e < static_cast<int>(rod.elements.size()); ++e, slots += 81) {
+    rod_element_terms(rod, e, x, nullptr, &H9);
+    for (int k = 0; k < 81; ++k)
+      if (slots[k] >= 0) values[slots[k]] += scale * H9(k / 9, k % 9);
+  }
+  Mat18 H18;
+  for (int j = 0; j < static_cast<int>(rod.joints.size()); ++j, slots += 324) {
+    rod_joint_terms(rod, j, x, nullptr, &H18);
+    for (int k = 0; k < 324; ++k)
+      if (slots[k] >= 0) values[slots[k]] += scale * H18(k / 18, k % 18);
+  }
 }
 
 }  // namespace
@@ -240,11 +298,25 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
   v0.resize(nf);
   mass.resize(nf);
   r.resize(nf);
+  if (m.rod) {
+    rod_K0_.assign(pattern.H.nonZeros(), real(0));
+    add_rod_hessian(*m.rod, pattern, x0, dt * dt, rod_K0_.data());
+  }
+  // a rod's spin inertia: its momentum at the start, and its coupling to the pinned DOFs' motion
+  VecX spin_start, spin_pinned;
+  if (m.rod) spin_start = rod_spin_momentum(*m.rod, b.state.v), spin_pinned = rod_spin_momentum(*m.rod, v_pinned);
   for (int f = 0; f < nf; ++f) {
     const int d = pattern.dof_of_free[f];
     v0[f] = b.state.v[d];
     mass[f] = m.node_mass[d / 3];
     r[f] = mass[f] * v0[f] + dt * (mass[f] * g_W[d % 3] + b.state.tau_external[d]);
+    if (m.rod) r[f] += spin_start[d] - (1 + dt * m.alpha) * spin_pinned[d];
+    // in single precision the Newton matrix's diagonal at a ghost is raised by 1e-5 of its
+    // stiffness: rounded to float, that stiffness (many times the ghost's inertia over dt^2)
+    // would otherwise leave the matrix indefinite. Only the Newton direction changes, not the
+    // problem it solves (its gradient keeps the true inertia).
+    if constexpr (std::is_same_v<real, float>)
+      if (m.rod && d / 3 >= m.rod->num_nodes) newton_shift_.emplace_back(pattern.slot(f, f), real(1e-5) * rod_K0_[pattern.slot(f, f)]);
   }
   // A = M + dt (alpha M + beta K(x0)), with K(x0) kept for the first Newton iteration, and the
   // element Hessians at x0 with their deformation gradients for the iterations that reuse them
@@ -262,12 +334,32 @@ SoftStep::SoftStep(SoftBody& b, const Vec3& g_W, real dt_, real reuse_strain)
       [&](size_t t, const Mat12& H) { scatter_hessian(pattern, t, dt * dt, H, K0_.data()); }, true);
   element_hessians_ = static_cast<int>(m.tets.size());
   A = pattern.H;
-  if (m.beta > 0)
+  if (m.beta > 0) {
     Eigen::Map<VecX>(A.valuePtr(), A.nonZeros()) = (m.beta / dt) * Eigen::Map<const VecX>(K0_.data(), A.nonZeros());
+    if (m.rod) Eigen::Map<VecX>(A.valuePtr(), A.nonZeros()) += (m.beta / dt) * Eigen::Map<const VecX>(rod_K0_.data(), A.nonZeros());
+  }
   for (int f = 0; f < nf; ++f) A.valuePtr()[pattern.slot(f, f)] += (1 + dt * m.alpha) * mass[f];
+  if (m.rod) {
+    // the spin inertia's mu c c^T blocks; their diagonal also joins the lumped mass per DOF
+    const int* slots = pattern.rod_slots.data();
+    for (const RodElement& e : m.rod->elements) {
+      for (int k = 0; k < 81; ++k) {
+        const int i = k / 9, j = k % 9;
+        if (i % 3 != j % 3 || slots[k] < 0) continue;
+        const real value = e.spin_mass * real(kRodSpinWeights[i / 3] * kRodSpinWeights[j / 3]);
+        A.valuePtr()[slots[k]] += (1 + dt * m.alpha) * value;
+        if (i == j) mass[pattern.free_of_dof[3 * e.nodes[i / 3] + i % 3]] += value;
+      }
+      slots += 81;
+    }
+  }
 }
 
-void SoftStep::start_hessian(Eigen::SparseMatrix<real>& K) const { std::copy(K0_.begin(), K0_.end(), K.valuePtr()); }
+void SoftStep::start_hessian(Eigen::SparseMatrix<real>& K) const {
+  std::copy(K0_.begin(), K0_.end(), K.valuePtr());
+  for (size_t k = 0; k < rod_K0_.size(); ++k) K.valuePtr()[k] += rod_K0_[k];
+  for (const auto& [slot, shift] : newton_shift_) K.valuePtr()[slot] += shift;
+}
 
 VecX SoftStep::full_velocity(const VecX& v_free) const {
   VecX v = v_pinned;
@@ -308,6 +400,8 @@ void SoftStep::hessian(const Eigen::Ref<const VecX>& v_free, Eigen::SparseMatrix
       },
       [&](size_t i, const Mat12& H) { scatter_hessian(pattern, changed[i], dt * dt, H, K.valuePtr()); });
   element_hessians_ += static_cast<int>(changed.size());
+  if (m.rod) add_rod_hessian(*m.rod, pattern, x, dt * dt, K.valuePtr());
+  for (const auto& [slot, shift] : newton_shift_) K.valuePtr()[slot] += shift;
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "soft/fem_elasticity.h"
+#include "soft/rod_model.h"
 #include "linalg/sparse_cholesky.h"
 #include "core/spatial.h"
 #include "superdex/physics/handles.h"
@@ -45,6 +46,9 @@ struct SoftModel {
   real alpha = 0, beta = 0;              // Rayleigh damping: mass (1/s) and stiffness (s) proportional
   real total_mass = 0;
   ContactMaterial contact;               // surface contact parameters
+  // a rod's elements and joints (rod_model.h), null for a tetrahedral body: its polyline's nodes
+  // come first, then one ghost node per element, which has no weight
+  std::shared_ptr<const RodModel> rod;
 };
 
 struct SoftState {
@@ -64,6 +68,7 @@ struct SoftPattern {
   std::vector<int> dof_of_free;              // (num_free)
   Eigen::SparseMatrix<real> H;               // free x free, full symmetric storage, zero values
   std::vector<int> tet_slots;                // (144 per tet) value index of entry (3i+a, 3j+c), -1 if pinned
+  std::vector<int> rod_slots;                // the same for a rod: 81 per element, then 324 per joint
   SparseCholesky cholesky;                   // analysed on H's pattern
 
   // Value index of entry (row, col) of H, or -1 when it is not in the pattern.
@@ -158,6 +163,8 @@ class SoftStep {
  private:
   std::vector<Mat3> R_;     // per-tetrahedron rotations of the corotated model, at x0
   std::vector<real> K0_;    // dt^2 P^T hess Psi(x0) P, in the pattern's value order
+  std::vector<real> rod_K0_;  // a rod's part of it (kept apart: recomputed at every iterate)
+  std::vector<std::pair<int, real>> newton_shift_;  // (value slot, amount) added to the Newton matrix only (float rods)
   real reuse_strain_;       // largest change of an entry of F for which an element keeps its Hessian at x0
   SoftStepStorage& storage_;  // the body's
   mutable int element_hessians_ = 0;

@@ -192,6 +192,9 @@ class Scene {
   /// A skeleton with soft bodies tied to its links (SoftSkinnedActorParams): returns the
   /// articulated actor; its soft actors are nested_soft_actors() and go with it when destroyed.
   ActorHandle create_soft_skinned_actor(const SoftSkinnedActorParams& params);
+  /// An elastic rod (RodActorParams): a soft actor whose nodes are its polyline's, with stretching,
+  /// bending and twisting stiffness. Its node constraints take the polyline's node indices.
+  ActorHandle create_rod_actor(const RodActorParams& params);
   ActorHandle create_articulated_actor(const ArticulatedActorParams& params);
   /// A soft body from a tet-mesh shape placed at X_WL, with pinned nodes (indices into the mesh),
   /// in this engine's material description (reduced models included): the form prefab files use.
@@ -308,6 +311,7 @@ class Scene {
   ConstraintHandle create_rigid_prismatic_joint_constraint(const RigidPrismaticJointConstraintParams& params);
   ConstraintHandle create_joint_rotation_range_constraint(const JointRotationRangeConstraintParams& params);
   ConstraintHandle create_joint_rotation_tracking_constraint(const JointRotationTrackingConstraintParams& params);
+  ConstraintHandle create_rod_element_rotation_to_rigid_constraint(const RodElementRotationToRigidConstraintParams& params);
   ConstraintHandle create_rigid_pivot_position_constraint(const RigidPivotPositionConstraintParams& params);
   ConstraintHandle create_rigid_pivot_to_rigid_target_constraint(const RigidPivotToRigidTargetConstraintParams& params);
   ConstraintHandle create_rigid_pivot_rotation_constraint(const RigidPivotRotationConstraintParams& params);

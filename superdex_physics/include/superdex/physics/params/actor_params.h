@@ -17,7 +17,8 @@ namespace superdex::physics {
 inline namespace SUPERDEX_REAL_NAMESPACE {
 
 /// The kind of an actor. A link of an articulation is a Rigid actor nested in its Articulated one.
-enum class ActorType { None, Rigid, Soft, Articulated };
+/// Shell is SuperDex's name for thin shells, which this engine does not create yet.
+enum class ActorType { None, Rigid, Soft, Articulated, Shell, Rod };
 const char* actor_type_name(ActorType type);
 
 /// Quadrature of surface integrals (PxQy: order x, y points per triangle).
@@ -96,6 +97,45 @@ struct SoftActorParams {
   bool has_stress = true;         ///< false: no elastic forces
   ActorBoundaryElementType boundary_element_type = ActorBoundaryElementType::Default;
   bool operator==(const SoftActorParams&) const = default;
+};
+
+/// An elastic rod's material, per unit of rest length (SuperDex's names and defaults). For a
+/// homogeneous circular rod of radius r: linear_density rho A, linear_rotational_inertia rho J,
+/// axial_stiffness E A, torsional_stiffness G J, flexural_stiffness E I (both), with A = pi r^2,
+/// I = pi r^4 / 4, J = pi r^4 / 2.
+struct RodMaterialParams {
+  real linear_density = real(0.1);               ///< kg/m, > 0
+  real linear_rotational_inertia = real(1e-6);   ///< about the centreline, kg m, >= 0
+  real axial_stiffness = 100;                    ///< N, > 0
+  real torsional_stiffness = real(5e-4);         ///< N m^2, >= 0 (> 0 when the rotational inertia is 0)
+  /// N m^2, >= 0: bending about the element's frame axis (element_frame_axes), then about the
+  /// axis normal to it and to the rod
+  Real2 flexural_stiffness{real(5e-4), real(5e-4)};
+  real mass_damping_coefficient = 0;             ///< 1/s, >= 0
+  real stiffness_damping_coefficient = 0;        ///< s, >= 0
+  bool operator==(const RodMaterialParams&) const = default;
+};
+
+/// Quadrature of integrals along a rod's segments (PxQy: order x, y points per segment).
+enum class ActorSegmentElementType { P1Q1, P1Q2, P1Q3, Default = P1Q3 };
+
+/// What creates a rod actor. `shape`: a model whose mesh is a polyline (2 nodes per element, the
+/// elements in order along the rod; the last one may close the loop back to the first node) with
+/// element_frame_axes, as made by generate_tubular_rod_model_data or loaded from a model file; its
+/// nodes are placed at world_from_local. Rods do not touch other actors yet: contact,
+/// contact_element_type and use_contact_skin are kept, a contact skin is refused.
+struct RodActorParams {
+  std::string name;
+  std::string layer;
+  TransformRT world_from_local;
+  ShapeHandle shape;
+  ContactParams contact;
+  ActorSegmentElementType contact_element_type = ActorSegmentElementType::Default;
+  RodMaterialParams material;
+  bool has_gravity = true;
+  bool use_contact_skin = false;
+  ActorBoundaryElementType contact_skin_element_type = ActorBoundaryElementType::Default;
+  bool operator==(const RodActorParams&) const = default;
 };
 
 /// How a link moves relative to its parent.
@@ -246,6 +286,7 @@ void validate(const RigidActorParams& params, const std::string& where);
 void validate(const SoftActorParams& params, const std::string& where);
 void validate(const ArticulatedActorParams& params, const std::string& where);
 void validate(const SoftSkinnedActorParams& params, const std::string& where);
+void validate(const RodActorParams& params, const std::string& where);
 void validate(const GridSdfParams& params, const std::string& where);
 void validate(const RecenteringParams& params, const std::string& where);
 void validate(const ArticulatedJointFrictionParams& params, const std::string& where);

@@ -36,6 +36,7 @@ enum class ConstraintType {
   /// limit rows. Its stiffness and damping are the joint's limit stiffness and damping (0: near
   /// rigid); no force cap, no force query.
   ArticulatedSingleDofRange,
+  RodElementRotationToRigid,
 };
 const char* constraint_type_name(ConstraintType type);
 
@@ -135,6 +136,15 @@ struct DeformableNodeToDeformableNodeConstraintParams : ConstraintParams {
   int node_index_a = -1, node_index_b = -1;
   ActorHandle actor_a, actor_b;
   bool find_closest = false;
+};
+
+/// Holds the material frame of element element_index of a rod actor at a fixed rotation relative
+/// to a rigid or link actor: the relative rotation at creation, turned by ref_frame_rot_vec (a
+/// rotation vector in the element's frame, rad).
+struct RodElementRotationToRigidConstraintParams : ConstraintParams {
+  Real3 ref_frame_rot_vec = Real3::Zero();
+  ActorHandle rigid_actor, rod_actor;
+  int element_index = 0;
 };
 
 /// Pulls one DOF of a revolute or prismatic joint of an articulated actor to target_value (rad or
