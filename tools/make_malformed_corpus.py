@@ -433,7 +433,7 @@ def h5_cases():
     case(H, "no_connectivity" + e, h5({"mesh/coordinates": CUBE_V}), r"mesh/connectivity: missing dataset")
     case(H, "coordinates_n_by_2" + e, h5(mesh(v=CUBE_V[:, :2])), r"mesh/coordinates: wrong shape: expected N x 3, got \[8, 2\]")
     case(H, "coordinates_1d" + e, h5(mesh(v=CUBE_V.ravel())), r"mesh/coordinates: wrong rank: expected a 2-D dataset N x 3, got \[24\]")
-    case(H, "connectivity_5_columns" + e, h5(mesh(t=np.zeros((2, 5), dtype=np.int32))), r"mesh/connectivity: wrong shape: expected M x 3 \(triangles\) or M x 4 \(tetrahedra\), got \[2, 5\]")
+    case(H, "connectivity_5_columns" + e, h5(mesh(t=np.zeros((2, 5), dtype=np.int32))), r"mesh/connectivity: wrong shape: expected M x 2 \(a rod's polyline\), M x 3 \(triangles\) or M x 4 \(tetrahedra\), got \[2, 5\]")
     case(H, "connectivity_out_of_range" + e, h5(mesh(t=np.where(CUBE_T == 7, 70, CUBE_T).astype(np.int32))), r"mesh/connectivity: index 70 at row 3 out of range: the mesh has 8 nodes")
     case(H, "connectivity_negative" + e, h5(mesh(t=np.where(CUBE_T == 3, -3, CUBE_T).astype(np.int32))), r"mesh/connectivity: index -3 at row 1 out of range: the mesh has 8 nodes")
     case(H, "coordinates_nan" + e, h5(mesh(v=np.where(CUBE_V == 0.5, np.nan, CUBE_V))), r"mesh/coordinates: NaN at row 1, column 0")
