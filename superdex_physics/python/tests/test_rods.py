@@ -238,6 +238,36 @@ def test_a_bent_rod_straightens_without_gaining_energy(scene):
     assert max(energies) <= E0 * (1 + 1e-3)
 
 
+# ---- what the debugger draws -----------------------------------------------------------------
+
+
+def test_recordings_draw_the_rod_as_a_tube_of_its_own_radius(scene, tmp_path):
+    import json
+
+    # a steel-like wire of radius 4 mm: rho A and rho J of a solid circular section
+    radius, rho, elements = 0.004, 7800.0, 6
+    area, polar = math.pi * radius**2, math.pi * radius**4 / 2
+    r = rod(scene, straight_model(0.3, elements), linear_density=rho * area, linear_rotational_inertia=rho * polar)
+    path = tmp_path / "rod.jsonl"
+    sdp.start_recording(str(path), 0.0)
+    scene.step(0.01)
+    sdp.stop_recording()
+    lines = [json.loads(line) for line in open(path)]
+    actor = next(l for l in lines if l["type"] == "actor" and l["handle"] == r.get_handle().value)
+    assert actor["kind"] == "soft" and actor["rod"] == {"nodes": elements + 1, "closed": False}
+    rings = 8  # vertices per ring
+    assert len(actor["nodes"]) == (elements + 1) * rings + 2
+    # a closed tube: every edge in two triangles
+    assert len(actor["surfaceTriangles"]) == 2 * rings * elements + 2 * rings
+    frame = next(l for l in lines if l["type"] == "frame")
+    tube = np.asarray(frame["soft"][str(r.get_handle().value)]).reshape(-1, 3)
+    centre = node_positions_world(r)
+    for i in range(elements + 1):
+        ring = tube[i * rings:(i + 1) * rings]
+        np.testing.assert_allclose(np.linalg.norm(ring - centre[i], axis=1), radius, rtol=1e-4)
+    np.testing.assert_allclose(tube[-2:], centre[[0, -1]], atol=1e-6)
+
+
 # ---- model data and bad input ----------------------------------------------------------------
 
 

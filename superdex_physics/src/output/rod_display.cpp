@@ -10,13 +10,13 @@ inline namespace SUPERDEX_REAL_NAMESPACE {
 
 namespace {
 
-// The cross-section's radius from the model: the ghosts carry J l0 (at their distance L), the
-// polyline's nodes rho A l0.
+// The cross-section's radius from the model: each element's spin mass is J l0 / L^2, its mass
+// rho A l0.
 real display_radius(const SoftBody& b) {
   const RodModel& rod = *b.model.rod;
   real J = 0, length = 0;
   for (const RodElement& e : rod.elements) {
-    J += b.model.node_mass[e.nodes[2]] * e.ghost_distance * e.ghost_distance;
+    J += e.spin_mass * e.ghost_distance * e.ghost_distance;
     length += e.rest_length;
   }
   const real rho_A = b.model.total_mass / length;
