@@ -30,10 +30,7 @@ void rod_display_vertices(const SoftBody& b, VecX& out) {
   const int n = rod.num_nodes, ne = static_cast<int>(rod.elements.size());
   const real radius = display_radius(b);
   std::vector<Mat3> R(ne);
-  for (int e = 0; e < ne; ++e) {
-    const auto& nodes = rod.elements[e].nodes;
-    R[e] = rod_element_frame(b.state.x.segment<3>(3 * nodes[0]), b.state.x.segment<3>(3 * nodes[1]), b.state.x.segment<3>(3 * nodes[2]));
-  }
+  for (int e = 0; e < ne; ++e) R[e] = rod_element_frame(rod, e, b.state.x);
   out.resize(3 * (n * kRodDisplaySegments + (rod.closed ? 0 : 2)));
   constexpr real two_pi = 2 * std::numbers::pi_v<real>;
   for (int i = 0; i < n; ++i) {

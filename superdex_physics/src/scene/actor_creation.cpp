@@ -298,15 +298,18 @@ ActorHandle Scene::create_soft_actor(const SoftActorParams& p) {
   auto body = build_soft_body(p.name, shape->tet_mesh, material, X, {}, where);
   body->model.contact = contact_material(p.contact);
   body->X_WL = X;
-  body->base_pinned = body->model.pinned;
-  body->base_pin_target = body->model.pin_target;
-  body->has_gravity = p.has_gravity;
-  body->contact_params = p.contact;
   body->material_params = p.material;
-  body->layer = p.layer;
-  body->layer_index = contact_layer_index(s, p.layer, where + ".layer");
+  set_soft_actor_fields(s, *body, p.has_gravity, p.contact, p.layer, where);
   body->shape = std::move(shape);
   return add_soft_body(s, std::move(body));
+}
+
+void set_soft_actor_fields(SceneData& s, SoftBody& body, bool has_gravity, const ContactParams& contact, const std::string& layer,
+                           const std::string& where) {
+  body.has_gravity = has_gravity;
+  body.contact_params = contact;
+  body.layer = layer;
+  body.layer_index = contact_layer_index(s, layer, where + ".layer");
 }
 
 }  // namespace SUPERDEX_REAL_NAMESPACE

@@ -192,20 +192,13 @@ void Scene::set_inertia_properties(ActorHandle h, real mass, const Real3& com, c
   inertia_changed(*a);
 }
 
-namespace {
-
-// The position DOFs that bound a soft body: a rod's polyline nodes' (its ghosts are internal).
-Eigen::Index bounded_dofs(const SoftBody& b) { return b.model.rod ? 3 * b.model.rod->num_nodes : b.state.x.size(); }
-
-}  // namespace
-
 Aabb Scene::aabb_local(ActorHandle h) const {
   SceneData& s = scene_data(handle_);
   ActorRef r = lookup(s, h, "get_aabb_local");
   Bounds b;
   if (r.soft) {
     const Transform X_LW = r.soft->X_WL.inverse();
-    for (Eigen::Index i = 0; i + 2 < bounded_dofs(*r.soft); i += 3) b.extend(X_LW * Vec3(r.soft->state.x.segment<3>(i)));
+    for (Eigen::Index i = 0; i + 2 < 3 * r.soft->user_nodes(); i += 3) b.extend(X_LW * Vec3(r.soft->state.x.segment<3>(i)));
   } else {
     const Articulation& a = *r.articulation;
     // a link's colliders in its frame; a whole articulation's in its root link's frame
@@ -228,7 +221,7 @@ Aabb Scene::aabb_world(ActorHandle h) const {
   ActorRef r = lookup(s, h, "get_aabb_world");
   Bounds b;
   if (r.soft) {
-    for (Eigen::Index i = 0; i + 2 < bounded_dofs(*r.soft); i += 3) b.extend(r.soft->state.x.segment<3>(i));
+    for (Eigen::Index i = 0; i + 2 < 3 * r.soft->user_nodes(); i += 3) b.extend(r.soft->state.x.segment<3>(i));
   } else {
     const Articulation& a = *r.articulation;
     for (const LinkCollider& c : a.model.colliders) {

@@ -87,8 +87,7 @@ const SoftBody& node_body(SceneData& s, ActorHandle actor, const std::string& wh
 }
 
 void check_node(const SoftBody& b, int node, const std::string& what, const char* field) {
-  // a rod's nodes are its polyline's (its ghosts are internal)
-  const int n = b.model.rod ? b.model.rod->num_nodes : static_cast<int>(b.state.x.size() / 3);
+  const int n = b.user_nodes();
   check(node >= 0 && node < n, what, std::string(field) + " " + std::to_string(node) + " out of range [0, " + std::to_string(n) + ")");
 }
 
@@ -222,9 +221,7 @@ ConstraintHandle Scene::create_rod_element_rotation_to_rigid_constraint(const Ro
   const int ne = static_cast<int>(b.model.rod->elements.size());
   check(p.element_index >= 0 && p.element_index < ne, what,
         "element_index " + std::to_string(p.element_index) + " out of range [0, " + std::to_string(ne) + ")");
-  const std::array<int, 3>& nodes = b.model.rod->elements[p.element_index].nodes;
-  const Mat3 R_e = rod_element_frame(b.state.x.segment<3>(3 * nodes[0]), b.state.x.segment<3>(3 * nodes[1]),
-                                     b.state.x.segment<3>(3 * nodes[2]));
+  const Mat3 R_e = rod_element_frame(*b.model.rod, p.element_index, b.state.x);
   ConstraintRecord c;
   c.type = ConstraintType::RodElementRotationToRigid;
   c.actor_a = p.rigid_actor, c.actor_b = p.rod_actor;

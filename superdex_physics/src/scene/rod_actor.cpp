@@ -80,15 +80,12 @@ std::unique_ptr<SoftBody> build_rod_body(const std::string& name, const MeshData
     rod->elements.push_back(el);
   }
   // bending and twisting between consecutive elements, from their rest frames
-  auto frame = [&](const RodElement& el) {
-    return rod_element_frame(x.segment<3>(3 * el.nodes[0]), x.segment<3>(3 * el.nodes[1]), x.segment<3>(3 * el.nodes[2]));
-  };
   for (int e = 0; e + 1 < ne || (closed && e < ne); ++e) {
     RodJoint j;
     j.e = e;
     j.f = (e + 1) % ne;
     j.voronoi_length = (rod->elements[j.e].rest_length + rod->elements[j.f].rest_length) / 2;
-    j.rest_darboux = rod_darboux(frame(rod->elements[j.e]), frame(rod->elements[j.f]));
+    j.rest_darboux = rod_darboux(rod_element_frame(*rod, j.e, x), rod_element_frame(*rod, j.f, x));
     rod->joints.push_back(j);
   }
   // the rest mesh in the actor frame (polyline nodes, then ghosts): what resets go back to
@@ -125,12 +122,7 @@ ActorHandle Scene::create_rod_actor(const RodActorParams& p) {
   auto body = build_rod_body(p.name, *model->mesh, *model->element_frame_axes, p.material, X, where);
   body->X_WL = X;
   body->recentering.use_recentering = false;
-  body->base_pinned = body->model.pinned;
-  body->base_pin_target = body->model.pin_target;
-  body->has_gravity = p.has_gravity;
-  body->contact_params = p.contact;
-  body->layer = p.layer;
-  body->layer_index = contact_layer_index(s, p.layer, where + ".layer");
+  set_soft_actor_fields(s, *body, p.has_gravity, p.contact, p.layer, where);
   body->shape = std::move(shape);
   return add_soft_body(s, std::move(body));
 }

@@ -118,8 +118,6 @@ ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle&
   const std::shared_ptr<const TetMesh> shape_mesh = shape->tet_mesh;
   auto body = build_soft_body(name, shape->tet_mesh, material, X, fixed_nodes, where);
   body->X_WL = X;
-  body->base_pinned = body->model.pinned;
-  body->base_pin_target = body->model.pin_target;
   body->shape = std::move(shape);
   body->contact_params.coulomb_friction_coefficient = body->model.contact.friction;
   body->contact_params.contact_stiffness = body->model.contact.stiffness;
@@ -130,6 +128,9 @@ ActorHandle Scene::create_soft_actor(const std::string& name, const ShapeHandle&
 }
 
 ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body) {
+  // what boundary conditions go back to: the nodes pinned at creation
+  body->base_pinned = body->model.pinned;
+  body->base_pin_target = body->model.pin_target;
   body->handle = next_handle();
   const ActorHandle h = body->handle;
   s.actors[h] = ActorRef{nullptr, -1, body.get()};

@@ -189,8 +189,13 @@ void require_query(const SceneData& s, ActorHandle actor, QueryType type, const 
 // Moves a soft body's frame with the rigid motion of its nodes (soft_actor_api.cpp), as its
 // RecenteringParams say.
 void recenter_soft_body(SoftBody& b);
-// Adds a built soft body to the scene.
+// Adds a built soft body to the scene (its pinned nodes become those its boundary conditions
+// go back to).
 ActorHandle add_soft_body(SceneData& s, std::unique_ptr<SoftBody> body);
+// Gives a soft or rod actor the fields its params share: gravity, contact params and layer
+// (actor_creation.cpp); throws naming `where` for a 65th layer.
+void set_soft_actor_fields(SceneData& s, SoftBody& body, bool has_gravity, const ContactParams& contact, const std::string& layer,
+                           const std::string& where);
 // The index of a contact layer by name, registered on first use; throws naming `where` when the
 // scene has 64 layers already.
 int contact_layer_index(SceneData& s, const std::string& name, const std::string& where);

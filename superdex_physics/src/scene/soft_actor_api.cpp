@@ -36,9 +36,6 @@ void refuse_reduced(const SoftBody& b, const char* what) {
 
 Vec3 rest_node(const SoftBody& b, int i) { return b.model.mesh->nodes[i]; }
 
-// The nodes a user addresses: a rod's polyline nodes (its ghosts are internal), else all.
-int user_nodes(const SoftBody& b) { return b.model.rod ? b.model.rod->num_nodes : static_cast<int>(b.model.node_mass.size()); }
-
 // After a rod's polyline nodes were set (x_before: the body's positions before): each ghost keeps
 // its offset from its element's midpoint turned by the element's own turn (the smallest rotation
 // of its old direction onto its new one), so that setting a bent shape bends the material frames
@@ -90,7 +87,7 @@ void apply_boundary_conditions(SoftBody& b) {
 std::vector<real> Scene::displacements(ActorHandle h) const {
   const SoftBody& b = soft_of(scene_data(handle_), h, "get_displacements");
   const Transform X_LW = b.X_WL.inverse();
-  const int n = user_nodes(b);
+  const int n = b.user_nodes();
   std::vector<real> out(3 * n);
   for (int i = 0; i < n; ++i) {
     Eigen::Map<Vec3> d(out.data() + 3 * i);
@@ -103,7 +100,7 @@ void Scene::set_displacements(ActorHandle h, std::span<const real> d) {
   const char* what = "set_displacements";
   SoftBody& b = soft_of(scene_data(handle_), h, what);
   refuse_reduced(b, what);
-  check_count(what, "displacements", d.size(), 3 * user_nodes(b));
+  check_count(what, "displacements", d.size(), 3 * b.user_nodes());
   check_finite(what, "displacements", d);
   const VecX x_before = b.state.x;
   for (size_t i = 0; 3 * i < d.size(); ++i)
@@ -116,7 +113,7 @@ std::vector<real> Scene::node_positions_local(ActorHandle h) const {
   const SoftBody& b = soft_of(const_cast<SceneData&>(s), h, "get_node_positions_local");
   require_query(s, h, QueryType::NodePositions, "get_node_positions_local");
   const Transform X_LW = b.X_WL.inverse();
-  std::vector<real> out(3 * user_nodes(b));
+  std::vector<real> out(3 * b.user_nodes());
   for (size_t i = 0; 3 * i < out.size(); ++i) {
     Eigen::Map<Vec3> p(out.data() + 3 * i);
     p = node_local(b, X_LW, static_cast<int>(i));
@@ -128,7 +125,7 @@ void Scene::set_node_positions_local(ActorHandle h, std::span<const real> p) {
   const char* what = "set_node_positions_local";
   SoftBody& b = soft_of(scene_data(handle_), h, what);
   refuse_reduced(b, what);
-  check_count(what, "positions_local", p.size(), 3 * user_nodes(b));
+  check_count(what, "positions_local", p.size(), 3 * b.user_nodes());
   check_finite(what, "positions_local", p);
   const VecX x_before = b.state.x;
   for (size_t i = 0; 3 * i < p.size(); ++i) b.state.x.segment<3>(3 * i) = b.X_WL * Vec3(Eigen::Map<const Vec3>(&p[3 * i]));
@@ -139,7 +136,7 @@ void Scene::set_node_velocities_local(ActorHandle h, std::span<const real> v) {
   const char* what = "set_node_velocities_local";
   SoftBody& b = soft_of(scene_data(handle_), h, what);
   refuse_reduced(b, what);
-  check_count(what, "velocities_local", v.size(), 3 * user_nodes(b));
+  check_count(what, "velocities_local", v.size(), 3 * b.user_nodes());
   check_finite(what, "velocities_local", v);
   for (size_t i = 0; 3 * i < v.size(); ++i) b.state.v.segment<3>(3 * i) = b.X_WL.rotation * Vec3(Eigen::Map<const Vec3>(&v[3 * i]));
   place_rod_ghosts(b, b.state.x);
@@ -331,7 +328,7 @@ std::vector<std::pair<int, Real3>> Scene::nodes_in_volume_local(ActorHandle h, c
   if (boundary_only)
     for (int i : b.model.surface_nodes) visit(i);
   else
-    for (int i = 0; i < user_nodes(b); ++i) visit(i);
+    for (int i = 0; i < b.user_nodes(); ++i) visit(i);
   return out;
 }
 
@@ -366,7 +363,7 @@ void Scene::add_boundary_condition_dofs_world(ActorHandle h, std::span<const int
   if (dofs.size() != values.size())
     throw Error(std::string(what) + ": dof_indices has " + std::to_string(dofs.size()) + " entries but dof_values_world has " +
                 std::to_string(values.size()));
-  const int n = 3 * user_nodes(b);
+  const int n = 3 * b.user_nodes();
   std::map<int, int> per_node;  // a node's DOFs are set together
   for (size_t k = 0; k < dofs.size(); ++k) {
     if (dofs[k] < 0 || dofs[k] >= n)
@@ -392,7 +389,7 @@ void Scene::add_boundary_condition_nodes_world(ActorHandle h, std::span<const in
     throw Error(std::string(what) + ": node_positions_world must hold 3 values per node (" + std::to_string(3 * nodes.size()) + "), got " +
                 std::to_string(positions.size()));
   // checked here, so that errors name this call's arguments rather than the DOF form's
-  const int num_nodes = user_nodes(soft_of(scene_data(handle_), h, what));
+  const int num_nodes = soft_of(scene_data(handle_), h, what).user_nodes();
   std::vector<int> dofs;
   dofs.reserve(3 * nodes.size());
   for (size_t k = 0; k < nodes.size(); ++k) {

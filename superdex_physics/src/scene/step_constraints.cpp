@@ -34,10 +34,8 @@ ConstraintSide constraint_side(const SceneData& s, const ConstraintRecord& c, in
     side.soft = index_in(s.soft_bodies, r.soft, index);
     side.element = c.element;
     side.element_nodes = b.model.rod->elements[c.element].nodes;
-    Vec3 p[3];
-    for (int k = 0; k < 3; ++k) p[k] = b.state.x.segment<3>(3 * side.element_nodes[k]);
-    const Mat3 R = rod_element_frame(p[0], p[1], p[2], &side.omega_map);
-    side.X_WL = {Quat(R).normalized(), (p[0] + p[1]) / 2};
+    const Mat3 R = rod_element_frame(*b.model.rod, c.element, b.state.x, &side.omega_map);
+    side.X_WL = {Quat(R).normalized(), (b.state.x.segment<3>(3 * side.element_nodes[0]) + b.state.x.segment<3>(3 * side.element_nodes[1])) / 2};
     side.com_W = side.X_WL.translation;
     return side;
   }

@@ -79,6 +79,11 @@ Mat3 rod_element_frame(const Vec3& a, const Vec3& b, const Vec3& g, std::array<M
   return R0.cast<real>();
 }
 
+Mat3 rod_element_frame(const RodModel& m, int e, const VecX& x, std::array<Mat3, 3>* omega_map) {
+  const std::array<int, 3>& n = m.elements[e].nodes;
+  return rod_element_frame(x.segment<3>(3 * n[0]), x.segment<3>(3 * n[1]), x.segment<3>(3 * n[2]), omega_map);
+}
+
 Vec3 rod_darboux(const Mat3& R_e, const Mat3& R_f) {
   return darboux<double>(R_e.cast<double>(), R_f.cast<double>()).cast<real>();
 }

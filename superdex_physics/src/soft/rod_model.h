@@ -58,6 +58,9 @@ struct RodModel {
 /// w = sum_k omega_map[k] v_k (rad/s from m/s).
 Mat3 rod_element_frame(const Vec3& a, const Vec3& b, const Vec3& g, std::array<Mat3, 3>* omega_map = nullptr);
 
+/// The same for element e of a rod whose body's node positions are x (3 per node).
+Mat3 rod_element_frame(const RodModel& m, int e, const VecX& x, std::array<Mat3, 3>* omega_map = nullptr);
+
 /// theta of two frames (in e's frame): 2 sin(phi/2) n for O = R_e^T R_f a rotation by phi about n.
 Vec3 rod_darboux(const Mat3& R_e, const Mat3& R_f);
 

@@ -119,6 +119,10 @@ struct SoftBody {
   std::unique_ptr<SoftPattern> pattern;  // built on first use
   std::shared_ptr<const ReducedSoftModel> reduced;  // the modes of a reduced body (reduced_soft.h), else null
   SoftStepStorage step_storage;
+
+  /// The nodes users address (node indices, constraints, queries): a rod's polyline nodes (its
+  /// ghosts follow them and are internal), else every node.
+  int user_nodes() const { return model.rod ? model.rod->num_nodes : static_cast<int>(state.x.size() / 3); }
 };
 
 // Builds a soft body from a registered tet mesh placed at X_WL; throws naming `where`.
